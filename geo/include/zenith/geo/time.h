@@ -1,0 +1,80 @@
+// Time scales for the ephemeris: UTC in, UT1 (Earth rotation) and TT (dynamical time) out.
+//
+// TT - UTC comes from the IERS leap-second table (TAI - UTC) + 32.184 s for instants from
+// 1972-01-01, which is exact. Before 1972, TT = UT1 + DeltaT with the Espenak & Meeus (2006)
+// polynomial model of DeltaT (NASA Five Millennium Canon of Solar Eclipses). After the last
+// entry in the table, TAI - UTC is held at its last value (37 s since 2017-01-01; no leap second
+// has been announced since, and the CGPM decided in 2022 to stop them by 2035).
+// UT1 = UTC + DUT1, with DUT1 = 0 unless the caller gives it (|DUT1| < 0.9 s by definition of
+// UTC; 1 s of UT1 error moves everything in the sky by up to 15 arcseconds).
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace zenith::geo {
+
+// Thrown for any input that cannot be a valid instant; the message names the parameter, the
+// value and the accepted range or format.
+class TimeError : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+// A UTC calendar instant. second may reach 60.999... only on a day that ends with a leap second.
+struct CivilTime {
+    int year = 2000;
+    int month = 1;
+    int day = 1;
+    int hour = 12;
+    int minute = 0;
+    double second = 0.0;
+};
+
+struct TimeOptions {
+    std::optional<double> dut1_s;     // UT1 - UTC, seconds; default 0
+    std::optional<double> delta_t_s;  // TT - UT1 override, seconds (e.g. to match NREL SPA)
+};
+
+// One instant on the scales the ephemeris needs. Julian dates are single doubles: at JD 2.46e6 the
+// resolution is ~40 us, i.e. 20 micro-arcseconds of lunar motion.
+struct Time {
+    double jd_utc = 2451545.0;  // quasi Julian date of the UTC calendar instant
+    double jd_ut1 = 2451545.0;  // UT1 Julian date (Earth rotation angle, sidereal time)
+    double jd_tt = 2451545.0;   // TT Julian date (ephemeris arguments)
+
+    double DeltaT() const { return (jd_tt - jd_ut1) * 86400.0; }  // TT - UT1, seconds
+    // Julian centuries of TT since J2000.0 (JD 2451545.0 TT).
+    double CenturiesTT() const { return (jd_tt - 2451545.0) / 36525.0; }
+};
+
+inline constexpr double kJ2000 = 2451545.0;
+inline constexpr double kDaysPerCentury = 36525.0;
+inline constexpr double kSecondsPerDay = 86400.0;
+
+// Parse ISO 8601: "2024-04-08T18:18:00Z", fractional seconds, "+02:00"/"-0700" offsets,
+// a space instead of 'T', or a date alone (midnight). No offset means UTC.
+CivilTime ParseIso8601(std::string_view text);
+// Format as "YYYY-MM-DDThh:mm:ss.sssZ".
+std::string FormatIso8601(const CivilTime& utc);
+
+// Throws TimeError naming the field when the calendar instant does not exist.
+void ValidateCivilTime(const CivilTime& utc);
+
+// Julian date of a proleptic Gregorian calendar instant (Meeus, Astronomical Algorithms, ch. 7).
+double JulianDate(int year, int month, int day, int hour, int minute, double second);
+CivilTime CivilFromJulianDate(double jd);
+
+// TAI - UTC in seconds for the UTC day containing jd_utc; 0 before 1972 (see file comment).
+double TaiMinusUtc(double jd_utc);
+// TT - UT1 in seconds, Espenak & Meeus (2006) polynomials, valid -1999..3000.
+double DeltaTModel(double decimal_year);
+
+Time TimeFromUtc(const CivilTime& utc, const TimeOptions& options = {});
+Time TimeFromIso8601(std::string_view text, const TimeOptions& options = {});
+// UTC now from the system clock.
+Time TimeNow(const TimeOptions& options = {});
+
+}  // namespace zenith::geo
