@@ -73,8 +73,11 @@ class StarCatalog {
     // Geocentric apparent unit vectors in TOD for all stars, in the order of stars(): proper
     // motion to the date (linear space motion, parallax and radial velocity ignored), annual
     // aberration (special-relativistic, with the Earth's heliocentric velocity), then frame
-    // bias + precession + nutation (TodFromGcrs). Light deflection by the Sun is ignored
-    // (< 10 mas beyond 45 degrees from the Sun).
+    // bias + precession + nutation (TodFromGcrs). Ignored: light deflection by the Sun
+    // (< 10 mas beyond 45 degrees from the Sun), the Sun's motion about the barycentre in the
+    // aberration (<= 10 mas) and annual parallax (<= 0.74 arcsec, alpha Centauri; 0.38 arcsec
+    // for Sirius). Within 0.012 arcsec of ERFA's chain without parallax and deflection over
+    // all stars to V = 6.5, 1950-2100 (tests/geo/stars_test.cpp); ~0.15 ms for 8,411 stars.
     std::vector<glm::dvec3> ApparentTod(double jd_tt) const;
 
   private:
