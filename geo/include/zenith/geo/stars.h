@@ -47,7 +47,9 @@ double IlluminanceFromMagnitude(double magnitude_v);
 
 // Linear sRGB (Rec. 709 primaries, unit luminance Y = 1) of a black body at the temperature that
 // B-V indicates (Ballesteros 2012), for tinting star sprites. Components outside the gamut are
-// clipped to 0 before normalising. NaN in, NaN out.
+// clipped to 0 before normalising. NaN in, NaN out. About 4 us a call (Planck integrated over
+// 95 wavelengths); the catalogue's B-V comes in steps of 0.01, so at most 441 distinct values
+// after clamping: cache by value when tinting every star.
 glm::dvec3 ColourFromBMinusV(double b_minus_v);
 // Black-body temperature, kelvin, from B-V: Ballesteros (2012, EPL 97, 34008):
 // T = 4600 K (1 / (0.92 BV + 1.7) + 1 / (0.92 BV + 0.62)).
