@@ -1,0 +1,141 @@
+#include "zenith/sim/ephemeris_report.h"
+
+#include <cmath>
+#include <istream>
+#include <ostream>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace zenith::sim {
+namespace {
+
+constexpr double kRadToDeg = 57.295779513082320876798;
+
+double Deg(double radians) { return radians * kRadToDeg; }
+
+std::string FormatLatLon(double lat_deg, double lon_deg) {
+    return fmt::format("{:.5f}°{} {:.5f}°{}", std::abs(lat_deg), lat_deg >= 0 ? 'N' : 'S',
+                       std::abs(lon_deg), lon_deg >= 0 ? 'E' : 'W');
+}
+
+// Reads a required finite number; the message names the key and what was found.
+double RequireNumber(const nlohmann::json& j, const char* key, const char* unit) {
+    const auto it = j.find(key);
+    if (it == j.end()) {
+        throw std::invalid_argument(fmt::format("missing key \"{}\" ({})", key, unit));
+    }
+    if (!it->is_number()) {
+        throw std::invalid_argument(
+            fmt::format("\"{}\" must be a number ({}), got {}", key, unit, it->dump()));
+    }
+    return it->get<double>();
+}
+
+geo::TimeOptions TimeOptionsFrom(const nlohmann::json& j) {
+    geo::TimeOptions options;
+    if (j.contains("dut1_s")) options.dut1_s = RequireNumber(j, "dut1_s", "seconds");
+    if (j.contains("delta_t_s")) options.delta_t_s = RequireNumber(j, "delta_t_s", "seconds");
+    return options;
+}
+
+}  // namespace
+
+nlohmann::json EphemerisRecord(const geo::SkyEphemeris& e) {
+    const auto& sun = e.sun.topocentric.horizontal;
+    const auto& moon = e.moon.topocentric.horizontal;
+    return {
+        {"sun_az_deg", Deg(sun.azimuth)},
+        {"sun_el_deg", Deg(sun.elevation)},
+        {"sun_dist_km", sun.distance / 1000.0},
+        {"sun_diameter_deg", Deg(e.sun.angular_diameter)},
+        {"moon_az_deg", Deg(moon.azimuth)},
+        {"moon_el_deg", Deg(moon.elevation)},
+        {"moon_dist_km", moon.distance / 1000.0},
+        {"moon_diameter_deg", Deg(e.moon.angular_diameter)},
+        {"moon_illum_fraction", e.moon_phase.illuminated_fraction},
+        {"moon_phase_angle_deg", Deg(e.moon_phase.phase_angle)},
+        {"moon_bright_limb_deg", Deg(e.moon_phase.bright_limb_angle)},
+    };
+}
+
+std::string EphemerisTable(const geo::SkyEphemeris& e, const geo::Observer& observer,
+                           std::size_t max_stars) {
+    std::string out;
+    auto line = [&out](const std::string& s) { out += s + '\n'; };
+    line(fmt::format("UTC {}   TT-UT1 {:.3f} s", geo::FormatIso8601(geo::CivilFromJulianDate(
+                                                     e.time.jd_utc)),
+                     e.time.DeltaT()));
+    line(fmt::format("observer {}   height {:.1f} m above the WGS84 ellipsoid",
+                     FormatLatLon(observer.lat_deg(), observer.lon_deg()), observer.height_m()));
+    line("");
+    line(fmt::format("{:<6} {:>12} {:>12} {:>16} {:>11}", "body", "azimuth °", "elevation °",
+                     "distance km", "diameter °"));
+    auto body = [&](const char* name, const geo::BodyState& b) {
+        line(fmt::format("{:<6} {:>12.5f} {:>12.5f} {:>16.1f} {:>11.5f}", name,
+                         Deg(b.topocentric.horizontal.azimuth), Deg(b.elevation),
+                         b.topocentric.horizontal.distance / 1000.0, Deg(b.angular_diameter)));
+    };
+    body("Sun", e.sun);
+    body("Moon", e.moon);
+    line("");
+    const auto& p = e.moon_phase;
+    line(fmt::format("Moon: {:.1f}% illuminated ({}), phase angle {:.2f}°, bright limb at "
+                     "position angle {:.2f}° (from north), {:.2f}° from the zenith direction",
+                     100.0 * p.illuminated_fraction, p.waxing ? "waxing" : "waning",
+                     Deg(p.phase_angle), Deg(p.bright_limb_angle), Deg(p.bright_limb_from_zenith)));
+    if (max_stars > 0 && !e.stars.empty()) {
+        line("");
+        line(fmt::format("Brightest stars above the horizon ({} of {} shown):",
+                         std::min(max_stars, e.stars.size()), e.stars.size()));
+        line(fmt::format("  {:<14} {:>6} {:>6} {:>10} {:>10} {:>12}", "name", "V", "B-V",
+                         "azimuth °", "elev. °", "E lux"));
+        for (std::size_t i = 0; i < e.stars.size() && i < max_stars; ++i) {
+            const auto& s = e.stars[i];
+            const std::string name =
+                s.star->name.empty() ? fmt::format("HD {}", s.star->hd) : s.star->name;
+            line(fmt::format("  {:<14} {:>6.2f} {:>6.2f} {:>10.3f} {:>10.3f} {:>12.3e}", name,
+                             s.star->magnitude_v, s.star->b_minus_v, Deg(s.horizontal.azimuth),
+                             Deg(s.horizontal.elevation), s.illuminance_lux));
+        }
+    }
+    return out;
+}
+
+BatchSummary RunEphemerisBatch(std::istream& in, std::ostream& out) {
+    BatchSummary summary;
+    const geo::Ephemeris ephemeris;
+    std::string text;
+    while (std::getline(in, text)) {
+        ++summary.lines;
+        nlohmann::json record;
+        try {
+            const nlohmann::json j = nlohmann::json::parse(text);
+            if (!j.is_object()) throw std::invalid_argument("expected a JSON object");
+            const auto utc = j.find("utc");
+            if (utc == j.end() || !utc->is_string()) {
+                throw std::invalid_argument("missing string key \"utc\" (ISO 8601 UTC)");
+            }
+            const geo::Time t = geo::TimeFromIso8601(utc->get<std::string>(), TimeOptionsFrom(j));
+            const geo::Observer observer(RequireNumber(j, "lat_deg", "degrees"),
+                                         RequireNumber(j, "lon_deg", "degrees"),
+                                         RequireNumber(j, "height_m", "metres"));
+            record = EphemerisRecord(ephemeris.Compute(t, observer));
+        } catch (const std::exception& ex) {
+            ++summary.failed;
+            std::string message = ex.what();
+            if (const auto* pe = dynamic_cast<const nlohmann::json::parse_error*>(&ex)) {
+                message = fmt::format("not valid JSON (byte {})", pe->byte);
+            }
+            if (summary.first_error.empty()) {
+                summary.first_error = fmt::format("line {}: {}", summary.lines, message);
+            }
+            record = {{"line", summary.lines}, {"error", message}};
+        }
+        out << record.dump() << '\n';
+    }
+    return summary;
+}
+
+}  // namespace zenith::sim

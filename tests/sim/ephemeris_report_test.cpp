@@ -1,0 +1,66 @@
+#include "zenith/sim/ephemeris_report.h"
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace zenith::sim {
+namespace {
+
+std::vector<nlohmann::json> Lines(const std::string& text) {
+    std::vector<nlohmann::json> out;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) out.push_back(nlohmann::json::parse(line));
+    return out;
+}
+
+TEST(EphemerisBatch, KeepsOrderAndReportsBadLinesInPlace) {
+    std::istringstream in(
+        R"({"utc": "2024-04-08T18:18:00Z", "lat_deg": 31.0, "lon_deg": -104.0, "height_m": 1000, "note": "ignored"})"
+        "\n"
+        R"({"utc": "2024-02-30T00:00:00Z", "lat_deg": 31.0, "lon_deg": -104.0, "height_m": 0})"
+        "\n"
+        "this is not json\n"
+        R"({"utc": "2024-04-08T18:18:00Z", "lat_deg": 95.0, "lon_deg": 0, "height_m": 0})"
+        "\n"
+        R"({"utc": "2024-04-08T18:18:00Z", "lon_deg": 0, "height_m": 0})"
+        "\n"
+        R"({"utc": "2024-04-08T18:18:00Z", "lat_deg": "north", "lon_deg": 0, "height_m": 0})"
+        "\n"
+        R"({"utc": "2003-10-17T12:30:30-07:00", "lat_deg": 39.742476, "lon_deg": -105.1786, "height_m": 1830.14, "delta_t_s": 67})"
+        "\n");
+    std::ostringstream out;
+    const BatchSummary summary = RunEphemerisBatch(in, out);
+    EXPECT_EQ(summary.lines, 7u);
+    EXPECT_EQ(summary.failed, 5u);
+    EXPECT_NE(summary.first_error.find("line 2"), std::string::npos) << summary.first_error;
+
+    const auto lines = Lines(out.str());
+    ASSERT_EQ(lines.size(), 7u);
+    for (const char* key : {"sun_az_deg", "sun_el_deg", "sun_dist_km", "sun_diameter_deg",
+                            "moon_az_deg", "moon_el_deg", "moon_dist_km", "moon_diameter_deg",
+                            "moon_illum_fraction", "moon_phase_angle_deg",
+                            "moon_bright_limb_deg"}) {
+        EXPECT_TRUE(lines[0].contains(key)) << key;
+        EXPECT_TRUE(lines[6].contains(key)) << key;
+    }
+    auto error_of = [&](std::size_t i) {
+        EXPECT_EQ(lines[i]["line"], i + 1);
+        return lines[i]["error"].get<std::string>();
+    };
+    EXPECT_NE(error_of(1).find("day"), std::string::npos) << error_of(1);
+    EXPECT_NE(error_of(2).find("JSON"), std::string::npos) << error_of(2);
+    EXPECT_NE(error_of(3).find("lat_deg = 95"), std::string::npos) << error_of(3);
+    EXPECT_NE(error_of(4).find("lat_deg"), std::string::npos) << error_of(4);
+    EXPECT_NE(error_of(5).find("\"north\""), std::string::npos) << error_of(5);
+    // The SPA line: geometric topocentric elevation e0 = 39.872046 deg.
+    EXPECT_NEAR(lines[6]["sun_el_deg"].get<double>(), 39.872046, 1.0 / 3600.0);
+    EXPECT_NEAR(lines[6]["sun_az_deg"].get<double>(), 194.34024, 1.0 / 3600.0);
+}
+
+}  // namespace
+}  // namespace zenith::sim
