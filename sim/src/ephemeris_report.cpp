@@ -87,8 +87,11 @@ std::string EphemerisTable(const geo::SkyEphemeris& e, const geo::Observer& obse
                      Deg(p.phase_angle), Deg(p.bright_limb_angle), Deg(p.bright_limb_from_zenith)));
     if (max_stars > 0 && !e.stars.empty()) {
         line("");
-        line(fmt::format("Brightest stars above the horizon ({} of {} shown):",
-                         std::min(max_stars, e.stars.size()), e.stars.size()));
+        // Civil twilight ends at -6 deg: before that the eye sees at most the brightest planets.
+        const bool daylit = e.sun.elevation > -0.10471975511965977;
+        line(fmt::format("Brightest stars above the horizon ({} of {} shown){}:",
+                         std::min(max_stars, e.stars.size()), e.stars.size(),
+                         daylit ? "; the Sun is above -6 deg, so the sky hides them" : ""));
         line(fmt::format("  {:<14} {:>6} {:>6} {:>10} {:>10} {:>12}", "name", "V", "B-V",
                          "azimuth °", "elev. °", "E lux"));
         for (std::size_t i = 0; i < e.stars.size() && i < max_stars; ++i) {

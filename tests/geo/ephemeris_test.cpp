@@ -42,6 +42,8 @@ TEST(Ephemeris, NrelSpaExampleWithinOneArcsecond) {
     // (e0 = 39.872046 deg).
     EXPECT_NEAR(glm::degrees(e.sun.topocentric.declination), -9.316179, kOneArcsecDeg);
     EXPECT_NEAR(glm::degrees(e.sun.topocentric.horizontal.elevation), 39.872046, kOneArcsecDeg);
+    std::printf("NREL SPA: zenith %+.3f\", azimuth %+.3f\"\n", (zenith_deg - 50.11162) * 3600.0,
+                (azimuth_deg - 194.34024) * 3600.0);
 }
 
 // NOVAS C 3.1 sample output (USNO; JPL DE405): 2008-04-24 10:36:18 UTC, UT1 - UTC = -0.387845 s,
