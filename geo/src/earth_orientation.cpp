@@ -19,11 +19,11 @@
 #include <iterator>
 #include <numbers>
 
+#include "zenith/geo/angles.h"
+
 namespace zenith::geo {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kArcsecToRad = std::numbers::pi / (180.0 * 3600.0);
 constexpr double kMicroarcsecToRad = kArcsecToRad * 1e-6;
 constexpr double kArcsecPerTurn = 1296000.0;
 
@@ -53,11 +53,6 @@ glm::dmat3 R3(double a) {
 }
 
 double CenturiesSinceJ2000(double jd) { return (jd - kJ2000) / kDaysPerCentury; }
-
-double WrapTwoPi(double a) {
-    const double w = std::fmod(a, kTwoPi);
-    return w < 0.0 ? w + kTwoPi : w;
-}
 
 // Delaunay arguments l, l', F, D, Omega. IAU 2000B defines them as the linear part of Simon et al.
 // (1994): the higher-order terms are absorbed in the fit and adding them would move the result away

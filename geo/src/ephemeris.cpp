@@ -4,17 +4,13 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
 #include "zenith/geo/moon.h"
 #include "zenith/geo/sun.h"
 
 namespace zenith::geo {
 namespace {
-
-double AngleBetween(const glm::dvec3& a, const glm::dvec3& b) {
-    // atan2 of |a x b| and a.b keeps full precision at small and near-pi angles.
-    return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
 
 BodyState MakeBody(const glm::dvec3& geocentric_tod, double radius, const Time& t,
                    const Observer& observer, const EphemerisOptions& options) {

@@ -24,13 +24,13 @@
 #include <cstdint>
 #include <numbers>
 
+#include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
 
 namespace zenith::geo {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kArcsecPerRad = 648000.0 / std::numbers::pi;
 constexpr double kSpeedOfLight = 299792458.0;  // m/s
 
@@ -209,11 +209,6 @@ double GeneralPrecessionInLongitude(double t) {
     return (t * (5028.796195 + t * (1.1054348 + t * (0.00007964 + t * (-0.000023857 +
                                                                         t * -0.0000000383))))) /
            kArcsecPerRad;
-}
-
-double WrapTwoPi(double a) {
-    const double w = std::fmod(a, kTwoPi);
-    return w < 0.0 ? w + kTwoPi : w;
 }
 
 glm::dvec3 FromSpherical(const EclipticPosition& p) {

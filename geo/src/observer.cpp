@@ -6,6 +6,7 @@
 #include <GeographicLib/Geocentric.hpp>
 #include <glm/gtc/constants.hpp>
 
+#include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
 
 namespace zenith::geo {
@@ -19,11 +20,6 @@ constexpr double kMaxHeight = 1.0e8;                 // 100,000 km: beyond that 
 [[noreturn]] void Reject(const char* name, double value, const char* expected) {
     throw ObserverError(std::string(name) + " = " + std::to_string(value) +
                         " is out of range (expected " + expected + ")");
-}
-
-double WrapTwoPi(double a) {
-    a = std::fmod(a, glm::two_pi<double>());
-    return a < 0.0 ? a + glm::two_pi<double>() : a;
 }
 
 }  // namespace

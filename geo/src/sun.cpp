@@ -24,13 +24,12 @@
 #include <numbers>
 #include <span>
 
+#include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
 
 namespace zenith::geo {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kArcsecToRad = std::numbers::pi / (180.0 * 3600.0);
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kDaysPerMillennium = 365250.0;
 
@@ -58,11 +57,6 @@ glm::dvec3 FromSpherical(double longitude, double latitude, double distance) {
     const double cb = std::cos(latitude);
     return distance *
            glm::dvec3(cb * std::cos(longitude), cb * std::sin(longitude), std::sin(latitude));
-}
-
-double WrapTwoPi(double a) {
-    const double w = std::fmod(a, kTwoPi);
-    return w < 0.0 ? w + kTwoPi : w;
 }
 
 // Mean ecliptic and equinox of date <- GCRS (IAU 2006, frame bias included).

@@ -2,6 +2,8 @@
 // 1998) and against ERFA, the IAU SOFA algorithms, as an independent implementation.
 #include "zenith/geo/earth_orientation.h"
 
+#include "zenith/geo/angles.h"
+
 #include <erfa.h>
 #include <gtest/gtest.h>
 
@@ -16,7 +18,6 @@
 namespace zenith::geo {
 namespace {
 
-constexpr double kArcsecToRad = std::numbers::pi / (180.0 * 3600.0);
 constexpr double kMasToRad = kArcsecToRad * 1e-3;
 constexpr double kUasToRad = kArcsecToRad * 1e-6;
 constexpr double kSecondOfTimeToRad = 2.0 * std::numbers::pi / kSecondsPerDay;

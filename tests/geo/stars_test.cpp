@@ -2,6 +2,8 @@
 // the installed kstars-data), photometry and colour laws, and the apparent place against ERFA.
 #include "zenith/geo/stars.h"
 
+#include "zenith/geo/angles.h"
+
 #include <erfa.h>
 #include <erfam.h>
 #include <gtest/gtest.h>
@@ -568,10 +570,6 @@ class ErfaApparentTod {
     mutable double rnpb_[3][3];
 };
 
-double AngleBetween(const glm::dvec3& a, const glm::dvec3& b) {
-    return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
-
 // Required accuracy of the apparent place; measured worst case is reported by the test.
 constexpr double kApparentTolerance = 0.1 * kArcsec;
 
@@ -591,7 +589,7 @@ TEST(StarApparentTod, MatchesErfaOnSyntheticStars) {
         ASSERT_EQ(apparent.size(), catalog.stars().size());
         const ErfaApparentTod reference(jd_tt);
         for (std::size_t i = 0; i < apparent.size(); ++i) {
-            const double error = AngleBetween(apparent[i], reference(catalog.stars()[i]));
+            const double error = zg::AngleBetween(apparent[i], reference(catalog.stars()[i]));
             worst = std::max(worst, error);
             EXPECT_LT(error, kApparentTolerance) << date[0] << " star " << i;
             EXPECT_NEAR(glm::length(apparent[i]), 1.0, 1e-15);
@@ -617,7 +615,7 @@ TEST(StarApparentTod, MatchesErfaOnInstalledCatalogue) {
         const ErfaApparentTod reference(jd_tt);
         for (std::size_t i = 0; i < apparent.size(); ++i) {
             const zg::Star& star = catalog.stars()[i];
-            const double error = AngleBetween(apparent[i], reference(star));
+            const double error = zg::AngleBetween(apparent[i], reference(star));
             worst = std::max(worst, error);
             ASSERT_LT(error, kApparentTolerance) << year << " HD " << star.hd << " " << star.name;
         }

@@ -15,12 +15,12 @@
 #include <random>
 #include <vector>
 
+#include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
 
 namespace zenith::geo {
 namespace {
 
-constexpr double kArcsecToRad = std::numbers::pi / (180.0 * 3600.0);
 constexpr double kJd1950 = 2433282.5;  // 1950-01-01 0h
 constexpr double kJd2100 = 2488069.5;  // 2100-01-01 0h
 constexpr double kAuPerDayToMps = ERFA_DAU / ERFA_DAYSEC;
@@ -35,9 +35,6 @@ double Hms(double h, double min, double sec) {
 
 glm::dvec3 FromErfa(const double v[3]) { return {v[0], v[1], v[2]}; }
 
-double AngleBetween(const glm::dvec3& a, const glm::dvec3& b) {
-    return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
 
 std::vector<double> RandomDates(int n) {
     std::mt19937_64 rng(19921013);

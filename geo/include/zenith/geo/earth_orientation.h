@@ -35,7 +35,7 @@ double MeanObliquity2006(double jd_tt);
 glm::dmat3 TodFromGcrs(double jd_tt);
 
 // Rotation mean ecliptic and equinox of date -> TOD (true obliquity and nutation in longitude),
-// for series such as VSOP87D and ELP that give ecliptic-of-date coordinates.
+// for series such as ELP/MPP02 that give ecliptic-of-date coordinates.
 glm::dmat3 TodFromEclipticOfDate(double jd_tt);
 
 // Earth rotation angle (IAU 2000), radians in [0, 2pi).
