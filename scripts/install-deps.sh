@@ -12,6 +12,8 @@ packages=(
     kstars-data
     # sky: headless OpenGL 4.5 (OSMesa, EGL surfaceless), glad2 loader generator
     libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri mesa-common-dev python3-glad
+    # sky: frame output (HDR OpenEXR, tone-mapped PNG)
+    libopenexr-dev libpng-dev
     # tests and benchmarks
     libgtest-dev libgmock-dev libbenchmark-dev
 )

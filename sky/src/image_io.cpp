@@ -1,0 +1,454 @@
+// Frame output: OpenEXR (linear cd/m²) and tone-mapped sRGB PNG, written atomically.
+// Formulas and references are in image_io.h.
+#include "zenith/sky/image_io.h"
+
+#include <ImfChannelList.h>
+#include <ImfChromaticities.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
+#include <fcntl.h>
+#include <half.h>
+#include <png.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <system_error>
+
+namespace zenith::sky {
+namespace {
+
+// --- Helpers --------------------------------------------------------------------------------
+
+// Appends instead of "'" + s + "'": g++ 12 reports a false -Wrestrict on the latter at -O3.
+std::string Quoted(const std::filesystem::path& path) {
+    std::string quoted = "'";
+    quoted += path.string();
+    quoted += '\'';
+    return quoted;
+}
+
+[[noreturn]] void Fail(const std::filesystem::path& path, const std::string& cause) {
+    throw ImageError("cannot write image " + Quoted(path) + ": " + cause);
+}
+
+[[noreturn]] void FailRead(const std::filesystem::path& path, const std::string& cause) {
+    throw ImageError("cannot read image " + Quoted(path) + ": " + cause);
+}
+
+std::string ErrnoText(int error) { return std::generic_category().message(error); }
+
+// Why `image` cannot be encoded (empty if it can): encoders must never read past the vector.
+std::string ImageProblem(const Image& image) {
+    const std::string size = std::to_string(image.width) + " x " + std::to_string(image.height);
+    if (!(image.width > 0 && image.height > 0)) return "image size " + size + " (both must be > 0)";
+    const auto expected =
+        static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+    if (image.pixels.size() != expected) {
+        return "image of " + size + " has " + std::to_string(image.pixels.size()) +
+               " pixels, expected " + std::to_string(expected);
+    }
+    return {};
+}
+
+void ValidateImage(const std::filesystem::path& path, const Image& image) {
+    if (const std::string problem = ImageProblem(image); !problem.empty()) Fail(path, problem);
+}
+
+void CheckEV100(double ev100) {
+    if (!(ev100 >= kMinExposureEV100 && ev100 <= kMaxExposureEV100)) {
+        std::ostringstream message;
+        message << "exposure " << ev100 << " EV100 is outside [" << kMinExposureEV100 << ", "
+                << kMaxExposureEV100 << "]";
+        throw std::invalid_argument(message.str());
+    }
+}
+
+// Closes fd on scope exit unless released; used so every error path closes the descriptor.
+class FileDescriptor {
+  public:
+    explicit FileDescriptor(int fd) : fd_(fd) {}
+    ~FileDescriptor() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    FileDescriptor(const FileDescriptor&) = delete;
+    FileDescriptor& operator=(const FileDescriptor&) = delete;
+    int get() const { return fd_; }
+    // Closes now and reports close()'s error: on NFS and some full disks it is the first to fail.
+    int Close() {
+        const int result = ::close(fd_);
+        fd_ = -1;
+        return result;
+    }
+
+  private:
+    int fd_;
+};
+
+// Writes `bytes` to `<path>.partial`, fsyncs it and renames it over `path`, so `path` is either
+// the old file or the complete new one, even after a crash or power loss. The partial file is
+// removed on any error (only if this call created it: a directory or file of that name that was
+// already there and could not be opened is left alone).
+void WriteFileAtomically(const std::filesystem::path& path, const std::vector<char>& bytes) {
+    if (path.filename().empty()) Fail(path, "the path names no file");
+    std::filesystem::path partial = path;
+    partial += ".partial";
+
+    const int fd =
+        ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);  // umask applies
+    if (fd < 0) {
+        const int error = errno;
+        Fail(path, "cannot create " + Quoted(partial) + ": " + ErrnoText(error));
+    }
+    FileDescriptor file(fd);
+    auto fail_and_remove = [&](const std::string& cause) {
+        if (file.get() >= 0) file.Close();
+        std::error_code ignored;
+        std::filesystem::remove(partial, ignored);
+        Fail(path, cause);
+    };
+
+    std::size_t written = 0;
+    while (written < bytes.size()) {
+        const ssize_t n = ::write(file.get(), bytes.data() + written, bytes.size() - written);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            const int error = errno;
+            fail_and_remove("writing " + Quoted(partial) + " failed after " +
+                            std::to_string(written) + " of " + std::to_string(bytes.size()) +
+                            " bytes: " + ErrnoText(error));
+        }
+        written += static_cast<std::size_t>(n);
+    }
+    if (::fsync(file.get()) != 0) {
+        const int error = errno;
+        fail_and_remove("fsync of " + Quoted(partial) + " failed: " + ErrnoText(error));
+    }
+    if (file.Close() != 0) {
+        const int error = errno;
+        fail_and_remove("closing " + Quoted(partial) + " failed: " + ErrnoText(error));
+    }
+    if (::rename(partial.c_str(), path.c_str()) != 0) {
+        const int error = errno;
+        fail_and_remove("renaming " + Quoted(partial) + " to it failed: " + ErrnoText(error));
+    }
+    // Make the rename itself durable. Best effort: some file systems refuse fsync on directories,
+    // and by now the new file is complete under its final name either way.
+    const std::filesystem::path directory =
+        path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    const int dir_fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir_fd >= 0) {
+        ::fsync(dir_fd);
+        ::close(dir_fd);
+    }
+}
+
+// --- OpenEXR --------------------------------------------------------------------------------
+
+// An OpenEXR output stream in memory: the file is complete (OutputFile's destructor writes the
+// line-offset table and swallows its own errors) before a byte reaches the disk, so disk errors
+// are all seen by WriteFileAtomically.
+class MemoryOStream : public Imf::OStream {
+  public:
+    MemoryOStream() : Imf::OStream("<memory>") {}
+    void write(const char c[], int n) override {
+        const std::size_t end = position_ + static_cast<std::size_t>(n);
+        if (end > bytes_.size()) bytes_.resize(end);
+        std::memcpy(bytes_.data() + position_, c, static_cast<std::size_t>(n));
+        position_ = end;
+    }
+    uint64_t tellp() override { return position_; }
+    void seekp(uint64_t pos) override { position_ = static_cast<std::size_t>(pos); }
+    const std::vector<char>& bytes() const { return bytes_; }
+
+  private:
+    std::vector<char> bytes_;
+    std::size_t position_ = 0;
+};
+
+constexpr const char* kExrChannels[4] = {"R", "G", "B", "A"};
+
+std::vector<char> EncodeExr(const Image& image, ExrPixelType pixel_type) {
+    Imf::Header header(image.width, image.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    // 1.0 in the file is 1 cd/m²; Imf::Chromaticities() is Rec.709 primaries with D65 white.
+    Imf::addWhiteLuminance(header, 1.0f);
+    Imf::addChromaticities(header, Imf::Chromaticities());
+    const Imf::PixelType type = pixel_type == ExrPixelType::kHalf ? Imf::HALF : Imf::FLOAT;
+    for (const char* name : kExrChannels) header.channels().insert(name, Imf::Channel(type));
+
+    MemoryOStream stream;
+    std::vector<Imath::half> halves;  // only for kHalf; must outlive the OutputFile
+    Imf::FrameBuffer frame_buffer;
+    if (pixel_type == ExrPixelType::kFloat) {
+        const char* base = reinterpret_cast<const char*>(image.pixels.data());
+        for (int c = 0; c < 4; ++c) {
+            frame_buffer.insert(
+                kExrChannels[c],
+                Imf::Slice(Imf::FLOAT,
+                           const_cast<char*>(base) + static_cast<std::size_t>(c) * sizeof(float),
+                           sizeof(glm::vec4),
+                           sizeof(glm::vec4) * static_cast<std::size_t>(image.width)));
+        }
+    } else {
+        // Clamp to the largest finite half so a sun disk reads as very bright, not as +inf (which
+        // would poison any later filtering of the file); NaN and inf pass through as themselves.
+        constexpr float kHalfMax = 65504.0f;
+        halves.resize(image.pixels.size() * 4);
+        for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+            for (int c = 0; c < 4; ++c) {
+                float value = image.pixels[i][c];
+                if (std::isfinite(value)) value = std::clamp(value, -kHalfMax, kHalfMax);
+                halves[i * 4 + static_cast<std::size_t>(c)] = Imath::half(value);
+            }
+        }
+        char* base = reinterpret_cast<char*>(halves.data());
+        for (int c = 0; c < 4; ++c) {
+            frame_buffer.insert(
+                kExrChannels[c],
+                Imf::Slice(Imf::HALF, base + static_cast<std::size_t>(c) * sizeof(Imath::half),
+                           4 * sizeof(Imath::half),
+                           4 * sizeof(Imath::half) * static_cast<std::size_t>(image.width)));
+        }
+    }
+    {
+        Imf::OutputFile file(stream, header);
+        file.setFrameBuffer(frame_buffer);
+        file.writePixels(image.height);
+    }
+    return stream.bytes();
+}
+
+// --- PNG ------------------------------------------------------------------------------------
+
+std::vector<char> EncodePng(const Srgb8Image& srgb) {
+    // libpng's simplified API: errors come back as a return value and image.message instead of a
+    // longjmp through C++ frames.
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = static_cast<png_uint_32>(srgb.width);
+    png.height = static_cast<png_uint_32>(srgb.height);
+    png.format = PNG_FORMAT_RGB;  // 8-bit sRGB; libpng adds the sRGB chunk (perceptual intent)
+    const auto stride = static_cast<png_int_32>(3 * srgb.width);
+    png_alloc_size_t size = 0;
+    if (!png_image_write_get_memory_size(png, size, 0, srgb.rgb.data(), stride, nullptr)) {
+        const std::string message = png.message;
+        png_image_free(&png);
+        throw std::runtime_error("PNG encoding failed: " + message);
+    }
+    std::vector<char> bytes(size);
+    if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, srgb.rgb.data(), stride,
+                                   nullptr)) {
+        const std::string message = png.message;
+        png_image_free(&png);
+        throw std::runtime_error("PNG encoding failed: " + message);
+    }
+    bytes.resize(size);
+    return bytes;
+}
+
+}  // namespace
+
+// --- Exposure and tone mapping ----------------------------------------------------------------
+
+double ExposureScale(double ev100) {
+    // [LR14] §5.1: L_max = 78 / (q · S) · 2^EV100, q = 0.65, S = 100 → 78 / 65 = 1.2.
+    constexpr double kLensAttenuation = 0.65;  // q
+    constexpr double kIso = 100.0;             // S
+    const double max_luminance = 78.0 / (kLensAttenuation * kIso) * std::exp2(ev100);
+    return 1.0 / max_luminance;
+}
+
+double AutoExposureEV100(const Image& image) {
+    if (image.pixels.empty()) throw std::invalid_argument("AutoExposureEV100: empty image");
+    double sum_log = 0.0;
+    std::size_t count = 0;
+    for (const glm::vec4& p : image.pixels) {
+        // Rec.709 / sRGB luminance weights (ITU-R BT.709-6, item 3.2).
+        const double y = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
+        if (!std::isfinite(y)) continue;
+        sum_log += std::log2(std::max(y, kMinMeteredLuminance));
+        ++count;
+    }
+    if (count == 0) {
+        throw std::invalid_argument("AutoExposureEV100: no pixel of the " +
+                                    std::to_string(image.width) + " x " +
+                                    std::to_string(image.height) + " image is finite");
+    }
+    // [LR14] §5.1: EV100 = log2(L_avg · S / K), S = 100, K = 12.5; log2 of the geometric mean is
+    // the mean of log2.
+    constexpr double kIso = 100.0;
+    constexpr double kCalibration = 12.5;  // K, reflected-light meter constant
+    const double ev100 = sum_log / static_cast<double>(count) + std::log2(kIso / kCalibration);
+    return std::clamp(ev100, kMinExposureEV100, kMaxExposureEV100);
+}
+
+Exposure ExposureFromString(std::string_view text) {
+    if (text == "auto") return Exposure{};
+    std::ostringstream range;
+    range << "[" << kMinExposureEV100 << ", " << kMaxExposureEV100 << "]";
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, error] = std::from_chars(text.data(), end, value);
+    if (text.empty() || error != std::errc() || ptr != end) {
+        throw std::invalid_argument("--exposure: '" + std::string(text) +
+                                    "' is neither 'auto' nor a number (EV100 in " + range.str() +
+                                    ")");
+    }
+    if (!(value >= kMinExposureEV100 && value <= kMaxExposureEV100)) {
+        throw std::invalid_argument("--exposure: " + std::string(text) + " EV100 is outside " +
+                                    range.str());
+    }
+    return Exposure{false, value};
+}
+
+double ResolveEV100(const Exposure& exposure, const Image& image) {
+    return exposure.automatic ? AutoExposureEV100(image) : exposure.ev100;
+}
+
+double ToneMapAcesFitted(double x) {
+    if (!(x > 0.0)) return 0.0;  // also NaN
+    if (std::isinf(x)) return 1.0;
+    // [N16], coefficients a..e as published.
+    constexpr double a = 2.51, b = 0.03, c = 2.43, d = 0.59, e = 0.14;
+    return std::clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0, 1.0);
+}
+
+double SrgbEncode(double linear) {
+    if (!(linear > 0.0)) return 0.0;
+    if (linear >= 1.0) return 1.0;
+    // IEC 61966-2-1: linear segment below 0.0031308, then 1.055 · L^(1/2.4) - 0.055.
+    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+Srgb8Image ToneMapToSrgb8(const Image& image, double ev100) {
+    if (const std::string problem = ImageProblem(image); !problem.empty()) {
+        throw ImageError("ToneMapToSrgb8: " + problem);
+    }
+    CheckEV100(ev100);
+    const double scale = ExposureScale(ev100);
+    Srgb8Image out;
+    out.width = image.width;
+    out.height = image.height;
+    out.rgb.resize(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            const double encoded = SrgbEncode(ToneMapAcesFitted(scale * image.pixels[i][c]));
+            out.rgb[i * 3 + static_cast<std::size_t>(c)] =
+                static_cast<std::uint8_t>(std::lround(encoded * 255.0));
+        }
+    }
+    return out;
+}
+
+// --- Files ------------------------------------------------------------------------------------
+
+void WriteExr(const std::filesystem::path& path, const Image& image, ExrPixelType pixel_type) {
+    ValidateImage(path, image);
+    std::vector<char> bytes;
+    try {
+        bytes = EncodeExr(image, pixel_type);
+    } catch (const std::exception& e) {
+        Fail(path, std::string("OpenEXR encoding failed: ") + e.what());
+    }
+    WriteFileAtomically(path, bytes);
+}
+
+void WritePng(const std::filesystem::path& path, const Image& image, double ev100) {
+    ValidateImage(path, image);
+    std::vector<char> bytes;
+    try {
+        bytes = EncodePng(ToneMapToSrgb8(image, ev100));
+    } catch (const std::exception& e) {
+        Fail(path, e.what());
+    }
+    WriteFileAtomically(path, bytes);
+}
+
+void WriteImage(const std::filesystem::path& path, const Image& image,
+                const ImageWriteOptions& options) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (extension == ".exr") {
+        WriteExr(path, image, options.exr_pixel_type);
+    } else if (extension == ".png") {
+        ValidateImage(path, image);  // before metering, so the message is about the image
+        double ev100 = 0.0;
+        try {
+            ev100 = ResolveEV100(options.exposure, image);
+        } catch (const std::exception& e) {
+            Fail(path, e.what());
+        }
+        WritePng(path, image, ev100);
+    } else {
+        Fail(path, (extension.empty() ? std::string("no extension")
+                                      : "unknown extension '" + path.extension().string() + "'") +
+                       " (allowed: .exr, .png)");
+    }
+}
+
+Image ReadExr(const std::filesystem::path& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i window = file.header().dataWindow();
+        const int64_t width = int64_t{window.max.x} - window.min.x + 1;
+        const int64_t height = int64_t{window.max.y} - window.min.y + 1;
+        if (!(width > 0 && height > 0 && width <= std::numeric_limits<int>::max() &&
+              height <= std::numeric_limits<int>::max())) {
+            FailRead(path, "bad data window");
+        }
+        Image image(static_cast<int>(width), static_cast<int>(height));
+        Imf::FrameBuffer frame_buffer;
+        char* base = reinterpret_cast<char*>(image.pixels.data());
+        for (int c = 0; c < 4; ++c) {
+            frame_buffer.insert(
+                kExrChannels[c],
+                Imf::Slice::Make(Imf::FLOAT, base + static_cast<std::size_t>(c) * sizeof(float),
+                                 window, sizeof(glm::vec4),
+                                 sizeof(glm::vec4) * static_cast<std::size_t>(width), 1, 1,
+                                 c == 3 ? 1.0 : 0.0));
+        }
+        file.setFrameBuffer(frame_buffer);
+        file.readPixels(window.min.y, window.max.y);
+        return image;
+    } catch (const ImageError&) {
+        throw;
+    } catch (const std::exception& e) {
+        FailRead(path, e.what());
+    }
+}
+
+Srgb8Image ReadPng(const std::filesystem::path& path) {
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&png, path.c_str())) {
+        const std::string message = png.message;
+        png_image_free(&png);
+        FailRead(path, message);
+    }
+    png.format = PNG_FORMAT_RGB;
+    Srgb8Image out;
+    out.width = static_cast<int>(png.width);
+    out.height = static_cast<int>(png.height);
+    out.rgb.assign(PNG_IMAGE_SIZE(png), 0);
+    const png_color black{0, 0, 0};
+    if (!png_image_finish_read(&png, &black, out.rgb.data(), 0, nullptr)) {
+        const std::string message = png.message;
+        png_image_free(&png);
+        FailRead(path, message);
+    }
+    return out;
+}
+
+}  // namespace zenith::sky
