@@ -1,0 +1,81 @@
+// Look-up-table settings and images shared by the GL renderer and the CPU reference, plus the
+// camera and light description both use. Frames: planet-centred, metres (SI); the planet's
+// centre is the origin and the camera's "up" is its position's direction.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace zenith::sky {
+
+// LUT sizes and ray-marching step counts (Hillaire 2020, Table 2). Pc() is the paper's PC column,
+// Mobile() its iPhone 6s column; every field may be changed.
+struct LutSettings {
+    glm::ivec2 transmittance_size{256, 64};
+    int transmittance_steps = 40;
+    glm::ivec2 multiple_scattering_size{32, 32};
+    int multiple_scattering_directions_sqrt = 8;  // 8 x 8 = 64 directions (H20 §5.5.3)
+    int multiple_scattering_steps = 20;
+    glm::ivec2 irradiance_size{64, 1};
+    int irradiance_directions_sqrt = 8;
+    int irradiance_steps = 16;
+    glm::ivec2 sky_view_size{200, 100};
+    int sky_view_steps = 30;
+    glm::ivec3 aerial_perspective_size{32, 32, 32};
+    double aerial_perspective_range = 32000.0;  // m
+    int aerial_perspective_steps = 30;          // for the full range; fewer for nearer slices
+
+    static LutSettings Pc() { return {}; }
+    static LutSettings Mobile();
+    // Throws std::invalid_argument naming the field, value and allowed range.
+    void Validate() const;
+};
+
+// A LUT read back or computed on the CPU: RGBA float texels, x fastest, then y, then z.
+struct LutImage {
+    glm::ivec3 size{0, 0, 1};
+    std::vector<glm::vec4> texels;
+
+    LutImage() = default;
+    LutImage(int width, int height, int depth = 1)
+        : size(width, height, depth),
+          texels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
+                 static_cast<std::size_t>(depth)) {}
+    std::size_t Index(int x, int y, int z = 0) const {
+        return (static_cast<std::size_t>(z) * static_cast<std::size_t>(size.y) +
+                static_cast<std::size_t>(y)) * static_cast<std::size_t>(size.x) +
+               static_cast<std::size_t>(x);
+    }
+    glm::vec4& at(int x, int y, int z = 0) { return texels[Index(x, y, z)]; }
+    const glm::vec4& at(int x, int y, int z = 0) const { return texels[Index(x, y, z)]; }
+    std::size_t bytes() const { return texels.size() * sizeof(glm::vec4); }
+};
+
+// Directional lights: the Sun and, optionally, the Moon (H20's N_light = 2). Directions are unit
+// vectors toward the light in the planet-centred frame; illuminances in lux at the top of the
+// atmosphere, per RGB channel.
+struct Lights {
+    glm::dvec3 sun_direction{0.0, 0.0, 1.0};
+    glm::dvec3 sun_illuminance{127000.0};
+    bool moon_enabled = false;
+    glm::dvec3 moon_direction{0.0, 0.0, 1.0};
+    glm::dvec3 moon_illuminance{0.0};
+};
+
+// A pinhole camera, OpenGL convention: it looks along -z of its view frame, +y up, +x right.
+struct Camera {
+    glm::dvec3 position{0.0, 0.0, 6360e3 + 1.0};  // m, planet-centred
+    glm::dmat3 world_from_view{1.0};               // columns: right, up, backward
+    double vertical_fov = 1.0471975511965976;      // rad (60 deg)
+    double aspect = 16.0 / 9.0;                    // width / height
+
+    // World direction through normalised device coordinates (x, y) in [-1, 1].
+    glm::dvec3 Direction(double ndc_x, double ndc_y) const {
+        const double t = std::tan(0.5 * vertical_fov);
+        return glm::normalize(world_from_view * glm::dvec3(ndc_x * t * aspect, ndc_y * t, -1.0));
+    }
+};
+
+}  // namespace zenith::sky

@@ -1,0 +1,679 @@
+// Atmosphere physics shared by the GL renderer and the CPU reference (one text, two compilers:
+// GLSL 4.50 here, C++/GLM double through sky/src/reference/shared_math.h).
+//
+// Hillaire, "A Scalable and Production Ready Sky and Atmosphere Rendering Technique", EGSR 2020
+// (cited as H20), on the LUT parameterisation of Bruneton, "Precomputed Atmospheric Scattering:
+// a New Implementation" (2017) (cited as B17).
+//
+// Glossary (units: kilometres inside shaders; converted once from SI by the host):
+//   r     distance from the planet centre           h      altitude above the ground, r - R
+//   mu    cosine of the view zenith angle           mu_s   cosine of the sun zenith angle
+//   nu    cosine of the angle between view and sun  R, R_t bottom (ground) and top radii
+//   T     transmittance                              sigma  coefficients, 1/km
+// Light transport quantities are per unit light illuminance: multiply by lux to get cd/m^2.
+
+// std140-compatible: every vec3 is followed by one Number, so the C++ float mirror
+// (sky/src/gl/atmosphere_uniforms.h) packs identically.
+struct AtmosphereParameters {
+    vec3 rayleigh_scattering;
+    Number rayleigh_scale_height;
+    vec3 mie_scattering;
+    Number mie_scale_height;
+    vec3 mie_extinction;
+    Number mie_g;
+    vec3 absorption_extinction;
+    Number absorption_center;
+    vec3 ground_albedo;
+    Number absorption_half_width;
+    vec3 solar_illuminance;
+    Number sun_angular_radius;
+    Number bottom_radius;
+    Number top_radius;
+    Number padding0;
+    Number padding1;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Geometry
+
+Number ClampCosine(Number mu) { return clamp(mu, -1.0, 1.0); }
+Number SafeSqrt(Number a) { return sqrt(max(a, 0.0)); }
+
+// Distance along a ray from radius r with zenith cosine mu to the top boundary (B17 Eq. for
+// d_top): the positive root of |p + d v| = R_t.
+Number DistanceToTopAtmosphereBoundary(IN(AtmosphereParameters) atmosphere, Number r, Number mu) {
+    Number discriminant = r * r * (mu * mu - 1.0) + atmosphere.top_radius * atmosphere.top_radius;
+    return max(-r * mu + SafeSqrt(discriminant), 0.0);
+}
+
+Number DistanceToBottomAtmosphereBoundary(IN(AtmosphereParameters) atmosphere, Number r,
+                                          Number mu) {
+    Number discriminant =
+        r * r * (mu * mu - 1.0) + atmosphere.bottom_radius * atmosphere.bottom_radius;
+    return max(-r * mu - SafeSqrt(discriminant), 0.0);
+}
+
+bool RayIntersectsGround(IN(AtmosphereParameters) atmosphere, Number r, Number mu) {
+    return mu < 0.0 && r * r * (mu * mu - 1.0) +
+                               atmosphere.bottom_radius * atmosphere.bottom_radius >= 0.0;
+}
+
+// Nearest t >= 0 where a ray from radius r along zenith cosine mu meets the sphere of `radius`,
+// or -1 if it does not. `delta` is r - radius, given separately because the caller often knows it
+// exactly (the camera's altitude) while in float r - radius is quantised to the ulp of r (0.5 m
+// at 6360 km). The roots use the stable form, so a grazing ray from a few metres up keeps its
+// ground distance (the textbook -b - sqrt(b^2 - c) cancels there).
+Number RaySphereDistance(Number r, Number mu, Number delta, Number radius) {
+    Number b = r * mu;
+    Number c = delta * (r + radius);  // r^2 - radius^2
+    if (c >= 0.0 && b >= 0.0) return -1.0;  // on or outside the sphere, moving away
+    Number discriminant = b * b - c;
+    if (discriminant < 0.0) return -1.0;
+    Number s = sqrt(discriminant);
+    if (c > 0.0) return c / (-b + s);  // outside, moving inward (b < 0): the near root
+    return -b + s;                      // inside (or on it, moving inward): the exit
+}
+
+Number RaySphereIntersectNearest(vec3 origin, vec3 direction, Number radius) {
+    Number r = length(origin);
+    return RaySphereDistance(r, dot(origin, direction) / r, r - radius, radius);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The medium (H20 §4 and Table 1)
+
+Number RayleighDensity(IN(AtmosphereParameters) atmosphere, Number altitude) {
+    return exp(-altitude / atmosphere.rayleigh_scale_height);
+}
+
+Number MieDensity(IN(AtmosphereParameters) atmosphere, Number altitude) {
+    return exp(-altitude / atmosphere.mie_scale_height);
+}
+
+// Tent of full width 2 * half_width centred at absorption_center (H20 §4, ozone).
+Number AbsorptionDensity(IN(AtmosphereParameters) atmosphere, Number altitude) {
+    return max(0.0, 1.0 - abs(altitude - atmosphere.absorption_center) /
+                              atmosphere.absorption_half_width);
+}
+
+struct MediumSample {
+    vec3 rayleigh_scattering;
+    vec3 mie_scattering;
+    vec3 scattering;
+    vec3 extinction;
+};
+
+MediumSample SampleMedium(IN(AtmosphereParameters) atmosphere, Number altitude) {
+    Number rayleigh = RayleighDensity(atmosphere, altitude);
+    Number mie = MieDensity(atmosphere, altitude);
+    Number absorption = AbsorptionDensity(atmosphere, altitude);
+    MediumSample s;
+    s.rayleigh_scattering = atmosphere.rayleigh_scattering * rayleigh;
+    s.mie_scattering = atmosphere.mie_scattering * mie;
+    s.scattering = s.rayleigh_scattering + s.mie_scattering;
+    s.extinction = s.rayleigh_scattering + atmosphere.mie_extinction * mie +
+                   atmosphere.absorption_extinction * absorption;
+    return s;
+}
+
+// (1 - exp(-x)) / x for optical depths x >= 0, accurate for tiny x too: a 10 cm step through air
+// has x ~ 1e-6, where 1 - exp(-x) keeps only a few percent in float. The analytic per-step
+// integral of Hillaire (2015) is dt * StepIntegralFactor(sigma_t * dt).
+Number StepIntegralFactor(Number x) {
+    return x < 1e-3 ? 1.0 - x * (0.5 - x / 6.0) : (1.0 - exp(-x)) / x;
+}
+
+vec3 StepIntegral(vec3 extinction, Number dt) {
+    vec3 x = extinction * dt;
+    return dt * vec3(StepIntegralFactor(x.x), StepIntegralFactor(x.y), StepIntegralFactor(x.z));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Phase functions (sr^-1; each integrates to 1 over the sphere)
+
+Number RayleighPhase(Number nu) { return 3.0 / (16.0 * kPi) * (1.0 + nu * nu); }
+
+// Cornette & Shanks (1992), as in H20 and B17.
+Number CornetteShanksPhase(Number g, Number nu) {
+    Number k = 3.0 / (8.0 * kPi) * (1.0 - g * g) / (2.0 + g * g);
+    return k * (1.0 + nu * nu) / pow(max(1.0 + g * g - 2.0 * g * nu, 1e-6), 1.5);
+}
+
+Number IsotropicPhase() { return 1.0 / (4.0 * kPi); }
+
+// ---------------------------------------------------------------------------------------------
+// Texture coordinates: a value in [0, 1] maps to texel centres, so the first and last texel
+// hold the exact end values (B17 "GetTextureCoordFromUnitRange").
+
+Number GetTextureCoordFromUnitRange(Number x, int texture_size) {
+    return 0.5 / Number(texture_size) + x * (1.0 - 1.0 / Number(texture_size));
+}
+
+Number GetUnitRangeFromTextureCoord(Number u, int texture_size) {
+    return (u - 0.5 / Number(texture_size)) / (1.0 - 1.0 / Number(texture_size));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Transmittance LUT (H20 §5.2, parameterised as B17 §"Transmittance"): x_r from the distance to
+// the horizon, x_mu from the distance to the top boundary between its minimum and maximum, so
+// the texels concentrate near the horizon where transmittance varies fastest.
+
+vec2 GetTransmittanceTextureUvFromRMu(IN(AtmosphereParameters) atmosphere, Number r, Number mu,
+                                      ivec2 size) {
+    Number H = sqrt(atmosphere.top_radius * atmosphere.top_radius -
+                    atmosphere.bottom_radius * atmosphere.bottom_radius);
+    Number rho = SafeSqrt(r * r - atmosphere.bottom_radius * atmosphere.bottom_radius);
+    Number d = DistanceToTopAtmosphereBoundary(atmosphere, r, mu);
+    Number d_min = atmosphere.top_radius - r;
+    Number d_max = rho + H;
+    Number x_mu = (d - d_min) / (d_max - d_min);
+    Number x_r = rho / H;
+    return vec2(GetTextureCoordFromUnitRange(x_mu, size.x),
+                GetTextureCoordFromUnitRange(x_r, size.y));
+}
+
+void GetRMuFromTransmittanceTextureUv(IN(AtmosphereParameters) atmosphere, vec2 uv, ivec2 size,
+                                      OUT(Number) r, OUT(Number) mu) {
+    Number x_mu = GetUnitRangeFromTextureCoord(uv.x, size.x);
+    Number x_r = GetUnitRangeFromTextureCoord(uv.y, size.y);
+    Number H = sqrt(atmosphere.top_radius * atmosphere.top_radius -
+                    atmosphere.bottom_radius * atmosphere.bottom_radius);
+    Number rho = H * x_r;
+    r = sqrt(rho * rho + atmosphere.bottom_radius * atmosphere.bottom_radius);
+    Number d_min = atmosphere.top_radius - r;
+    Number d_max = rho + H;
+    Number d = d_min + x_mu * (d_max - d_min);
+    mu = d == 0.0 ? 1.0 : (H * H - rho * rho - d * d) / (2.0 * r * d);
+    mu = ClampCosine(mu);
+}
+
+// Mean of an exponential between two samples: exact for a density that varies exponentially
+// along the segment, as exp(-h/H) does along a vertical ray.
+Number LogMean(Number a, Number b) {
+    // Densities that underflowed, or nearly equal ones (where the quotient is 0/0), take the
+    // arithmetic mean, which the log mean tends to.
+    if (a <= 0.0 || b <= 0.0) return 0.5 * (a + b);
+    Number ratio = a / b;
+    if (abs(ratio - 1.0) < 1e-3) return 0.5 * (a + b);
+    return (a - b) / log(ratio);
+}
+
+// Optical depth to the top boundary with `steps` segments (H20 Table 2: 40). Each exponential
+// component is integrated as an exponential between the segment ends and the tent by the
+// trapezoidal rule, so a vertical ray reproduces the closed form exactly (the tent's kinks fall
+// on segment ends there), where a plain trapezoid over 2.5 km steps overestimates the 1.2 km Mie
+// layer's depth by a third.
+vec3 ComputeOpticalDepthToTopAtmosphereBoundary(IN(AtmosphereParameters) atmosphere, Number r,
+                                                Number mu, int steps) {
+    Number dx = DistanceToTopAtmosphereBoundary(atmosphere, r, mu) / Number(steps);
+    Number rayleigh = 0.0;
+    Number mie = 0.0;
+    Number absorption = 0.0;
+    Number previous_rayleigh = RayleighDensity(atmosphere, r - atmosphere.bottom_radius);
+    Number previous_mie = MieDensity(atmosphere, r - atmosphere.bottom_radius);
+    Number previous_absorption = AbsorptionDensity(atmosphere, r - atmosphere.bottom_radius);
+    for (int i = 1; i <= steps; ++i) {
+        Number d_i = Number(i) * dx;
+        Number h_i = sqrt(d_i * d_i + 2.0 * r * mu * d_i + r * r) - atmosphere.bottom_radius;
+        Number rayleigh_i = RayleighDensity(atmosphere, h_i);
+        Number mie_i = MieDensity(atmosphere, h_i);
+        Number absorption_i = AbsorptionDensity(atmosphere, h_i);
+        rayleigh += LogMean(previous_rayleigh, rayleigh_i) * dx;
+        mie += LogMean(previous_mie, mie_i) * dx;
+        absorption += 0.5 * (previous_absorption + absorption_i) * dx;
+        previous_rayleigh = rayleigh_i;
+        previous_mie = mie_i;
+        previous_absorption = absorption_i;
+    }
+    return atmosphere.rayleigh_scattering * rayleigh + atmosphere.mie_extinction * mie +
+           atmosphere.absorption_extinction * absorption;
+}
+
+vec3 ComputeTransmittanceToTopAtmosphereBoundary(IN(AtmosphereParameters) atmosphere, Number r,
+                                                 Number mu, int steps) {
+    return exp(-ComputeOpticalDepthToTopAtmosphereBoundary(atmosphere, r, mu, steps));
+}
+
+// The LUT texel for texture coordinate uv (one compute-shader invocation).
+vec3 ComputeTransmittanceTexel(IN(AtmosphereParameters) atmosphere, vec2 uv, ivec2 size,
+                               int steps) {
+    Number r;
+    Number mu;
+    GetRMuFromTransmittanceTextureUv(atmosphere, uv, size, r, mu);
+    return ComputeTransmittanceToTopAtmosphereBoundary(atmosphere, r, mu, steps);
+}
+
+vec3 GetTransmittanceToTopAtmosphereBoundary(IN(AtmosphereParameters) atmosphere,
+                                             IN(TransmittanceTexture) transmittance_texture,
+                                             ivec2 size, Number r, Number mu) {
+    vec2 uv = GetTransmittanceTextureUvFromRMu(atmosphere, r, mu, size);
+    return vec3(SampleTexture2D(transmittance_texture, uv));
+}
+
+// Transmittance toward the sun, including the fraction of the solar disk above the planet's
+// horizon (B17 "GetTransmittanceToSun"): this is what makes the Earth's shadow soft.
+vec3 GetTransmittanceToSun(IN(AtmosphereParameters) atmosphere,
+                           IN(TransmittanceTexture) transmittance_texture, ivec2 size, Number r,
+                           Number mu_s) {
+    Number sin_theta_h = atmosphere.bottom_radius / r;
+    Number cos_theta_h = -sqrt(max(1.0 - sin_theta_h * sin_theta_h, 0.0));
+    Number visible = smoothstep(-sin_theta_h * atmosphere.sun_angular_radius,
+                                sin_theta_h * atmosphere.sun_angular_radius, mu_s - cos_theta_h);
+    return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture, size, r,
+                                                   mu_s) * visible;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Multiple-scattering LUT (H20 §5.5): u = 0.5 + 0.5 mu_s, v = h / (R_t - R).
+
+vec2 GetMultipleScatteringTextureUv(IN(AtmosphereParameters) atmosphere, Number r, Number mu_s,
+                                    ivec2 size) {
+    Number x_mu_s = clamp(0.5 + 0.5 * mu_s, 0.0, 1.0);
+    Number x_h = clamp((r - atmosphere.bottom_radius) /
+                           (atmosphere.top_radius - atmosphere.bottom_radius), 0.0, 1.0);
+    return vec2(GetTextureCoordFromUnitRange(x_mu_s, size.x),
+                GetTextureCoordFromUnitRange(x_h, size.y));
+}
+
+vec3 GetMultipleScattering(IN(AtmosphereParameters) atmosphere,
+                           IN(MultipleScatteringTexture) multiple_scattering_texture, ivec2 size,
+                           Number r, Number mu_s) {
+    vec2 uv = GetMultipleScatteringTextureUv(atmosphere, r, mu_s, size);
+    return vec3(SampleTexture2D(multiple_scattering_texture, uv));
+}
+
+// Direction i of n on the unit sphere: the Fibonacci (golden-angle) spiral, equal solid angle per
+// point and n distinct zenith angles. H20 asks for 64 uniformly distributed directions; a
+// sqrt(n) x sqrt(n) grid in (cos theta, phi) has only sqrt(n) distinct zenith angles, which with
+// the sun overhead (an azimuthally symmetric integrand) left Psi_ms 14 % (of its peak) off its
+// converged value; the spiral is within 0.8 % (tests/sky/atmosphere_lut_test.cpp).
+vec3 UniformSphereDirection(int i, int n) {
+    Number cos_theta = 1.0 - (2.0 * Number(i) + 1.0) / Number(n);
+    Number sin_theta = SafeSqrt(1.0 - cos_theta * cos_theta);
+    Number phi = Number(i) * 2.39996322972865332;  // pi (3 - sqrt 5), the golden angle
+    return vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+}
+
+// Psi_ms for one texel (H20 Eq. 5-10): L_2nd_order and f_ms integrated over `sqrt_directions`^2
+// directions with `steps` ray-marching steps each, using the transmittance LUT for the sun, then
+// Psi_ms = L_2nd_order / (1 - f_ms).
+vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
+                                    IN(TransmittanceTexture) transmittance_texture,
+                                    ivec2 transmittance_size, vec2 uv, ivec2 size,
+                                    int sqrt_directions, int steps) {
+    Number x_mu_s = GetUnitRangeFromTextureCoord(uv.x, size.x);
+    Number x_h = GetUnitRangeFromTextureCoord(uv.y, size.y);
+    Number mu_s = ClampCosine(2.0 * x_mu_s - 1.0);
+    Number r = atmosphere.bottom_radius +
+               clamp(x_h, 0.0, 1.0) * (atmosphere.top_radius - atmosphere.bottom_radius);
+    // Keep the sample strictly inside the shell so rays from the ground start above it.
+    r = clamp(r, atmosphere.bottom_radius + 1e-4, atmosphere.top_radius - 1e-4);
+    vec3 position = vec3(0.0, 0.0, r);
+    vec3 sun_direction = vec3(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+
+    int n = sqrt_directions * sqrt_directions;
+    vec3 l_2nd_order = vec3(0.0);
+    vec3 f_ms = vec3(0.0);
+    for (int i = 0; i < n; ++i) {
+        vec3 direction = UniformSphereDirection(i, n);
+        Number mu = direction.z;
+        bool hits_ground = RayIntersectsGround(atmosphere, r, mu);
+        Number t_max = hits_ground ? DistanceToBottomAtmosphereBoundary(atmosphere, r, mu)
+                                   : DistanceToTopAtmosphereBoundary(atmosphere, r, mu);
+        Number dt = t_max / Number(steps);
+        vec3 throughput = vec3(1.0);
+        vec3 l = vec3(0.0);
+        vec3 l_f = vec3(0.0);
+        for (int j = 0; j < steps; ++j) {
+            Number t = (Number(j) + 0.5) * dt;
+            vec3 p = position + direction * t;
+            Number r_p = length(p);
+            MediumSample s = SampleMedium(atmosphere, r_p - atmosphere.bottom_radius);
+            vec3 step_transmittance = exp(-s.extinction * dt);
+            Number mu_s_p = dot(p, sun_direction) / r_p;
+            vec3 sun = GetTransmittanceToSun(atmosphere, transmittance_texture,
+                                             transmittance_size, r_p, mu_s_p);
+            // Energy-conserving integration over the step (Hillaire 2015): the integral of
+            // exp(-sigma_t t) over [0, dt] times the in-scattering source.
+            vec3 integral = StepIntegral(s.extinction, dt);
+            l += throughput * s.scattering * sun * IsotropicPhase() * integral;  // Eq. 6
+            l_f += throughput * s.scattering * integral;                          // Eq. 8
+            throughput *= step_transmittance;
+        }
+        if (hits_ground) {
+            // Lambertian ground lit by the sun (the L_o term of Eq. 6).
+            vec3 p = position + direction * t_max;
+            vec3 n_ground = normalize(p);
+            Number mu_s_ground = dot(n_ground, sun_direction);
+            vec3 sun = GetTransmittanceToSun(atmosphere, transmittance_texture,
+                                             transmittance_size, atmosphere.bottom_radius,
+                                             mu_s_ground);
+            l += throughput * sun * max(mu_s_ground, 0.0) * atmosphere.ground_albedo / kPi;
+        }
+        // Eq. 5 and 7 with p_u = 1 / (4 pi) and a solid angle of 4 pi / n per direction.
+        l_2nd_order += l / Number(n);
+        f_ms += l_f / Number(n);
+    }
+    return l_2nd_order / (vec3(1.0) - min(f_ms, vec3(0.999)));  // Eq. 9-10
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sky irradiance on the ground, per unit light illuminance, as a function of the light's zenith
+// cosine (u = 0.5 + 0.5 mu_s): lets the ground be lit by the sky as well as by the sun, which H20
+// leaves to the engine. Filled by integrating the scattered luminance over the upper hemisphere.
+
+vec3 GetGroundSkyIrradiance(IN(IrradianceTexture) irradiance_texture, ivec2 size, Number mu_s) {
+    vec2 uv = vec2(GetTextureCoordFromUnitRange(clamp(0.5 + 0.5 * mu_s, 0.0, 1.0), size.x), 0.5);
+    return vec3(SampleTexture2D(irradiance_texture, uv));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scattered luminance along a view ray (H20 Eq. 11) for up to two directional lights (sun and
+// moon, N_light = 2). Used by the Sky-View and aerial-perspective LUTs and, with more steps, by
+// per-pixel ray marching for views from space.
+
+struct LightSet {
+    vec3 sun_direction;
+    Number sun_enabled;
+    vec3 sun_illuminance;  // lux at the top of the atmosphere
+    Number moon_enabled;
+    vec3 moon_direction;
+    Number padding0;
+    vec3 moon_illuminance;
+    Number padding1;
+};
+
+struct ScatteringResult {
+    vec3 luminance;      // cd/m^2 (per the illuminances given)
+    vec3 transmittance;  // along the marched segment
+};
+
+// In-scattered luminance from one light at point p (position relative to the planet centre).
+vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
+                       IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                       IN(MultipleScatteringTexture) multiple_scattering_texture,
+                       ivec2 multiple_scattering_size, IN(MediumSample) s, vec3 p, Number r_p,
+                       vec3 view_direction, vec3 light_direction) {
+    Number mu_l = dot(p, light_direction) / r_p;
+    Number nu = dot(view_direction, light_direction);
+    vec3 transmittance = GetTransmittanceToSun(atmosphere, transmittance_texture,
+                                               transmittance_size, r_p, mu_l);
+    vec3 phase_scattering = s.rayleigh_scattering * RayleighPhase(nu) +
+                            s.mie_scattering * CornetteShanksPhase(atmosphere.mie_g, nu);
+    vec3 psi_ms = GetMultipleScattering(atmosphere, multiple_scattering_texture,
+                                        multiple_scattering_size, r_p, mu_l);
+    return transmittance * phase_scattering + psi_ms * s.scattering;
+}
+
+// Marches from `origin` (km, planet-centred; `origin_altitude` its altitude above the ground, exact)
+// along unit `direction` up to `t_limit` km (or the atmosphere's end) with `steps` steps. If `include_ground`, a ray that ends on the ground adds
+// the Lambertian ground lit by each light directly and through the sky (irradiance LUT; pass
+// include_ground = false while that LUT is being built).
+ScatteringResult IntegrateScatteredLuminance(
+    IN(AtmosphereParameters) atmosphere, IN(TransmittanceTexture) transmittance_texture,
+    ivec2 transmittance_size, IN(MultipleScatteringTexture) multiple_scattering_texture,
+    ivec2 multiple_scattering_size, IN(IrradianceTexture) irradiance_texture,
+    ivec2 irradiance_size, IN(LightSet) lights, vec3 origin, Number origin_altitude,
+    vec3 direction, Number t_limit, int steps, bool include_ground) {
+    ScatteringResult result;
+    result.luminance = vec3(0.0);
+    result.transmittance = vec3(1.0);
+
+    // The segment inside the atmosphere: from the entry point (if starting outside) to the exit
+    // or the ground.
+    Number r0 = length(origin);
+    Number mu0 = dot(origin, direction) / r0;
+    Number shell = atmosphere.top_radius - atmosphere.bottom_radius;
+    Number t_start = 0.0;
+    if (origin_altitude > shell) {
+        Number t_top = RaySphereDistance(r0, mu0, origin_altitude - shell, atmosphere.top_radius);
+        if (t_top < 0.0) return result;  // misses the atmosphere
+        t_start = t_top;
+    }
+    Number t_ground =
+        RaySphereDistance(r0, mu0, origin_altitude, atmosphere.bottom_radius);
+    Number t_end;
+    bool ends_on_ground = t_ground >= 0.0;
+    if (ends_on_ground) {
+        t_end = t_ground;
+    } else if (origin_altitude > shell) {
+        // Entered from space: leaves through the top again, symmetric about the closest point.
+        t_end = -2.0 * r0 * mu0 - t_start;
+    } else {
+        t_end = RaySphereDistance(r0, mu0, origin_altitude - shell, atmosphere.top_radius);
+    }
+    if (t_limit < t_end) {
+        t_end = t_limit;
+        ends_on_ground = false;
+    }
+    if (t_end <= t_start) return result;
+
+    Number dt = (t_end - t_start) / Number(steps);
+    // r(t)^2 - R^2 = c0 + t (2 b0 + t) with c0 = h0 (2R + h0): each sample's altitude follows
+    // from the exact origin altitude without cancellation (in float, |origin + t d| - R is
+    // quantised to 0.5 m, which is all there is of a few metres' ray from a runway).
+    Number c0 = origin_altitude * (2.0 * atmosphere.bottom_radius + origin_altitude);
+    Number b0 = r0 * mu0;
+    for (int i = 0; i < steps; ++i) {
+        // H20's code offsets samples by 0.3 of a step; we use the midpoint with the analytic
+        // per-step integral, which is exact for a constant medium.
+        Number t = t_start + (Number(i) + 0.5) * dt;
+        vec3 p = origin + direction * t;  // for light directions only
+        Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
+        Number r_p = sqrt(atmosphere.bottom_radius * atmosphere.bottom_radius + excess);
+        MediumSample s =
+            SampleMedium(atmosphere, excess / (r_p + atmosphere.bottom_radius));
+        vec3 source = vec3(0.0);
+        if (lights.sun_enabled > 0.0) {
+            source += lights.sun_illuminance *
+                      LightInScattering(atmosphere, transmittance_texture, transmittance_size,
+                                        multiple_scattering_texture, multiple_scattering_size, s,
+                                        p, r_p, direction, lights.sun_direction);
+        }
+        if (lights.moon_enabled > 0.0) {
+            source += lights.moon_illuminance *
+                      LightInScattering(atmosphere, transmittance_texture, transmittance_size,
+                                        multiple_scattering_texture, multiple_scattering_size, s,
+                                        p, r_p, direction, lights.moon_direction);
+        }
+        vec3 step_transmittance = exp(-s.extinction * dt);
+        vec3 integral = StepIntegral(s.extinction, dt);
+        result.luminance += result.transmittance * source * integral;
+        result.transmittance *= step_transmittance;
+    }
+
+    if (include_ground && ends_on_ground) {
+        vec3 p = origin + direction * t_end;
+        vec3 n_ground = normalize(p);
+        vec3 ground = vec3(0.0);
+        if (lights.sun_enabled > 0.0) {
+            Number mu_l = dot(n_ground, lights.sun_direction);
+            ground += lights.sun_illuminance *
+                      (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
+                                                              transmittance_size,
+                                                              atmosphere.bottom_radius, mu_l) +
+                       GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l));
+        }
+        if (lights.moon_enabled > 0.0) {
+            Number mu_l = dot(n_ground, lights.moon_direction);
+            ground += lights.moon_illuminance *
+                      (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
+                                                              transmittance_size,
+                                                              atmosphere.bottom_radius, mu_l) +
+                       GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l));
+        }
+        result.luminance += result.transmittance * ground * atmosphere.ground_albedo / kPi;
+    }
+    return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sky-View LUT (H20 §5.3): azimuth relative to the sun across u (full circle: the moon breaks
+// the symmetry about the sun's vertical), latitude across v with the horizon in the middle and
+// v = 0.5 + 0.5 sign(l) sqrt(|l| / l_max), where l is measured from the geometric horizon at the
+// camera's altitude (l_max: to the zenith above, to the nadir below).
+
+// Zenith angle of the geometric horizon seen from `altitude`: pi/2 plus the dip, whose tangent is
+// sqrt(h (2R + h)) / R (pi/2 on the ground, approaching pi far away); computed from the altitude
+// so that a few metres above the ground keep their dip in float.
+Number HorizonZenithAngle(IN(AtmosphereParameters) atmosphere, Number altitude) {
+    Number h = max(altitude, 0.0);
+    return 0.5 * kPi +
+           atan(sqrt(h * (2.0 * atmosphere.bottom_radius + h)), atmosphere.bottom_radius);
+}
+
+// uv of a view direction given its zenith angle and its azimuth relative to the sun, [0, 2 pi).
+vec2 GetSkyViewTextureUv(IN(AtmosphereParameters) atmosphere, Number altitude, Number view_zenith,
+                         Number azimuth, ivec2 size) {
+    Number horizon = HorizonZenithAngle(atmosphere, altitude);
+    Number v;
+    if (view_zenith < horizon) {
+        v = 0.5 + 0.5 * sqrt(clamp((horizon - view_zenith) / horizon, 0.0, 1.0));
+    } else {
+        v = 0.5 - 0.5 * sqrt(clamp((view_zenith - horizon) / (kPi - horizon), 0.0, 1.0));
+    }
+    Number u = azimuth / (2.0 * kPi);
+    return vec2(u, GetTextureCoordFromUnitRange(v, size.y));
+}
+
+void GetViewFromSkyViewTextureUv(IN(AtmosphereParameters) atmosphere, Number altitude, vec2 uv,
+                                 ivec2 size, OUT(Number) view_zenith, OUT(Number) azimuth) {
+    Number horizon = HorizonZenithAngle(atmosphere, altitude);
+    Number v = clamp(GetUnitRangeFromTextureCoord(uv.y, size.y), 0.0, 1.0);
+    if (v >= 0.5) {
+        Number x = 2.0 * v - 1.0;
+        view_zenith = horizon * (1.0 - x * x);
+    } else {
+        Number x = 1.0 - 2.0 * v;
+        view_zenith = horizon + (kPi - horizon) * x * x;
+    }
+    azimuth = uv.x * 2.0 * kPi;  // texel centres at (i + 0.5) / width; the u axis wraps
+}
+
+// Local frame of the Sky-View LUT at the camera: up = radial direction, x toward the sun's
+// azimuth. Returns the world direction for (view_zenith, azimuth). If the sun is at the zenith
+// or nadir any x perpendicular to up serves.
+vec3 SkyViewFrameX(vec3 up, vec3 sun_direction) {
+    vec3 x = sun_direction - up * dot(sun_direction, up);
+    Number len = length(x);
+    if (len < 1e-6) {
+        x = abs(up.z) < 0.9 ? cross(up, vec3(0.0, 0.0, 1.0)) : cross(up, vec3(1.0, 0.0, 0.0));
+        len = length(x);
+    }
+    return x / len;
+}
+
+vec3 SkyViewDirection(vec3 up, vec3 frame_x, Number view_zenith, Number azimuth) {
+    vec3 frame_y = cross(up, frame_x);
+    Number s = sin(view_zenith);
+    return up * cos(view_zenith) + frame_x * (s * cos(azimuth)) + frame_y * (s * sin(azimuth));
+}
+
+void SkyViewAnglesOfDirection(vec3 up, vec3 frame_x, vec3 direction, OUT(Number) view_zenith,
+                              OUT(Number) azimuth) {
+    vec3 frame_y = cross(up, frame_x);
+    view_zenith = acos(clamp(dot(direction, up), -1.0, 1.0));
+    azimuth = atan(dot(direction, frame_y), dot(direction, frame_x));
+    if (azimuth < 0.0) azimuth += 2.0 * kPi;
+}
+
+// One Sky-View texel: the luminance seen from `camera` (km, planet-centred, inside the
+// atmosphere) in the texel's direction, ground included (the planet is part of the distant view).
+vec3 ComputeSkyViewTexel(IN(AtmosphereParameters) atmosphere,
+                         IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                         IN(MultipleScatteringTexture) multiple_scattering_texture,
+                         ivec2 multiple_scattering_size, IN(IrradianceTexture) irradiance_texture,
+                         ivec2 irradiance_size, IN(LightSet) lights, vec3 camera,
+                         Number camera_altitude, vec2 uv, ivec2 size, int steps) {
+    vec3 up = normalize(camera);
+    vec3 frame_x = SkyViewFrameX(up, lights.sun_direction);
+    Number view_zenith;
+    Number azimuth;
+    GetViewFromSkyViewTextureUv(atmosphere, camera_altitude, uv, size, view_zenith, azimuth);
+    vec3 direction = SkyViewDirection(up, frame_x, view_zenith, azimuth);
+    ScatteringResult result = IntegrateScatteredLuminance(
+        atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
+        multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
+        camera_altitude, direction, 1e9, steps, true);
+    return result.luminance;
+}
+
+vec3 SampleSkyView(IN(AtmosphereParameters) atmosphere, IN(SkyViewTexture) sky_view_texture,
+                   ivec2 size, vec3 camera, Number camera_altitude, vec3 sun_direction,
+                   vec3 direction) {
+    vec3 up = normalize(camera);
+    vec3 frame_x = SkyViewFrameX(up, sun_direction);
+    Number view_zenith;
+    Number azimuth;
+    SkyViewAnglesOfDirection(up, frame_x, direction, view_zenith, azimuth);
+    vec2 uv = GetSkyViewTextureUv(atmosphere, camera_altitude, view_zenith, azimuth, size);
+    return vec3(SampleTexture2D(sky_view_texture, uv));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ground sky irradiance LUT texel: E_sky(mu_s) = integral over the upper hemisphere of the sky's
+// luminance times cos(theta), for a unit sun, from a point on the ground.
+vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
+                                  IN(TransmittanceTexture) transmittance_texture,
+                                  ivec2 transmittance_size,
+                                  IN(MultipleScatteringTexture) multiple_scattering_texture,
+                                  ivec2 multiple_scattering_size,
+                                  IN(IrradianceTexture) unused_irradiance_texture,
+                                  ivec2 irradiance_size, Number u, int sqrt_directions,
+                                  int steps) {
+    Number mu_s = ClampCosine(2.0 * GetUnitRangeFromTextureCoord(u, irradiance_size.x) - 1.0);
+    // Not named `lights`: that is the uniform block member in the passes.
+    LightSet unit_sun;
+    unit_sun.sun_direction = vec3(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+    unit_sun.sun_enabled = 1.0;
+    unit_sun.sun_illuminance = vec3(1.0);
+    unit_sun.moon_enabled = 0.0;
+    unit_sun.moon_direction = vec3(0.0, 0.0, 1.0);
+    unit_sun.moon_illuminance = vec3(0.0);
+    unit_sun.padding0 = 0.0;
+    unit_sun.padding1 = 0.0;
+    vec3 origin = vec3(0.0, 0.0, atmosphere.bottom_radius);
+    // Upper hemisphere in equal-solid-angle strata: cos(theta) uniform in (0, 1].
+    vec3 irradiance = vec3(0.0);
+    int n = sqrt_directions * sqrt_directions;
+    for (int i = 0; i < n; ++i) {
+        Number cos_theta = (Number(i / sqrt_directions) + 0.5) / Number(sqrt_directions);
+        Number phi = 2.0 * kPi * (Number(i - (i / sqrt_directions) * sqrt_directions) + 0.5) /
+                     Number(sqrt_directions);
+        Number sin_theta = SafeSqrt(1.0 - cos_theta * cos_theta);
+        vec3 direction = vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
+        ScatteringResult sky = IntegrateScatteredLuminance(
+            atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
+            multiple_scattering_size, unused_irradiance_texture, irradiance_size, unit_sun, origin,
+            0.0, direction, 1e9, steps, false);
+        irradiance += sky.luminance * cos_theta;
+    }
+    return irradiance * (2.0 * kPi / Number(n));  // solid angle 2 pi / n per stratum
+}
+
+// ---------------------------------------------------------------------------------------------
+// Aerial perspective (H20 §5.4): in-scattered luminance (rgb) and mean transmittance (a) from the
+// camera to `distance` km along `direction`; the froxel volume stores this for each screen cell
+// and depth slice.
+vec4 ComputeAerialPerspective(IN(AtmosphereParameters) atmosphere,
+                              IN(TransmittanceTexture) transmittance_texture,
+                              ivec2 transmittance_size,
+                              IN(MultipleScatteringTexture) multiple_scattering_texture,
+                              ivec2 multiple_scattering_size,
+                              IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                              IN(LightSet) lights, vec3 camera, Number camera_altitude,
+                              vec3 direction, Number distance, int steps) {
+    ScatteringResult result = IntegrateScatteredLuminance(
+        atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
+        multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
+        camera_altitude, direction, distance, steps, false);
+    Number mean_transmittance =
+        (result.transmittance.x + result.transmittance.y + result.transmittance.z) / 3.0;
+    return vec4(result.luminance, mean_transmittance);
+}
+
+// Steps for aerial-perspective slice `slice` of `slices`: proportional to its depth (at least 2),
+// `full_steps` for the farthest, so each step spans about the same distance.
+int AerialPerspectiveSteps(int slice, int slices, int full_steps) {
+    return max(2, int(ceil(Number(full_steps) * (Number(slice) + 0.5) / Number(slices))));
+}

@@ -1,0 +1,52 @@
+// Uniform blocks and samplers of the atmosphere passes. Each block has one C++ mirror in
+// sky/src/gl/atmosphere_uniforms.h, checked with static_assert against std140.
+layout(std140, binding = 0) uniform AtmosphereBlock {
+    AtmosphereParameters atmosphere;
+};
+
+layout(std140, binding = 1) uniform LightBlock {
+    LightSet lights;
+};
+
+layout(std140, binding = 2) uniform SettingsBlock {
+    ivec2 transmittance_size;
+    ivec2 multiple_scattering_size;
+    ivec2 irradiance_size;
+    ivec2 sky_view_size;
+    ivec4 aerial_perspective_size;  // xyz; w unused
+    int transmittance_steps;
+    int multiple_scattering_directions_sqrt;
+    int multiple_scattering_steps;
+    int irradiance_directions_sqrt;
+    int irradiance_steps;
+    int sky_view_steps;
+    int aerial_perspective_steps;
+    float aerial_perspective_range_km;
+};
+
+layout(std140, binding = 3) uniform FrameBlock {
+    vec3 camera_km;  // planet-centred
+    float tan_half_fov;
+    vec4 world_from_view[3];  // columns right, up, backward (xyz)
+    ivec2 output_size;
+    float aspect;
+    int ray_march_steps;
+    int use_sky_view;  // 1: Sky-View LUT inside the atmosphere, 0: ray march every pixel
+    int draw_sun_disk;
+    float camera_altitude_km;  // above the ground, computed in double on the CPU
+    int padding1;
+};
+
+layout(binding = 0) uniform sampler2D transmittance_texture;
+layout(binding = 1) uniform sampler2D multiple_scattering_texture;
+layout(binding = 2) uniform sampler2D irradiance_texture;
+layout(binding = 3) uniform sampler2D sky_view_texture;
+
+// World direction through the centre of pixel/cell `cell` of a grid of `grid` cells covering the
+// view (NDC y up, so row 0 is the bottom row, as in GL textures).
+vec3 CameraDirection(vec2 cell, vec2 grid) {
+    vec2 ndc = 2.0 * (cell + 0.5) / grid - 1.0;
+    vec3 view = vec3(ndc.x * tan_half_fov * aspect, ndc.y * tan_half_fov, -1.0);
+    return normalize(world_from_view[0].xyz * view.x + world_from_view[1].xyz * view.y +
+                     world_from_view[2].xyz * view.z);
+}

@@ -1,0 +1,67 @@
+// Final sky image: the Sky-View LUT inside the atmosphere, per-pixel ray marching above it (or
+// everywhere when use_sky_view is 0), then the sun disk. Writes linear luminance, cd/m^2.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, rgba32f) uniform writeonly image2D output_image;
+
+// Solar limb darkening, Hestroffer & Magnan (1998) 5th-order polynomial in mu = cos of the angle
+// from the disk centre, at 680/550/440 nm (Hillaire 2016, Appendix B), divided by its mean over
+// the disk (2 * sum a_k / (k + 2)) so the disk still integrates to the Sun's illuminance.
+vec3 SunLimbDarkening(float center_to_edge) {
+    float mu = sqrt(max(1.0 - center_to_edge * center_to_edge, 0.0));
+    vec3 a0 = vec3(0.34685, 0.26073, 0.15248);
+    vec3 a1 = vec3(1.37539, 1.27428, 1.38517);
+    vec3 a2 = vec3(-2.04425, -1.30352, -1.49615);
+    vec3 a3 = vec3(2.70493, 1.47085, 1.99886);
+    vec3 a4 = vec3(-1.94290, -0.96618, -1.48155);
+    vec3 a5 = vec3(0.55999, 0.26384, 0.44119);
+    vec3 factor = a0 + mu * (a1 + mu * (a2 + mu * (a3 + mu * (a4 + mu * a5))));
+    vec3 disk_mean = 2.0 * (a0 / 2.0 + a1 / 3.0 + a2 / 4.0 + a3 / 5.0 + a4 / 6.0 + a5 / 7.0);
+    return factor / disk_mean;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, output_size))) return;
+    vec3 direction = CameraDirection(vec2(pixel), vec2(output_size));
+    float r = length(camera_km);
+    bool inside = camera_altitude_km < atmosphere.top_radius - atmosphere.bottom_radius;
+
+    vec3 luminance;
+    if (use_sky_view != 0 && inside) {
+        luminance = SampleSkyView(atmosphere, sky_view_texture, sky_view_size, camera_km,
+                                  camera_altitude_km, lights.sun_direction, direction);
+    } else {
+        luminance = IntegrateScatteredLuminance(
+                        atmosphere, transmittance_texture, transmittance_size,
+                        multiple_scattering_texture, multiple_scattering_size,
+                        irradiance_texture, irradiance_size, lights, camera_km,
+                        camera_altitude_km, direction, 1e9, ray_march_steps, true).luminance;
+    }
+
+    // The sun disk, composited after the LUT (H20 §5.3), attenuated by the atmosphere between
+    // the camera and space and hidden by the planet.
+    float cos_angle = dot(direction, lights.sun_direction);
+    float cos_radius = cos(atmosphere.sun_angular_radius);
+    if (draw_sun_disk != 0 && cos_angle > cos_radius &&
+        RaySphereDistance(r, dot(camera_km, direction) / r, camera_altitude_km,
+                          atmosphere.bottom_radius) < 0.0) {
+        float angle = acos(clamp(cos_angle, -1.0, 1.0));
+        float solid_angle = 2.0 * kPi * (1.0 - cos_radius);
+        vec3 disk = lights.sun_illuminance / solid_angle *
+                    SunLimbDarkening(angle / atmosphere.sun_angular_radius);
+        vec3 transmittance = vec3(1.0);
+        vec3 origin = camera_km;
+        if (r > atmosphere.top_radius) {
+            float t_top = RaySphereIntersectNearest(camera_km, direction, atmosphere.top_radius);
+            origin = t_top >= 0.0 ? camera_km + direction * t_top : camera_km;
+        }
+        float r_origin = length(origin);
+        if (r_origin <= atmosphere.top_radius * 1.0001) {
+            transmittance = GetTransmittanceToTopAtmosphereBoundary(
+                atmosphere, transmittance_texture, transmittance_size,
+                min(r_origin, atmosphere.top_radius), dot(origin, direction) / r_origin);
+        }
+        luminance += disk * transmittance;
+    }
+    imageStore(output_image, pixel, vec4(luminance, 1.0));
+}

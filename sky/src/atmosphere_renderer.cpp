@@ -1,0 +1,298 @@
+#include "zenith/sky/atmosphere_renderer.h"
+
+#include <glad/gl.h>
+
+#include <array>
+#include <string>
+#include <string_view>
+
+#include "gl/atmosphere_uniforms.h"
+#include "gl/shader_library.h"
+#include "shader_parameters.h"
+#include "zenith/sky/gl/error.h"
+#include "zenith/sky/gl/shader.h"
+
+namespace zenith::sky {
+namespace {
+
+constexpr double kKm = 1000.0;
+
+enum Pass : std::size_t {
+    kTransmittancePass,
+    kMultipleScatteringPass,
+    kIrradiancePass,
+    kSkyViewPass,
+    kAerialPerspectivePass,
+    kRenderPass,
+    kPassCount
+};
+
+constexpr std::array<std::string_view, kPassCount> kPassFiles = {
+    "atmosphere/transmittance.comp",      "atmosphere/multiple_scattering.comp",
+    "atmosphere/irradiance.comp",         "atmosphere/sky_view.comp",
+    "atmosphere/aerial_perspective.comp", "atmosphere/render.comp",
+};
+
+GLuint CreateTexture2D(glm::ivec2 size, GLenum wrap_s = GL_CLAMP_TO_EDGE) {
+    GLuint texture = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA32F, size.x, size.y);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap_s));
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+GLuint CreateTexture3D(glm::ivec3 size) {
+    GLuint texture = 0;
+    glCreateTextures(GL_TEXTURE_3D, 1, &texture);
+    glTextureStorage3D(texture, 1, GL_RGBA32F, size.x, size.y, size.z);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+LutImage ReadTexture(GLuint texture, glm::ivec3 size) {
+    LutImage image(size.x, size.y, size.z);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.bytes()),
+                      image.texels.data());
+    return image;
+}
+
+GLuint Groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
+
+}  // namespace
+
+struct AtmosphereRenderer::Impl {
+    Atmosphere atmosphere;
+    LutSettings settings;
+    std::array<gl::Program, kPassCount> programs;
+    std::array<GLuint, 4> buffers{};  // atmosphere, lights, settings, frame
+    GLuint transmittance = 0, multiple_scattering = 0, irradiance = 0, sky_view = 0,
+           aerial_perspective = 0, frame = 0;
+    glm::ivec2 frame_size{0, 0};
+    std::array<GLuint, kPassCount> queries{};
+    std::array<bool, kPassCount> query_used{};
+
+    static std::array<gl::Program, kPassCount> BuildPrograms() {
+        return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
+                gl::ComputeProgram(kPassFiles[2]), gl::ComputeProgram(kPassFiles[3]),
+                gl::ComputeProgram(kPassFiles[4]), gl::ComputeProgram(kPassFiles[5])};
+    }
+
+    Impl(const Atmosphere& a, const LutSettings& s)
+        : atmosphere(a), settings(s), programs(BuildPrograms()) {
+        glCreateBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
+        glNamedBufferStorage(buffers[0], sizeof(gl::AtmosphereUniforms), nullptr,
+                             GL_DYNAMIC_STORAGE_BIT);
+        glNamedBufferStorage(buffers[1], sizeof(gl::LightUniforms), nullptr,
+                             GL_DYNAMIC_STORAGE_BIT);
+        glNamedBufferStorage(buffers[2], sizeof(gl::SettingsUniforms), nullptr,
+                             GL_DYNAMIC_STORAGE_BIT);
+        glNamedBufferStorage(buffers[3], sizeof(gl::FrameUniforms), nullptr,
+                             GL_DYNAMIC_STORAGE_BIT);
+        for (GLuint i = 0; i < buffers.size(); ++i) {
+            glBindBufferBase(GL_UNIFORM_BUFFER, i, buffers[i]);
+        }
+        transmittance = CreateTexture2D(s.transmittance_size);
+        multiple_scattering = CreateTexture2D(s.multiple_scattering_size);
+        irradiance = CreateTexture2D(s.irradiance_size);
+        sky_view = CreateTexture2D(s.sky_view_size, GL_REPEAT);  // azimuth wraps
+        aerial_perspective = CreateTexture3D(s.aerial_perspective_size);
+        glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries.size()), queries.data());
+
+        gl::SettingsUniforms u{};
+        u.transmittance_size = s.transmittance_size;
+        u.multiple_scattering_size = s.multiple_scattering_size;
+        u.irradiance_size = s.irradiance_size;
+        u.sky_view_size = s.sky_view_size;
+        u.aerial_perspective_size = glm::ivec4(s.aerial_perspective_size, 0);
+        u.transmittance_steps = s.transmittance_steps;
+        u.multiple_scattering_directions_sqrt = s.multiple_scattering_directions_sqrt;
+        u.multiple_scattering_steps = s.multiple_scattering_steps;
+        u.irradiance_directions_sqrt = s.irradiance_directions_sqrt;
+        u.irradiance_steps = s.irradiance_steps;
+        u.sky_view_steps = s.sky_view_steps;
+        u.aerial_perspective_steps = s.aerial_perspective_steps;
+        u.aerial_perspective_range_km = static_cast<float>(s.aerial_perspective_range / kKm);
+        glNamedBufferSubData(buffers[2], 0, sizeof(u), &u);
+    }
+
+    ~Impl() {
+        glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
+        const std::array<GLuint, 6> textures = {transmittance, multiple_scattering, irradiance,
+                                                sky_view, aerial_perspective, frame};
+        for (GLuint t : textures) {
+            if (t != 0) glDeleteTextures(1, &t);
+        }
+        glDeleteBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
+    }
+
+    void BindInputs() const {
+        for (GLuint i = 0; i < buffers.size(); ++i) {
+            glBindBufferBase(GL_UNIFORM_BUFFER, i, buffers[i]);
+        }
+        glBindTextureUnit(0, transmittance);
+        glBindTextureUnit(1, multiple_scattering);
+        glBindTextureUnit(2, irradiance);
+        glBindTextureUnit(3, sky_view);
+    }
+
+    // Runs one compute pass writing `output` (bound as image unit 0), timed by a query.
+    void Dispatch(Pass pass, GLuint output, bool layered, GLuint gx, GLuint gy, GLuint gz) {
+        BindInputs();
+        programs[pass].Use();
+        glBindImageTexture(0, output, 0, layered ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RGBA32F);
+        glBeginQuery(GL_TIME_ELAPSED, queries[pass]);
+        glDispatchCompute(gx, gy, gz);
+        glEndQuery(GL_TIME_ELAPSED);
+        query_used[pass] = true;
+        // Later passes sample what this one wrote; reads back use glGetTextureImage.
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                        GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+
+    void UploadAtmosphere() {
+        const auto u = MakeShaderParameters<gl::AtmosphereUniforms>(atmosphere);
+        glNamedBufferSubData(buffers[0], 0, sizeof(u), &u);
+    }
+
+    void UploadLights(const Lights& lights) {
+        const auto u = MakeLightSet<gl::LightUniforms>(lights);
+        glNamedBufferSubData(buffers[1], 0, sizeof(u), &u);
+    }
+
+    void UploadFrame(const Camera& camera, const RenderOptions& options) {
+        gl::FrameUniforms u{};
+        u.camera_km = glm::vec3(camera.position / kKm);
+        u.tan_half_fov = static_cast<float>(std::tan(0.5 * camera.vertical_fov));
+        for (int i = 0; i < 3; ++i) u.world_from_view[i] = glm::vec4(camera.world_from_view[i], 0.0);
+        u.output_size = options.size;
+        u.aspect = static_cast<float>(camera.aspect);
+        u.ray_march_steps = options.ray_march_steps;
+        u.use_sky_view = options.force_ray_march ? 0 : 1;
+        u.draw_sun_disk = options.draw_sun_disk ? 1 : 0;
+        u.camera_altitude_km =
+            static_cast<float>((glm::length(camera.position) - atmosphere.bottom_radius) / kKm);
+        glNamedBufferSubData(buffers[3], 0, sizeof(u), &u);
+    }
+
+    void BuildStaticLuts() {
+        UploadAtmosphere();
+        const LutSettings& s = settings;
+        Dispatch(kTransmittancePass, transmittance, false, Groups(s.transmittance_size.x, 8),
+                 Groups(s.transmittance_size.y, 8), 1);
+        Dispatch(kMultipleScatteringPass, multiple_scattering, false,
+                 Groups(s.multiple_scattering_size.x, 8), Groups(s.multiple_scattering_size.y, 8),
+                 1);
+        Dispatch(kIrradiancePass, irradiance, false, Groups(s.irradiance_size.x, 64),
+                 static_cast<GLuint>(s.irradiance_size.y), 1);
+    }
+};
+
+AtmosphereRenderer::AtmosphereRenderer(const Atmosphere& atmosphere, const LutSettings& settings) {
+    Validate(atmosphere);
+    settings.Validate();
+    impl_ = std::make_unique<Impl>(atmosphere, settings);
+    impl_->BuildStaticLuts();
+}
+
+AtmosphereRenderer::~AtmosphereRenderer() = default;
+
+void AtmosphereRenderer::SetAtmosphere(const Atmosphere& atmosphere) {
+    Validate(atmosphere);
+    impl_->atmosphere = atmosphere;
+    impl_->BuildStaticLuts();
+}
+
+const Atmosphere& AtmosphereRenderer::atmosphere() const { return impl_->atmosphere; }
+const LutSettings& AtmosphereRenderer::settings() const { return impl_->settings; }
+
+void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lights) {
+    Impl& d = *impl_;
+    d.UploadLights(lights);
+    RenderOptions options;
+    d.UploadFrame(camera, options);
+    const LutSettings& s = d.settings;
+    d.Dispatch(kSkyViewPass, d.sky_view, false, Groups(s.sky_view_size.x, 8),
+               Groups(s.sky_view_size.y, 8), 1);
+    d.Dispatch(kAerialPerspectivePass, d.aerial_perspective, true,
+               Groups(s.aerial_perspective_size.x, 4), Groups(s.aerial_perspective_size.y, 4),
+               Groups(s.aerial_perspective_size.z, 4));
+}
+
+void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
+                                const RenderOptions& options) {
+    Impl& d = *impl_;
+    if (!(options.size.x > 0 && options.size.y > 0 && options.size.x <= 16384 &&
+          options.size.y <= 16384)) {
+        throw std::invalid_argument("render size " + std::to_string(options.size.x) + "x" +
+                                    std::to_string(options.size.y) +
+                                    " is out of range (expected 1..16384 per axis)");
+    }
+    if (options.size != d.frame_size) {
+        if (d.frame != 0) glDeleteTextures(1, &d.frame);
+        d.frame = CreateTexture2D(options.size);
+        d.frame_size = options.size;
+    }
+    d.UploadLights(lights);
+    d.UploadFrame(camera, options);
+    d.Dispatch(kRenderPass, d.frame, false, Groups(options.size.x, 8), Groups(options.size.y, 8),
+               1);
+}
+
+LutImage AtmosphereRenderer::ReadTransmittance() const {
+    return ReadTexture(impl_->transmittance, glm::ivec3(impl_->settings.transmittance_size, 1));
+}
+LutImage AtmosphereRenderer::ReadMultipleScattering() const {
+    return ReadTexture(impl_->multiple_scattering,
+                       glm::ivec3(impl_->settings.multiple_scattering_size, 1));
+}
+LutImage AtmosphereRenderer::ReadGroundIrradiance() const {
+    return ReadTexture(impl_->irradiance, glm::ivec3(impl_->settings.irradiance_size, 1));
+}
+LutImage AtmosphereRenderer::ReadSkyView() const {
+    return ReadTexture(impl_->sky_view, glm::ivec3(impl_->settings.sky_view_size, 1));
+}
+LutImage AtmosphereRenderer::ReadAerialPerspective() const {
+    return ReadTexture(impl_->aerial_perspective, impl_->settings.aerial_perspective_size);
+}
+LutImage AtmosphereRenderer::ReadFrame() const {
+    if (impl_->frame == 0) throw gl::GlError("ReadFrame before any Render");
+    return ReadTexture(impl_->frame, glm::ivec3(impl_->frame_size, 1));
+}
+
+unsigned AtmosphereRenderer::transmittance_texture() const { return impl_->transmittance; }
+unsigned AtmosphereRenderer::aerial_perspective_texture() const {
+    return impl_->aerial_perspective;
+}
+unsigned AtmosphereRenderer::frame_texture() const { return impl_->frame; }
+
+std::size_t AtmosphereRenderer::LutMemoryBytes() const {
+    const LutSettings& s = impl_->settings;
+    const auto texels = [](glm::ivec2 v) { return static_cast<std::size_t>(v.x * v.y); };
+    const std::size_t ap = static_cast<std::size_t>(s.aerial_perspective_size.x) *
+                           static_cast<std::size_t>(s.aerial_perspective_size.y) *
+                           static_cast<std::size_t>(s.aerial_perspective_size.z);
+    return 16 * (texels(s.transmittance_size) + texels(s.multiple_scattering_size) +
+                 texels(s.irradiance_size) + texels(s.sky_view_size) + ap);
+}
+
+PassTimes AtmosphereRenderer::LastPassTimes() const {
+    const Impl& d = *impl_;
+    auto ms = [&](Pass pass) {
+        if (!d.query_used[pass]) return 0.0;
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(d.queries[pass], GL_QUERY_RESULT, &ns);
+        return static_cast<double>(ns) * 1e-6;
+    };
+    return {ms(kTransmittancePass), ms(kMultipleScatteringPass), ms(kIrradiancePass),
+            ms(kSkyViewPass),       ms(kAerialPerspectivePass),  ms(kRenderPass)};
+}
+
+}  // namespace zenith::sky

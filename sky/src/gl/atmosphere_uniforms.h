@@ -1,0 +1,85 @@
+// C++ mirrors of the uniform blocks in sky/shaders/atmosphere/interface.glsl (std140). Each
+// offset is checked at compile time, so a change on one side without the other does not build.
+#pragma once
+
+#include <cstddef>
+
+#include <glm/glm.hpp>
+
+namespace zenith::sky::gl {
+
+struct AtmosphereUniforms {  // functions.glsl: struct AtmosphereParameters
+    glm::vec3 rayleigh_scattering;
+    float rayleigh_scale_height;
+    glm::vec3 mie_scattering;
+    float mie_scale_height;
+    glm::vec3 mie_extinction;
+    float mie_g;
+    glm::vec3 absorption_extinction;
+    float absorption_center;
+    glm::vec3 ground_albedo;
+    float absorption_half_width;
+    glm::vec3 solar_illuminance;
+    float sun_angular_radius;
+    float bottom_radius;
+    float top_radius;
+    float padding0;
+    float padding1;
+};
+static_assert(sizeof(AtmosphereUniforms) == 112);
+static_assert(offsetof(AtmosphereUniforms, mie_scattering) == 16);
+static_assert(offsetof(AtmosphereUniforms, mie_g) == 44);
+static_assert(offsetof(AtmosphereUniforms, solar_illuminance) == 80);
+static_assert(offsetof(AtmosphereUniforms, bottom_radius) == 96);
+
+struct LightUniforms {  // functions.glsl: struct LightSet
+    glm::vec3 sun_direction;
+    float sun_enabled;
+    glm::vec3 sun_illuminance;
+    float moon_enabled;
+    glm::vec3 moon_direction;
+    float padding0;
+    glm::vec3 moon_illuminance;
+    float padding1;
+};
+static_assert(sizeof(LightUniforms) == 64);
+static_assert(offsetof(LightUniforms, moon_enabled) == 28);
+static_assert(offsetof(LightUniforms, moon_illuminance) == 48);
+
+struct SettingsUniforms {  // interface.glsl: SettingsBlock
+    glm::ivec2 transmittance_size;
+    glm::ivec2 multiple_scattering_size;
+    glm::ivec2 irradiance_size;
+    glm::ivec2 sky_view_size;
+    glm::ivec4 aerial_perspective_size;
+    int transmittance_steps;
+    int multiple_scattering_directions_sqrt;
+    int multiple_scattering_steps;
+    int irradiance_directions_sqrt;
+    int irradiance_steps;
+    int sky_view_steps;
+    int aerial_perspective_steps;
+    float aerial_perspective_range_km;
+};
+static_assert(sizeof(SettingsUniforms) == 80);
+static_assert(offsetof(SettingsUniforms, aerial_perspective_size) == 32);
+static_assert(offsetof(SettingsUniforms, transmittance_steps) == 48);
+
+struct FrameUniforms {  // interface.glsl: FrameBlock
+    glm::vec3 camera_km;
+    float tan_half_fov;
+    glm::vec4 world_from_view[3];
+    glm::ivec2 output_size;
+    float aspect;
+    int ray_march_steps;
+    int use_sky_view;
+    int draw_sun_disk;
+    float camera_altitude_km;
+    int padding1;
+};
+static_assert(sizeof(FrameUniforms) == 96);
+static_assert(offsetof(FrameUniforms, world_from_view) == 16);
+static_assert(offsetof(FrameUniforms, output_size) == 64);
+static_assert(offsetof(FrameUniforms, use_sky_view) == 80);
+
+}  // namespace zenith::sky::gl

@@ -1,0 +1,52 @@
+#include "gl/shader_library.h"
+
+#include <array>
+#include <string>
+
+#include "gl/embedded_files.h"
+#include "zenith/sky/gl/error.h"
+
+namespace zenith::sky::gl {
+namespace {
+
+// Parts every atmosphere compute pass is made of, before the pass's own file.
+constexpr std::array<std::string_view, 3> kPrelude = {
+    "common/definitions.glsl", "atmosphere/functions.glsl", "atmosphere/interface.glsl"};
+
+}  // namespace
+
+std::string_view EmbeddedShaderFile(std::string_view name) {
+    for (const shaders::EmbeddedFile& file : shaders::EmbeddedFiles()) {
+        if (file.name == name) return file.text;
+    }
+    throw GlError("shader file '" + std::string(name) + "' is not embedded in the library");
+}
+
+std::string ComposeComputeShader(std::string_view pass_file) {
+    std::string source = "#version 450 core\n";
+    int index = 1;
+    for (std::string_view part : kPrelude) {
+        source += "#line 1 " + std::to_string(index++) + "\n";
+        source += EmbeddedShaderFile(part);
+        source += "\n";
+    }
+    source += "#line 1 " + std::to_string(index) + "\n";
+    source += EmbeddedShaderFile(pass_file);
+    return source;
+}
+
+Program ComputeProgram(std::string_view pass_file) {
+    try {
+        return Program::Compute(ComposeComputeShader(pass_file), pass_file);
+    } catch (const ShaderError& e) {
+        std::string legend = "\nsource numbers in the log: ";
+        int index = 1;
+        for (std::string_view part : kPrelude) {
+            legend += std::to_string(index++) + " = " + std::string(part) + ", ";
+        }
+        legend += std::to_string(index) + " = " + std::string(pass_file);
+        throw ShaderError(e.what() + legend);
+    }
+}
+
+}  // namespace zenith::sky::gl

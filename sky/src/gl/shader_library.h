@@ -1,0 +1,20 @@
+// Compute programs assembled from the shader files embedded in the library (sky/shaders).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "zenith/sky/gl/shader.h"
+
+namespace zenith::sky::gl {
+
+// Text of an embedded file such as "atmosphere/functions.glsl"; throws GlError if absent.
+std::string_view EmbeddedShaderFile(std::string_view name);
+
+// "#version 450 core", the shared definitions and atmosphere functions, the pass interface, then
+// `pass_file`. Each part starts with "#line 1 N"; a compile error's "N:line" is translated back to
+// the file name in the thrown ShaderError.
+std::string ComposeComputeShader(std::string_view pass_file);
+Program ComputeProgram(std::string_view pass_file);
+
+}  // namespace zenith::sky::gl

@@ -1,0 +1,192 @@
+#include "zenith/sky/reference/atmosphere_reference.h"
+
+#include "reference/atmosphere_functions.h"
+
+#include "shader_parameters.h"
+
+namespace zenith::sky::reference {
+namespace {
+
+using ref::Texture2D;
+
+constexpr double kKm = 1000.0;
+
+LutImage ToImage(const Texture2D& texture) {
+    LutImage image(texture.width(), texture.height());
+    for (int y = 0; y < texture.height(); ++y) {
+        for (int x = 0; x < texture.width(); ++x) image.at(x, y) = glm::vec4(texture.at(x, y));
+    }
+    return image;
+}
+
+// A LUT texture holding exactly the float values the GPU would store, so CPU sampling of it
+// matches GPU sampling.
+Texture2D FromImage(const LutImage& image, bool wrap_u = false) {
+    Texture2D texture(image.size.x, image.size.y, wrap_u);
+    for (int y = 0; y < image.size.y; ++y) {
+        for (int x = 0; x < image.size.x; ++x) texture.at(x, y) = glm::dvec4(image.at(x, y));
+    }
+    return texture;
+}
+
+glm::dvec2 TexelCentre(int x, int y, glm::ivec2 size) {
+    return {(x + 0.5) / size.x, (y + 0.5) / size.y};
+}
+
+}  // namespace
+
+struct AtmosphereReference::Impl {
+    ref::AtmosphereParameters atmosphere;
+    LutSettings settings;
+    LutImage transmittance_image, multiple_scattering_image, irradiance_image;
+    Texture2D transmittance, multiple_scattering, irradiance;
+
+    double AltitudeKm(const glm::dvec3& position) const {
+        return glm::length(position) / kKm - atmosphere.bottom_radius;
+    }
+
+    ref::LightSet ToLightSet(const Lights& lights) const {
+        return MakeLightSet<ref::LightSet>(lights);
+    }
+};
+
+AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere,
+                                         const LutSettings& settings)
+    : impl_(std::make_unique<Impl>()) {
+    Validate(atmosphere);
+    settings.Validate();
+    Impl& d = *impl_;
+    d.atmosphere = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
+    d.settings = settings;
+
+    Texture2D t(settings.transmittance_size.x, settings.transmittance_size.y);
+    for (int y = 0; y < t.height(); ++y) {
+        for (int x = 0; x < t.width(); ++x) {
+            const ref::vec3 value = ref::ComputeTransmittanceTexel(
+                d.atmosphere, TexelCentre(x, y, settings.transmittance_size),
+                settings.transmittance_size, settings.transmittance_steps);
+            t.at(x, y) = ref::vec4(value, 1.0);
+        }
+    }
+    d.transmittance_image = ToImage(t);
+    d.transmittance = FromImage(d.transmittance_image);
+
+    Texture2D ms(settings.multiple_scattering_size.x, settings.multiple_scattering_size.y);
+    for (int y = 0; y < ms.height(); ++y) {
+        for (int x = 0; x < ms.width(); ++x) {
+            const ref::vec3 value = ref::ComputeMultipleScatteringTexel(
+                d.atmosphere, d.transmittance, settings.transmittance_size,
+                TexelCentre(x, y, settings.multiple_scattering_size),
+                settings.multiple_scattering_size, settings.multiple_scattering_directions_sqrt,
+                settings.multiple_scattering_steps);
+            ms.at(x, y) = ref::vec4(value, 1.0);
+        }
+    }
+    d.multiple_scattering_image = ToImage(ms);
+    d.multiple_scattering = FromImage(d.multiple_scattering_image);
+
+    Texture2D irradiance(settings.irradiance_size.x, settings.irradiance_size.y);
+    const Texture2D unused(1, 1);
+    for (int y = 0; y < irradiance.height(); ++y) {
+        for (int x = 0; x < irradiance.width(); ++x) {
+            const ref::vec3 value = ref::ComputeGroundIrradianceTexel(
+                d.atmosphere, d.transmittance, settings.transmittance_size,
+                d.multiple_scattering, settings.multiple_scattering_size, unused,
+                settings.irradiance_size, TexelCentre(x, y, settings.irradiance_size).x,
+                settings.irradiance_directions_sqrt, settings.irradiance_steps);
+            irradiance.at(x, y) = ref::vec4(value, 1.0);
+        }
+    }
+    d.irradiance_image = ToImage(irradiance);
+    d.irradiance = FromImage(d.irradiance_image);
+}
+
+AtmosphereReference::~AtmosphereReference() = default;
+AtmosphereReference::AtmosphereReference(AtmosphereReference&&) noexcept = default;
+AtmosphereReference& AtmosphereReference::operator=(AtmosphereReference&&) noexcept = default;
+
+const LutImage& AtmosphereReference::transmittance() const { return impl_->transmittance_image; }
+const LutImage& AtmosphereReference::multiple_scattering() const {
+    return impl_->multiple_scattering_image;
+}
+const LutImage& AtmosphereReference::ground_irradiance() const {
+    return impl_->irradiance_image;
+}
+
+LutImage AtmosphereReference::SkyView(const glm::dvec3& camera, const Lights& lights) const {
+    const Impl& d = *impl_;
+    const ref::LightSet light_set = d.ToLightSet(lights);
+    const glm::ivec2 size = d.settings.sky_view_size;
+    LutImage image(size.x, size.y);
+    for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+            const ref::vec3 value = ref::ComputeSkyViewTexel(
+                d.atmosphere, d.transmittance, d.settings.transmittance_size,
+                d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
+                d.settings.irradiance_size, light_set, camera / kKm, d.AltitudeKm(camera),
+                TexelCentre(x, y, size), size, d.settings.sky_view_steps);
+            image.at(x, y) = glm::vec4(glm::vec3(value), 1.0f);
+        }
+    }
+    return image;
+}
+
+LutImage AtmosphereReference::AerialPerspective(const Camera& camera,
+                                                const Lights& lights) const {
+    const Impl& d = *impl_;
+    const ref::LightSet light_set = d.ToLightSet(lights);
+    const glm::ivec3 size = d.settings.aerial_perspective_size;
+    LutImage image(size.x, size.y, size.z);
+    const double range_km = d.settings.aerial_perspective_range / kKm;
+    for (int z = 0; z < size.z; ++z) {
+        // Slice z holds the segment up to its centre depth; nearer slices need fewer steps.
+        const double distance = (z + 0.5) / size.z * range_km;
+        const int steps =
+            ref::AerialPerspectiveSteps(z, size.z, d.settings.aerial_perspective_steps);
+        for (int y = 0; y < size.y; ++y) {
+            for (int x = 0; x < size.x; ++x) {
+                const glm::dvec3 direction =
+                    camera.Direction(2.0 * (x + 0.5) / size.x - 1.0, 2.0 * (y + 0.5) / size.y - 1.0);
+                const ref::vec4 value = ref::ComputeAerialPerspective(
+                    d.atmosphere, d.transmittance, d.settings.transmittance_size,
+                    d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
+                    d.settings.irradiance_size, light_set, camera.position / kKm,
+                    d.AltitudeKm(camera.position), direction, distance, steps);
+                image.at(x, y, z) = glm::vec4(value);
+            }
+        }
+    }
+    return image;
+}
+
+glm::dvec3 AtmosphereReference::TransmittanceFromLut(double r, double mu) const {
+    return ref::GetTransmittanceToTopAtmosphereBoundary(impl_->atmosphere, impl_->transmittance,
+                                                        impl_->settings.transmittance_size,
+                                                        r / kKm, mu);
+}
+
+glm::dvec3 AtmosphereReference::TransmittanceIntegrated(double r, double mu, int steps) const {
+    return ref::ComputeTransmittanceToTopAtmosphereBoundary(impl_->atmosphere, r / kKm, mu,
+                                                            steps);
+}
+
+glm::dvec3 AtmosphereReference::RayMarch(const glm::dvec3& origin, const glm::dvec3& direction,
+                                         const Lights& lights, int steps) const {
+    const Impl& d = *impl_;
+    return ref::IntegrateScatteredLuminance(
+               d.atmosphere, d.transmittance, d.settings.transmittance_size,
+               d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
+               d.settings.irradiance_size, d.ToLightSet(lights), origin / kKm,
+               d.AltitudeKm(origin), direction, 1e9, steps, true)
+        .luminance;
+}
+
+glm::dvec3 AtmosphereReference::SampleSkyView(const LutImage& sky_view, const glm::dvec3& camera,
+                                              const glm::dvec3& sun_direction,
+                                              const glm::dvec3& direction) const {
+    const Texture2D texture = FromImage(sky_view, true);
+    return ref::SampleSkyView(impl_->atmosphere, texture, impl_->settings.sky_view_size,
+                              camera / kKm, impl_->AltitudeKm(camera), sun_direction, direction);
+}
+
+}  // namespace zenith::sky::reference

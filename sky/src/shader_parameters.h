@@ -1,0 +1,48 @@
+// SI host parameters -> the shaders' kilometre structs (functions.glsl's AtmosphereParameters and
+// LightSet), for either side of the shared code: the double CPU mirror or the float std140 GL
+// mirror. The conversion happens here once.
+#pragma once
+
+#include "zenith/sky/atmosphere.h"
+#include "zenith/sky/lut.h"
+
+namespace zenith::sky {
+
+template <typename Parameters>
+Parameters MakeShaderParameters(const Atmosphere& a) {
+    using Vec3 = decltype(Parameters{}.rayleigh_scattering);
+    using Scalar = decltype(Parameters{}.mie_g);
+    constexpr double kKm = 1000.0;  // m per km, and (1/m) -> (1/km) is * 1000 too
+    Parameters p{};
+    p.rayleigh_scattering = Vec3(a.rayleigh_scattering * kKm);
+    p.rayleigh_scale_height = Scalar(a.rayleigh_scale_height / kKm);
+    p.mie_scattering = Vec3(a.mie_scattering * kKm);
+    p.mie_scale_height = Scalar(a.mie_scale_height / kKm);
+    p.mie_extinction = Vec3(a.MieExtinction() * kKm);
+    p.mie_g = Scalar(a.mie_g);
+    p.absorption_extinction = Vec3(a.absorption_extinction * kKm);
+    p.absorption_center = Scalar(a.absorption_center / kKm);
+    p.ground_albedo = Vec3(a.ground_albedo);
+    p.absorption_half_width = Scalar(0.5 * a.absorption_width / kKm);
+    p.solar_illuminance = Vec3(a.solar_illuminance);
+    p.sun_angular_radius = Scalar(a.sun_angular_radius);
+    p.bottom_radius = Scalar(a.bottom_radius / kKm);
+    p.top_radius = Scalar(a.top_radius / kKm);
+    return p;
+}
+
+template <typename LightSet>
+LightSet MakeLightSet(const Lights& lights) {
+    using Vec3 = decltype(LightSet{}.sun_direction);
+    using Scalar = decltype(LightSet{}.sun_enabled);
+    LightSet l{};
+    l.sun_direction = Vec3(glm::normalize(lights.sun_direction));
+    l.sun_enabled = Scalar(1);
+    l.sun_illuminance = Vec3(lights.sun_illuminance);
+    l.moon_enabled = Scalar(lights.moon_enabled ? 1 : 0);
+    l.moon_direction = Vec3(glm::normalize(lights.moon_direction));
+    l.moon_illuminance = Vec3(lights.moon_enabled ? lights.moon_illuminance : glm::dvec3(0.0));
+    return l;
+}
+
+}  // namespace zenith::sky

@@ -1,0 +1,183 @@
+// GPU (OSMesa llvmpipe, float) vs CPU (the same functions.glsl compiled as C++, double) for each
+// LUT and the final image, under named tolerances: the shaders and the reference cannot drift.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/gl/context.h"
+#include "zenith/sky/reference/atmosphere_reference.h"
+
+namespace zenith::sky {
+namespace {
+
+struct Difference {
+    double max_absolute = 0.0;
+    double max_relative = 0.0;  // relative to max(|reference|, floor)
+};
+
+Difference Compare(const LutImage& gpu, const LutImage& cpu, double floor, int channels = 3) {
+    EXPECT_EQ(gpu.size, cpu.size);
+    Difference d;
+    const std::size_t n = std::min(gpu.texels.size(), cpu.texels.size());
+    for (std::size_t i = 0; i < n; ++i) {
+        for (int c = 0; c < channels; ++c) {
+            const double a = gpu.texels[i][c], b = cpu.texels[i][c];
+            const double diff = std::abs(a - b);
+            d.max_absolute = std::max(d.max_absolute, diff);
+            d.max_relative = std::max(d.max_relative, diff / std::max(std::abs(b), floor));
+        }
+    }
+    return d;
+}
+
+class AtmosphereGlTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        context_ = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa).release();
+    }
+    static void TearDownTestSuite() {
+        delete context_;
+        context_ = nullptr;
+    }
+    static gl::HeadlessContext* context_;
+};
+gl::HeadlessContext* AtmosphereGlTest::context_ = nullptr;
+
+Lights MorningLights() {
+    Lights lights;
+    lights.sun_direction = glm::normalize(glm::dvec3(0.8, 0.1, 0.25));
+    return lights;
+}
+
+Camera CameraAt(double altitude) {
+    Camera camera;
+    camera.position = glm::dvec3(0.0, 0.0, 6360e3 + altitude);
+    // Looking toward +x (the sun's azimuth), up = +z.
+    camera.world_from_view = glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
+                                        glm::dvec3(-1, 0, 0));
+    camera.vertical_fov = 1.2;
+    camera.aspect = 16.0 / 9.0;
+    return camera;
+}
+
+TEST_F(AtmosphereGlTest, StaticLutsMatchTheCpuReference) {
+    const Atmosphere earth;
+    const AtmosphereRenderer gpu(earth);
+    const reference::AtmosphereReference cpu(earth);
+    const Difference t = Compare(gpu.ReadTransmittance(), cpu.transmittance(), 1e-3);
+    const Difference ms = Compare(gpu.ReadMultipleScattering(), cpu.multiple_scattering(), 1e-4);
+    const Difference e = Compare(gpu.ReadGroundIrradiance(), cpu.ground_irradiance(), 1e-3);
+    std::printf("GPU vs CPU: transmittance max |d| %.2e; multiple scattering max rel %.2e; "
+                "irradiance max rel %.2e\n", t.max_absolute, ms.max_relative, e.max_relative);
+    // Float evaluation of the same code: transmittance to 1e-4 absolute (it is in [0, 1]); the
+    // scattering LUTs to 0.5 % relative (float exp/log over long sums).
+    EXPECT_LT(t.max_absolute, 1e-4);
+    EXPECT_LT(ms.max_relative, 5e-3);
+    EXPECT_LT(e.max_relative, 5e-3);
+}
+
+TEST_F(AtmosphereGlTest, FrameLutsMatchTheCpuReference) {
+    const Atmosphere earth;
+    AtmosphereRenderer gpu(earth);
+    const reference::AtmosphereReference cpu(earth);
+    const Lights lights = MorningLights();
+    for (double altitude : {2.0, 9000.0}) {
+        const Camera camera = CameraAt(altitude);
+        gpu.UpdateFrameLuts(camera, lights);
+        const Difference sky = Compare(gpu.ReadSkyView(), cpu.SkyView(camera.position, lights),
+                                       1e-1);
+        const Difference ap =
+            Compare(gpu.ReadAerialPerspective(), cpu.AerialPerspective(camera, lights), 1e-1, 4);
+        std::printf("GPU vs CPU at %.0f m: Sky-View max rel %.2e; aerial perspective max rel "
+                    "%.2e\n", altitude, sky.max_relative, ap.max_relative);
+        // 2 m is a camera on a runway: float must hold there too (hence the exact camera
+        // altitude and the cancellation-free step integral in functions.glsl).
+        EXPECT_LT(sky.max_relative, 5e-3) << altitude;
+        EXPECT_LT(ap.max_relative, 5e-3) << altitude;
+    }
+}
+
+// Luminance (Rec.709 Y) of a frame's texel.
+double Y(const glm::vec4& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+double RelativeRmse(const LutImage& a, const LutImage& b) {
+    double sum_sq = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < a.texels.size(); ++i) {
+        const double d = Y(a.texels[i]) - Y(b.texels[i]);
+        sum_sq += d * d;
+        sum += Y(b.texels[i]);
+    }
+    const double n = static_cast<double>(a.texels.size());
+    return std::sqrt(sum_sq / n) / (sum / n);
+}
+
+TEST_F(AtmosphereGlTest, FrameMatchesTheCpuSkyViewLookup) {
+    const Atmosphere earth;
+    AtmosphereRenderer gpu(earth);
+    const reference::AtmosphereReference cpu(earth);
+    const Lights lights = MorningLights();
+    const Camera camera = CameraAt(1500.0);
+    gpu.UpdateFrameLuts(camera, lights);
+    RenderOptions options;
+    options.size = {64, 36};
+    options.draw_sun_disk = false;
+    gpu.Render(camera, lights, options);
+    const LutImage frame = gpu.ReadFrame();
+    const LutImage sky_view = cpu.SkyView(camera.position, lights);
+    double worst = 0.0;
+    for (int y = 0; y < options.size.y; ++y) {
+        for (int x = 0; x < options.size.x; ++x) {
+            const glm::dvec3 direction = camera.Direction(2.0 * (x + 0.5) / options.size.x - 1.0,
+                                                          2.0 * (y + 0.5) / options.size.y - 1.0);
+            const glm::dvec3 expected =
+                cpu.SampleSkyView(sky_view, camera.position, lights.sun_direction, direction);
+            const double e = 0.2126 * expected.x + 0.7152 * expected.y + 0.0722 * expected.z;
+            worst = std::max(worst, std::abs(Y(frame.at(x, y)) - e) / std::max(e, 1.0));
+        }
+    }
+    std::printf("frame vs CPU Sky-View lookup: max relative %.2e\n", worst);
+    EXPECT_LT(worst, 1e-2);
+}
+
+TEST_F(AtmosphereGlTest, SwitchFromSkyViewToRayMarchingIsInvisible) {
+    // Hillaire 2020 §7: above the atmosphere the renderer ray marches each pixel. Just below the
+    // top both paths are valid, so their images there measure the jump at the switch.
+    const Atmosphere earth;
+    AtmosphereRenderer gpu(earth);
+    const Lights lights = MorningLights();
+    for (double altitude : {1000.0, 99000.0}) {
+        Camera camera = CameraAt(altitude);
+        // Look 20 deg down so the horizon, the limb and the ground are all in view.
+        const double pitch = -0.35;
+        camera.world_from_view = glm::dmat3(
+            glm::dvec3(0, 1, 0), glm::dvec3(std::sin(-pitch), 0, std::cos(pitch)),
+            glm::dvec3(-std::cos(pitch), 0, std::sin(-pitch)));
+        gpu.UpdateFrameLuts(camera, lights);
+        RenderOptions options;
+        options.size = {160, 90};
+        options.draw_sun_disk = false;
+        gpu.Render(camera, lights, options);
+        const LutImage sky_view = gpu.ReadFrame();
+        options.force_ray_march = true;
+        options.ray_march_steps = 64;
+        gpu.Render(camera, lights, options);
+        const LutImage marched = gpu.ReadFrame();
+        const double rmse = RelativeRmse(sky_view, marched);
+        std::printf("Sky-View vs per-pixel ray march at %.0f m: relative RMSE %.4f\n", altitude,
+                    rmse);
+        EXPECT_LT(rmse, 0.02) << altitude;
+    }
+}
+
+TEST_F(AtmosphereGlTest, LutMemoryIsAsDocumented) {
+    const AtmosphereRenderer gpu(Atmosphere{});
+    // RGBA32F: 16 bytes per texel; 256x64 + 32x32 + 64x1 + 200x100 + 32^3.
+    EXPECT_EQ(gpu.LutMemoryBytes(), 16u * (256 * 64 + 32 * 32 + 64 + 200 * 100 + 32 * 32 * 32));
+}
+
+}  // namespace
+}  // namespace zenith::sky

@@ -1,0 +1,186 @@
+// The renderer's atmosphere functions (functions.glsl compiled as C++) against closed forms and
+// against themselves at higher resolution: what the LUTs must get right before any GPU is involved.
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "reference/atmosphere_functions.h"
+
+#include "shader_parameters.h"
+#include "zenith/sky/reference/atmosphere_reference.h"
+
+namespace zenith::sky {
+namespace {
+
+using reference::AtmosphereReference;
+
+ref::AtmosphereParameters EarthKm() { return MakeShaderParameters<ref::AtmosphereParameters>(Atmosphere{}); }
+
+TEST(AtmosphereFunctions, PhaseFunctionsIntegrateToOne) {
+    // Integral over the sphere = 2 pi * integral over nu in [-1, 1]; Simpson with 20000 intervals.
+    auto integrate = [](auto phase) {
+        const int n = 20000;
+        double sum = 0.0;
+        for (int i = 0; i <= n; ++i) {
+            const double nu = -1.0 + 2.0 * i / n;
+            const double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+            sum += w * phase(nu);
+        }
+        return 2.0 * ref::kPi * sum * (2.0 / n) / 3.0;
+    };
+    EXPECT_NEAR(integrate([](double nu) { return ref::RayleighPhase(nu); }), 1.0, 1e-9);
+    EXPECT_NEAR(integrate([](double) { return ref::IsotropicPhase(); }), 1.0, 1e-12);
+    for (double g : {-0.5, 0.0, 0.3, 0.76, 0.8}) {
+        EXPECT_NEAR(integrate([g](double nu) { return ref::CornetteShanksPhase(g, nu); }), 1.0,
+                    1e-6) << "g = " << g;
+    }
+}
+
+TEST(AtmosphereFunctions, VerticalTransmittanceEqualsClosedForm) {
+    // Optical depth of a vertical column from altitude h0 to the top (Hillaire 2020 §4 profiles):
+    // sigma * H * (exp(-h0/H) - exp(-h_top/H)) for each exponential layer, plus sigma times the
+    // part of the tent's area above h0.
+    const ref::AtmosphereParameters a = EarthKm();
+    const double h_top = a.top_radius - a.bottom_radius;
+    auto tent_area_above = [&](double h0) {
+        const double c = a.absorption_center, w = a.absorption_half_width;
+        auto cumulative = [&](double h) {  // area of the tent below h
+            if (h <= c - w) return 0.0;
+            if (h >= c + w) return w;
+            if (h <= c) return 0.5 * (h - (c - w)) * (h - (c - w)) / w;
+            return w - 0.5 * (c + w - h) * (c + w - h) / w;
+        };
+        return cumulative(h_top) - cumulative(h0);
+    };
+    // h0 = 0, 25, 40, 60: the tent's kinks (10 and 40 km) fall on segment ends or outside the
+    // column, so the 40-segment result is exact; for h0 = 1 and 10 a kink falls inside a segment
+    // and the trapezoid's error on the tent is below 1e-5 of the ozone depth there.
+    for (double h0 : {0.0, 1.0, 10.0, 25.0, 40.0, 60.0}) {
+        const bool kinks_aligned = h0 == 0.0 || h0 == 25.0 || h0 == 40.0 || h0 == 60.0;
+        const ref::vec3 depth =
+            a.rayleigh_scattering * a.rayleigh_scale_height *
+                (std::exp(-h0 / a.rayleigh_scale_height) - std::exp(-h_top / a.rayleigh_scale_height)) +
+            a.mie_extinction * a.mie_scale_height *
+                (std::exp(-h0 / a.mie_scale_height) - std::exp(-h_top / a.mie_scale_height)) +
+            a.absorption_extinction * tent_area_above(h0);
+        const ref::vec3 expected = ref::exp(-depth);
+        const ref::vec3 computed =
+            ref::ComputeTransmittanceToTopAtmosphereBoundary(a, a.bottom_radius + h0, 1.0, 40);
+        const double tolerance = kinks_aligned ? 1e-9 : 1e-4;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(computed[c], expected[c], tolerance * expected[c])
+                << "h0 " << h0 << " ch " << c;
+        }
+    }
+}
+
+TEST(AtmosphereFunctions, TransmittanceUvRoundTrips) {
+    const ref::AtmosphereParameters a = EarthKm();
+    const ref::ivec2 size(256, 64);
+    for (double h : {0.0, 0.5, 3.0, 20.0, 99.9}) {
+        for (double mu : {-1.0, -0.3, -0.05, 0.0, 0.01, 0.2, 0.9, 1.0}) {
+            const double r = a.bottom_radius + h;
+            if (ref::RayIntersectsGround(a, r, mu)) continue;  // not in the LUT's domain
+            const ref::vec2 uv = ref::GetTransmittanceTextureUvFromRMu(a, r, mu, size);
+            double r2, mu2;
+            ref::GetRMuFromTransmittanceTextureUv(a, uv, size, r2, mu2);
+            EXPECT_NEAR(r2, r, 1e-9) << h << " " << mu;
+            EXPECT_NEAR(mu2, mu, 1e-9) << h << " " << mu;
+        }
+    }
+}
+
+TEST(AtmosphereFunctions, SkyViewUvRoundTripsWithTheHorizonInTheMiddle) {
+    const ref::AtmosphereParameters a = EarthKm();
+    const ref::ivec2 size(200, 100);
+    for (double h : {0.001, 1.0, 10.0, 80.0}) {
+        const double horizon = ref::HorizonZenithAngle(a, h);
+        // The dip of the horizon, acos(R / (R + h)).
+        EXPECT_NEAR(horizon - 0.5 * ref::kPi, std::acos(a.bottom_radius / (a.bottom_radius + h)),
+                    1e-9);
+        EXPECT_NEAR(ref::GetSkyViewTextureUv(a, h, horizon, 0.0, size).y, 0.5, 1e-12);
+        EXPECT_GT(ref::GetSkyViewTextureUv(a, h, 0.0, 0.0, size).y, 0.99);  // zenith at the top
+        for (double zenith : {0.01, 0.5, 1.5, horizon - 1e-3, horizon + 1e-3, 2.5, 3.1}) {
+            for (double azimuth : {0.1, 1.0, 3.0, 6.0}) {
+                const ref::vec2 uv = ref::GetSkyViewTextureUv(a, h, zenith, azimuth, size);
+                double z2, az2;
+                ref::GetViewFromSkyViewTextureUv(a, h, uv, size, z2, az2);
+                EXPECT_NEAR(z2, zenith, 1e-9);
+                EXPECT_NEAR(az2, azimuth, 1e-9);
+            }
+        }
+    }
+}
+
+TEST(AtmosphereLuts, TransmittanceLutMatchesDirectIntegration) {
+    const AtmosphereReference reference(Atmosphere{});
+    const double bottom = 6360e3;
+    double worst = 0.0;
+    for (double h : {0.0, 200.0, 1500.0, 8000.0, 30000.0, 90000.0}) {
+        for (double mu = -0.2; mu <= 1.0; mu += 0.01) {
+            const double r = bottom + h;
+            if (mu < 0.0 && r * r * (mu * mu - 1.0) + bottom * bottom >= 0.0) continue;
+            const glm::dvec3 lut = reference.TransmittanceFromLut(r, mu);
+            const glm::dvec3 exact = reference.TransmittanceIntegrated(r, mu, 2000);
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(lut[c] - exact[c]));
+        }
+    }
+    std::printf("transmittance LUT 256x64 vs 2000-step integration: max |dT| = %.2e\n", worst);
+    EXPECT_LT(worst, 5e-3);
+}
+
+TEST(AtmosphereLuts, MultipleScatteringConvergesInDirections) {
+    // Psi_ms from 64 directions and 20 steps (the paper's counts) vs 256 directions and 60 steps:
+    // the LUT's own discretisation error, relative to the LUT's peak in each channel (in the
+    // Earth's shadow Psi_ms falls to ~0 and relative errors there mean nothing).
+    LutSettings coarse;
+    LutSettings fine;
+    fine.multiple_scattering_directions_sqrt = 16;
+    fine.multiple_scattering_steps = 60;
+    const AtmosphereReference a(Atmosphere{}, coarse), b(Atmosphere{}, fine);
+    glm::dvec3 peak(0.0);
+    for (const glm::vec4& q : b.multiple_scattering().texels) peak = glm::max(peak, glm::dvec3(q));
+    double worst = 0.0;
+    for (std::size_t i = 0; i < a.multiple_scattering().texels.size(); ++i) {
+        const glm::vec4 p = a.multiple_scattering().texels[i];
+        const glm::vec4 q = b.multiple_scattering().texels[i];
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(p[c] - q[c])) / peak[c]);
+    }
+    std::printf("multiple scattering 64 dirs/20 steps vs 256/60: max error %.4f of the peak\n",
+                worst);
+    EXPECT_LT(worst, 0.02);
+}
+
+TEST(AtmosphereLuts, SkyViewMatchesPerPixelRayMarching) {
+    const AtmosphereReference reference(Atmosphere{});
+    Lights lights;
+    lights.sun_direction = glm::normalize(glm::dvec3(0.6, 0.0, 0.8));
+    for (double h : {10.0, 1000.0, 12000.0}) {
+        const glm::dvec3 camera(0.0, 0.0, 6360e3 + h);
+        const LutImage sky_view = reference.SkyView(camera, lights);
+        double sum_sq = 0.0, sum_ref = 0.0;
+        int n = 0;
+        for (double el = -0.5; el <= 1.5; el += 0.05) {
+            for (double az = 0.0; az < 6.28; az += 0.2) {
+                const glm::dvec3 d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                   std::sin(el));
+                const glm::dvec3 lut = reference.SampleSkyView(sky_view, camera,
+                                                               lights.sun_direction, d);
+                const glm::dvec3 marched = reference.RayMarch(camera, d, lights, 200);
+                const double y_lut = 0.2126 * lut.x + 0.7152 * lut.y + 0.0722 * lut.z;
+                const double y_ref = 0.2126 * marched.x + 0.7152 * marched.y + 0.0722 * marched.z;
+                sum_sq += (y_lut - y_ref) * (y_lut - y_ref);
+                sum_ref += y_ref;
+                ++n;
+            }
+        }
+        const double relative_rmse = std::sqrt(sum_sq / n) / (sum_ref / n);
+        std::printf("Sky-View LUT vs 200-step ray march at %.0f m: relative RMSE %.4f\n", h,
+                    relative_rmse);
+        EXPECT_LT(relative_rmse, 0.03) << h;
+    }
+}
+
+}  // namespace
+}  // namespace zenith::sky
