@@ -271,20 +271,28 @@ double ExposureScale(double ev100) {
 
 double AutoExposureEV100(const Image& image) {
     if (image.pixels.empty()) throw std::invalid_argument("AutoExposureEV100: empty image");
-    double sum_log = 0.0;
-    std::size_t count = 0;
+    std::vector<double> log_luminance;
+    log_luminance.reserve(image.pixels.size());
     for (const glm::vec4& p : image.pixels) {
         // Rec.709 / sRGB luminance weights (ITU-R BT.709-6, item 3.2).
         const double y = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
         if (!std::isfinite(y)) continue;
-        sum_log += std::log2(std::max(y, kMinMeteredLuminance));
-        ++count;
+        log_luminance.push_back(std::log2(std::max(y, kMinMeteredLuminance)));
     }
-    if (count == 0) {
+    if (log_luminance.empty()) {
         throw std::invalid_argument("AutoExposureEV100: no pixel of the " +
                                     std::to_string(image.width) + " x " +
                                     std::to_string(image.height) + " image is finite");
     }
+    // Metered like an engine's histogram: only the pixels between the 50th and 95th percentiles,
+    // so black space filling half of an orbital view, or a sun disk, does not decide it.
+    std::sort(log_luminance.begin(), log_luminance.end());
+    const std::size_t n = log_luminance.size();
+    const std::size_t first = n * kMeteredLowPercentile / 100;
+    const std::size_t last = std::max(first + 1, n * kMeteredHighPercentile / 100);
+    double sum_log = 0.0;
+    for (std::size_t i = first; i < last; ++i) sum_log += log_luminance[i];
+    const std::size_t count = last - first;
     // [LR14] §5.1: EV100 = log2(L_avg · S / K), S = 100, K = 12.5; log2 of the geometric mean is
     // the mean of log2.
     constexpr double kIso = 100.0;

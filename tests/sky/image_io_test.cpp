@@ -146,17 +146,26 @@ TEST(ImageIoExposure, AutoExposureOfUniformImage) {
     }
 }
 
-TEST(ImageIoExposure, AutoExposureIsLogAverageAndSkipsNonFinite) {
-    // Half the pixels at 1 cd/m², half at 100: the geometric mean is 10 cd/m².
-    Image image(4, 2, glm::vec4(1.0f, 1.0f, 1.0f, 1.0f));
-    for (int x = 0; x < 4; ++x) image.at(x, 1) = glm::vec4(100.0f, 100.0f, 100.0f, 1.0f);
-    const double expected = std::log2(10.0 * 8.0);
-    EXPECT_NEAR(AutoExposureEV100(image), expected, 1e-9);
+TEST(ImageIoExposure, AutoExposureMetersTheMiddleOfTheHistogram) {
+    // A uniform image of L meters as log2(L * 100 / 12.5) ([LR14] §5.1).
+    EXPECT_NEAR(AutoExposureEV100(Image(4, 4, glm::vec4(10.0f, 10.0f, 10.0f, 1.0f))),
+                std::log2(10.0 * 8.0), 1e-9);
+    // An orbital view: half the frame black space, half a planet at 1000 cd/m^2. The 50th-95th
+    // percentile band is the planet, so the planet is exposed for, not the average with space.
+    Image orbit(10, 10, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    for (int y = 5; y < 10; ++y) {
+        for (int x = 0; x < 10; ++x) orbit.at(x, y) = glm::vec4(1000.0f, 1000.0f, 1000.0f, 1.0f);
+    }
+    EXPECT_NEAR(AutoExposureEV100(orbit), std::log2(1000.0 * 8.0), 1e-9);
+    // A sun disk (1 % of the pixels at 1.6e9 cd/m^2) on a 5000 cd/m^2 sky does not move it.
+    Image sky(10, 10, glm::vec4(5000.0f, 5000.0f, 5000.0f, 1.0f));
+    sky.at(3, 3) = glm::vec4(1.6e9f, 1.6e9f, 1.6e9f, 1.0f);
+    EXPECT_NEAR(AutoExposureEV100(sky), std::log2(5000.0 * 8.0), 1e-9);
     // NaN and inf pixels are not metered; black is clamped, not -inf.
-    Image with_bad = image;
+    Image with_bad(4, 4, glm::vec4(10.0f, 10.0f, 10.0f, 1.0f));
     with_bad.pixels.push_back(glm::vec4(std::numeric_limits<float>::quiet_NaN()));
     with_bad.pixels.push_back(glm::vec4(std::numeric_limits<float>::infinity()));
-    EXPECT_NEAR(AutoExposureEV100(with_bad), expected, 1e-9);
+    EXPECT_NEAR(AutoExposureEV100(with_bad), std::log2(10.0 * 8.0), 1e-9);
     const Image black(3, 3, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     EXPECT_NEAR(AutoExposureEV100(black), std::log2(kMinMeteredLuminance * 8.0), 1e-9);
     // Luminance is Rec.709 Y: pure green of 1/0.7152 cd/m² meters as 1 cd/m².

@@ -72,13 +72,16 @@ double ExposureScale(double ev100);
 
 // EV100 chosen from the frame as a reflected-light meter would, [LR14] §5.1:
 // EV100 = log2(L_avg · S / K) with S = 100 and calibration constant K = 12.5, L_avg the
-// log-average (geometric mean) of the pixels' Rec.709 luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
-// Non-finite pixels are skipped; Y below kMinMeteredLuminance counts as that, so black pixels
-// (space, night) do not drive the mean to zero. The result is clamped to
+// log-average (geometric mean) of the pixels' Rec.709 luminance Y = 0.2126 R + 0.7152 G + 0.0722 B,
+// taken over the pixels between the kMeteredLowPercentile-th and kMeteredHighPercentile-th
+// percentiles of Y (histogram metering: space beside a planet, or the sun disk, does not set it).
+// Non-finite pixels are skipped; Y below kMinMeteredLuminance counts as that. The result is clamped to
 // [kMinExposureEV100, kMaxExposureEV100]. Throws std::invalid_argument for an empty image or one
 // with no finite pixel.
 inline constexpr double kMinMeteredLuminance =
     1e-6;  // cd/m², about the absolute threshold of vision
+inline constexpr std::size_t kMeteredLowPercentile = 50;
+inline constexpr std::size_t kMeteredHighPercentile = 95;
 double AutoExposureEV100(const Image& image);
 
 // The exposure a caller (CLI `--exposure`) asks for: metered from each frame, or a fixed EV100.
