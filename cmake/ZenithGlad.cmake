@@ -42,7 +42,7 @@ if(NOT _zenith_glad_import_result EQUAL 0 OR NOT EXISTS "${ZENITH_GLAD_EXECUTABL
         "  tried: ${ZENITH_GLAD_PYTHON} -c 'import glad' -> ${_zenith_glad_import_result}\n"
         "  ${_zenith_glad_import_error}"
         "  fix:   apt-get install python3-glad, or set ZENITH_GLAD_PYTHON / "
-        "ZENITH_GLAD_EXECUTABLE, or configure with -DZENITH_BUILD_GL=OFF.")
+        "ZENITH_GLAD_EXECUTABLE (scripts/install-deps.sh installs it).")
 endif()
 
 set(_zenith_glad_dir ${CMAKE_BINARY_DIR}/glad)

@@ -12,10 +12,9 @@
 
 #include "zenith/geo/ephemeris.h"
 #include "zenith/sim/ephemeris_report.h"
-#ifdef ZENITH_HAVE_GL
+#include "zenith/sim/render_frame.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/error.h"
-#endif
 
 namespace {
 
@@ -127,6 +126,37 @@ int RunSingle(const EphemerisArgs& a) {
     return 0;
 }
 
+// "WxH" -> size; the message names --size, the text and the expected form.
+glm::ivec2 ParseSize(const std::string& text) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X')) {
+        throw std::invalid_argument("--size = " + text +
+                                    " is not a size (expected WxH, e.g. 1280x720)");
+    }
+    return {w, h};
+}
+
+int RunRender(sim::FrameRequest request, const std::string& size, const std::string& exposure,
+              const std::string& quality) {
+    request.size = ParseSize(size);
+    request.exposure = sky::ExposureFromString(exposure);
+    if (quality == "mobile") {
+        request.lut_settings = sky::LutSettings::Mobile();
+    } else if (quality != "pc") {
+        throw std::invalid_argument("--quality = " + quality + " is not known (expected pc|mobile)");
+    }
+    std::string warning;
+    const sim::FrameResult result = sim::RenderFrame(request, &warning);
+    if (!warning.empty()) fmt::print(stderr, "zenith render: {}\n", warning);
+    fmt::print(stderr,
+               "zenith render: {} ({}x{}, sun elevation {:.2f} deg, {} stars, EV100 {:.2f}) "
+               "on {}\n",
+               request.out.string(), request.size.x, request.size.y, result.sun_elevation_deg,
+               result.stars_drawn, result.ev100, result.gl_description);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -170,6 +200,37 @@ int main(int argc, char** argv) {
     batch_out->needs(batch);
     batch->check(CLI::ExistingFile);
 
+    sim::FrameRequest frame;
+    std::string size = "1280x720", exposure = "auto", quality = "pc", out = "zenith.png";
+    CLI::App* render = app.add_subcommand(
+        "render",
+        "Render one frame of sky offscreen to EXR (linear cd/m^2) or PNG (exposed, tone mapped); "
+        "with no options, a built-in scene: sunset over Zurich at 10 km");
+    render->add_option("--utc", frame.utc, "UTC instant, ISO 8601")->capture_default_str();
+    render->add_option("--lat", frame.lat_deg, "geodetic latitude, degrees")->capture_default_str();
+    render->add_option("--lon", frame.lon_deg, "longitude, degrees")->capture_default_str();
+    render->add_option("--height", frame.height_m, "height above the WGS84 ellipsoid, metres")
+        ->capture_default_str();
+    render->add_option("--heading", frame.heading_deg, "degrees from true north, clockwise")
+        ->capture_default_str();
+    render->add_option("--pitch", frame.pitch_deg, "degrees, nose up positive")
+        ->capture_default_str();
+    render->add_option("--roll", frame.roll_deg, "degrees, right wing down positive")
+        ->capture_default_str();
+    render->add_option("--fov", frame.fov_deg, "vertical field of view, degrees")
+        ->capture_default_str();
+    render->add_option("--size", size, "image size WxH")->capture_default_str();
+    render->add_option("--preset", frame.preset, "atmosphere: earth, mars, thick or a JSON file")
+        ->capture_default_str();
+    render->add_option("--exposure", exposure, "EV100 for PNG output, or auto")
+        ->capture_default_str();
+    render->add_option("--quality", quality, "LUT sizes and steps: pc or mobile (Hillaire 2020 "
+                                             "Table 2)")
+        ->capture_default_str();
+    render->add_flag("--ray-march", frame.force_ray_march,
+                     "ray march every pixel instead of using the Sky-View LUT");
+    render->add_option("--out", out, "output file, .exr or .png")->capture_default_str();
+
     CLI::App* info = app.add_subcommand(
         "info", "Versions, the headless GL context (ZENITH_GL=osmesa|egl), star catalogue");
 
@@ -181,18 +242,18 @@ int main(int argc, char** argv) {
 
     try {
         if (*ephemeris) return eph.batch_in.empty() ? RunSingle(eph) : RunBatch(eph);
+        if (*render) {
+            frame.out = out;
+            return RunRender(frame, size, exposure, quality);
+        }
         if (*info) {
             fmt::print("zenith 0.1.0\n");
-#ifdef ZENITH_HAVE_GL
             try {
                 const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
                 fmt::print("GL context: {}\n", context->description());
             } catch (const sky::gl::GlError& e) {
                 fmt::print("GL context: unavailable: {}\n", e.what());
             }
-#else
-            fmt::print("GL context: not built (ZENITH_BUILD_GL=OFF)\n");
-#endif
             try {
                 const auto catalog = geo::StarCatalog::Load();
                 fmt::print("star catalogue: {} stars to magnitude {:.1f}\n",

@@ -3,6 +3,7 @@
 #include <glad/gl.h>
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <string_view>
 
@@ -65,6 +66,34 @@ LutImage ReadTexture(GLuint texture, glm::ivec3 size) {
 
 GLuint Groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
 
+// Adds each point source to the pixel its direction falls in, as luminance E / (pixel solid
+// angle), so the image integrates to the source's illuminance whatever the resolution.
+void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm::ivec2 size,
+                 std::vector<glm::vec4>& image) {
+    const glm::dmat3 view_from_world = glm::transpose(camera.world_from_view);
+    const double tan_y = std::tan(0.5 * camera.vertical_fov);
+    const double tan_x = tan_y * camera.aspect;
+    // Tangent-plane size of one pixel; a pixel at tangent-plane (x, y) subtends
+    // dx dy / (1 + x^2 + y^2)^(3/2) steradians.
+    const double dx = 2.0 * tan_x / size.x, dy = 2.0 * tan_y / size.y;
+    for (const StarPoint& point : points) {
+        const glm::dvec3 v = view_from_world * point.direction;
+        if (!(v.z < 0.0)) continue;  // behind the camera
+        const double x = v.x / -v.z, y = v.y / -v.z;
+        const double px = (x / tan_x + 1.0) * 0.5 * size.x, py = (y / tan_y + 1.0) * 0.5 * size.y;
+        if (!(px >= 0.0 && py >= 0.0 && px < size.x && py < size.y)) continue;
+        const int ix = static_cast<int>(px), iy = static_cast<int>(py);
+        // The solid angle of the whole pixel (taken at its centre), the measure a reader of the
+        // image integrates with, so luminance x solid angle returns exactly E.
+        const double cx = ((ix + 0.5) / size.x * 2.0 - 1.0) * tan_x;
+        const double cy = ((iy + 0.5) / size.y * 2.0 - 1.0) * tan_y;
+        const double solid_angle = dx * dy / std::pow(1.0 + cx * cx + cy * cy, 1.5);
+        glm::vec4& texel = image[static_cast<std::size_t>(iy) * static_cast<std::size_t>(size.x) +
+                                 static_cast<std::size_t>(ix)];
+        texel += glm::vec4(glm::vec3(point.illuminance / solid_angle), 0.0f);
+    }
+}
+
 }  // namespace
 
 struct AtmosphereRenderer::Impl {
@@ -73,7 +102,8 @@ struct AtmosphereRenderer::Impl {
     std::array<gl::Program, kPassCount> programs;
     std::array<GLuint, 4> buffers{};  // atmosphere, lights, settings, frame
     GLuint transmittance = 0, multiple_scattering = 0, irradiance = 0, sky_view = 0,
-           aerial_perspective = 0, frame = 0;
+           aerial_perspective = 0, frame = 0, stars = 0;
+    std::vector<glm::vec4> star_pixels;
     glm::ivec2 frame_size{0, 0};
     std::array<GLuint, kPassCount> queries{};
     std::array<bool, kPassCount> query_used{};
@@ -124,8 +154,8 @@ struct AtmosphereRenderer::Impl {
 
     ~Impl() {
         glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
-        const std::array<GLuint, 6> textures = {transmittance, multiple_scattering, irradiance,
-                                                sky_view, aerial_perspective, frame};
+        const std::array<GLuint, 7> textures = {transmittance, multiple_scattering, irradiance,
+                                                sky_view, aerial_perspective, frame, stars};
         for (GLuint t : textures) {
             if (t != 0) glDeleteTextures(1, &t);
         }
@@ -140,6 +170,7 @@ struct AtmosphereRenderer::Impl {
         glBindTextureUnit(1, multiple_scattering);
         glBindTextureUnit(2, irradiance);
         glBindTextureUnit(3, sky_view);
+        glBindTextureUnit(4, stars != 0 ? stars : transmittance);  // unused when no stars
     }
 
     // Runs one compute pass writing `output` (bound as image unit 0), timed by a query.
@@ -167,7 +198,8 @@ struct AtmosphereRenderer::Impl {
         glNamedBufferSubData(buffers[1], 0, sizeof(u), &u);
     }
 
-    void UploadFrame(const Camera& camera, const RenderOptions& options) {
+    void UploadFrame(const Camera& camera, const RenderOptions& options,
+                     bool sun_disk_resolved = true, bool stars_enabled = false) {
         gl::FrameUniforms u{};
         u.camera_km = glm::vec3(camera.position / kKm);
         u.tan_half_fov = static_cast<float>(std::tan(0.5 * camera.vertical_fov));
@@ -176,7 +208,12 @@ struct AtmosphereRenderer::Impl {
         u.aspect = static_cast<float>(camera.aspect);
         u.ray_march_steps = options.ray_march_steps;
         u.use_sky_view = options.force_ray_march ? 0 : 1;
-        u.draw_sun_disk = options.draw_sun_disk ? 1 : 0;
+        u.draw_sun_disk = options.draw_sun_disk && sun_disk_resolved ? 1 : 0;
+        u.moon_enabled = options.moon.enabled ? 1 : 0;
+        u.moon_direction = glm::vec3(glm::normalize(options.moon.direction));
+        u.moon_angular_radius = static_cast<float>(options.moon.angular_radius);
+        u.moon_albedo = static_cast<float>(options.moon.albedo);
+        u.stars_enabled = stars_enabled ? 1 : 0;
         u.camera_altitude_km =
             static_cast<float>((glm::length(camera.position) - atmosphere.bottom_radius) / kKm);
         glNamedBufferSubData(buffers[3], 0, sizeof(u), &u);
@@ -236,12 +273,30 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
                                     " is out of range (expected 1..16384 per axis)");
     }
     if (options.size != d.frame_size) {
-        if (d.frame != 0) glDeleteTextures(1, &d.frame);
+        for (GLuint* t : {&d.frame, &d.stars}) {
+            if (*t != 0) glDeleteTextures(1, t);
+        }
         d.frame = CreateTexture2D(options.size);
+        d.stars = CreateTexture2D(options.size);
         d.frame_size = options.size;
     }
+    // A sun disk narrower than a pixel would fall between pixel centres: it becomes a point.
+    const double pixel_angle = camera.vertical_fov / options.size.y;
+    const bool sun_disk_resolved = d.atmosphere.sun_angular_radius > pixel_angle;
+    std::vector<StarPoint> points = options.stars;
+    if (options.draw_sun_disk && !sun_disk_resolved) {
+        points.push_back({lights.sun_direction, lights.sun_illuminance});
+    }
+    if (!points.empty()) {
+        d.star_pixels.assign(static_cast<std::size_t>(options.size.x) *
+                                 static_cast<std::size_t>(options.size.y),
+                             glm::vec4(0.0f));
+        SplatPoints(points, camera, options.size, d.star_pixels);
+        glTextureSubImage2D(d.stars, 0, 0, 0, options.size.x, options.size.y, GL_RGBA, GL_FLOAT,
+                            d.star_pixels.data());
+    }
     d.UploadLights(lights);
-    d.UploadFrame(camera, options);
+    d.UploadFrame(camera, options, sun_disk_resolved, !points.empty());
     d.Dispatch(kRenderPass, d.frame, false, Groups(options.size.x, 8), Groups(options.size.y, 8),
                1);
 }

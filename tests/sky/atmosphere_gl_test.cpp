@@ -173,6 +173,87 @@ TEST_F(AtmosphereGlTest, SwitchFromSkyViewToRayMarchingIsInvisible) {
     }
 }
 
+// Sum of luminance times pixel solid angle over a frame: its illuminance at the camera.
+double FrameIlluminance(const LutImage& frame, const Camera& camera) {
+    const double tan_y = std::tan(0.5 * camera.vertical_fov), tan_x = tan_y * camera.aspect;
+    const double dx = 2.0 * tan_x / frame.size.x, dy = 2.0 * tan_y / frame.size.y;
+    double sum = 0.0;
+    for (int y = 0; y < frame.size.y; ++y) {
+        for (int x = 0; x < frame.size.x; ++x) {
+            const double u = ((x + 0.5) / frame.size.x * 2.0 - 1.0) * tan_x;
+            const double v = ((y + 0.5) / frame.size.y * 2.0 - 1.0) * tan_y;
+            sum += Y(frame.at(x, y)) * dx * dy / std::pow(1.0 + u * u + v * v, 1.5);
+        }
+    }
+    return sum;
+}
+
+// From space, looking away from the planet: nothing attenuates, so what is drawn must integrate
+// to the light's illuminance exactly (energy conservation of the disk and of the splat).
+Camera SpaceCameraLookingAt(const glm::dvec3& direction, double fov) {
+    Camera camera;
+    camera.position = glm::dvec3(0.0, 0.0, 6460e3 + 2000e3);
+    const glm::dvec3 forward = glm::normalize(direction);
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(1, 0, 0)));
+    camera.world_from_view = glm::dmat3(right, glm::cross(right, forward), -forward);
+    camera.vertical_fov = fov;
+    camera.aspect = 1.0;
+    return camera;
+}
+
+TEST_F(AtmosphereGlTest, SunDiskAndStarsIntegrateToTheirIlluminance) {
+    AtmosphereRenderer gpu(Atmosphere{});
+    Lights lights;
+    lights.sun_direction = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
+    const double sun_y = Y(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
+    RenderOptions options;
+    options.size = {256, 256};
+    // Resolved disk: 2 deg field, the Sun 0.27 deg across 34 pixels in radius.
+    Camera camera = SpaceCameraLookingAt(lights.sun_direction, 2.0 * 0.017453292519943295);
+    gpu.UpdateFrameLuts(camera, lights);
+    gpu.Render(camera, lights, options);
+    const double disk = FrameIlluminance(gpu.ReadFrame(), camera) / sun_y;
+    // Below a pixel (90 deg field): splatted as a point.
+    camera = SpaceCameraLookingAt(lights.sun_direction, 1.5707963267948966);
+    gpu.Render(camera, lights, options);
+    const double point = FrameIlluminance(gpu.ReadFrame(), camera) / sun_y;
+    // A star elsewhere in the field (the Sun turned off by pointing it away).
+    Lights dark = lights;
+    dark.sun_direction = camera.world_from_view[2];  // behind the camera
+    options.stars = {{glm::normalize(-camera.world_from_view[2] + 0.1 * camera.world_from_view[0]),
+                      glm::dvec3(2e-6)}};
+    gpu.Render(camera, dark, options);
+    const double star = FrameIlluminance(gpu.ReadFrame(), camera) / 2e-6;
+    std::printf("integrated / true illuminance: sun disk %.4f, sun point %.6f, star %.6f\n",
+                disk, point, star);
+    EXPECT_NEAR(disk, 1.0, 0.01);  // pixelisation of the disk edge
+    EXPECT_NEAR(point, 1.0, 1e-5);
+    EXPECT_NEAR(star, 1.0, 1e-5);
+}
+
+TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {
+    // A half Moon with the Sun 90 deg to its right in the image: the lit half is the right one.
+    AtmosphereRenderer gpu(Atmosphere{});
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(0.0, 1.0, 0.3));
+    Camera camera = SpaceCameraLookingAt(forward, 0.02);
+    const glm::dvec3 right = camera.world_from_view[0];
+    Lights lights;
+    lights.sun_direction = right;  // perpendicular to the line of sight: quarter phase
+    RenderOptions options;
+    options.size = {128, 128};
+    options.draw_sun_disk = false;
+    options.moon = {true, forward, 0.0045, 0.12};
+    gpu.UpdateFrameLuts(camera, lights);
+    gpu.Render(camera, lights, options);
+    const LutImage frame = gpu.ReadFrame();
+    double left_sum = 0.0, right_sum = 0.0;
+    for (int y = 0; y < 128; ++y) {
+        for (int x = 0; x < 128; ++x) (x < 64 ? left_sum : right_sum) += Y(frame.at(x, y));
+    }
+    EXPECT_GT(right_sum, 0.0);
+    EXPECT_LT(left_sum, 1e-3 * right_sum);
+}
+
 TEST_F(AtmosphereGlTest, LutMemoryIsAsDocumented) {
     const AtmosphereRenderer gpu(Atmosphere{});
     // RGBA32F: 16 bytes per texel; 256x64 + 32x32 + 64x1 + 200x100 + 32^3.

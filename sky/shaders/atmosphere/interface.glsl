@@ -34,6 +34,12 @@ layout(std140, binding = 3) uniform FrameBlock {
     int use_sky_view;  // 1: Sky-View LUT inside the atmosphere, 0: ray march every pixel
     int draw_sun_disk;
     float camera_altitude_km;  // above the ground, computed in double on the CPU
+    int moon_enabled;
+    vec3 moon_direction;
+    float moon_angular_radius;
+    float moon_albedo;
+    int stars_enabled;
+    int padding0;
     int padding1;
 };
 
@@ -41,6 +47,7 @@ layout(binding = 0) uniform sampler2D transmittance_texture;
 layout(binding = 1) uniform sampler2D multiple_scattering_texture;
 layout(binding = 2) uniform sampler2D irradiance_texture;
 layout(binding = 3) uniform sampler2D sky_view_texture;
+layout(binding = 4) uniform sampler2D star_texture;  // point sources as luminance, frame-sized
 
 // World direction through the centre of pixel/cell `cell` of a grid of `grid` cells covering the
 // view (NDC y up, so row 0 is the bottom row, as in GL textures).

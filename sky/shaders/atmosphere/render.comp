@@ -19,11 +19,46 @@ vec3 SunLimbDarkening(float center_to_edge) {
     return factor / disk_mean;
 }
 
+// Transmittance from the camera to space along `direction`, 0 when the ground is in the way:
+// what the atmosphere does to the light of the Sun, the Moon and the stars on their way in.
+vec3 TransmittanceToSpace(vec3 direction) {
+    float r = length(camera_km);
+    float mu = dot(camera_km, direction) / r;
+    if (RaySphereDistance(r, mu, camera_altitude_km, atmosphere.bottom_radius) >= 0.0) {
+        return vec3(0.0);
+    }
+    float shell = atmosphere.top_radius - atmosphere.bottom_radius;
+    if (camera_altitude_km <= shell) {
+        return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
+                                                       transmittance_size, r, mu);
+    }
+    // From space: the transmittance of the chord, seen from its entry point (1 if it misses).
+    float t_top = RaySphereDistance(r, mu, camera_altitude_km - shell, atmosphere.top_radius);
+    if (t_top < 0.0) return vec3(1.0);
+    vec3 entry = camera_km + direction * t_top;
+    return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
+                                                   transmittance_size, atmosphere.top_radius,
+                                                   dot(entry, direction) / length(entry));
+}
+
+// Luminance of the Moon's disk along `direction`: a Lambertian sphere lit by the Sun, so the lit
+// side faces the Sun whatever the phase (Hillaire 2016 §4.2 leaves this to the artist).
+vec3 MoonLuminance(vec3 direction) {
+    float cos_radius = cos(moon_angular_radius);
+    if (dot(direction, moon_direction) <= cos_radius) return vec3(0.0);
+    // The sphere at unit distance with radius sin(angular radius); nearest hit along the ray.
+    float rho = sin(moon_angular_radius);
+    float b = dot(direction, moon_direction);
+    float t = b - sqrt(max(b * b - (1.0 - rho * rho), 0.0));
+    vec3 normal = normalize(direction * t - moon_direction);
+    return lights.sun_illuminance * (moon_albedo / kPi) *
+           max(dot(normal, lights.sun_direction), 0.0);
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, output_size))) return;
     vec3 direction = CameraDirection(vec2(pixel), vec2(output_size));
-    float r = length(camera_km);
     bool inside = camera_altitude_km < atmosphere.top_radius - atmosphere.bottom_radius;
 
     vec3 luminance;
@@ -38,30 +73,18 @@ void main() {
                         camera_altitude_km, direction, 1e9, ray_march_steps, true).luminance;
     }
 
-    // The sun disk, composited after the LUT (H20 §5.3), attenuated by the atmosphere between
-    // the camera and space and hidden by the planet.
-    float cos_angle = dot(direction, lights.sun_direction);
+    // What lies beyond the atmosphere, composited after the LUT (H20 §5.3).
+    vec3 beyond = vec3(0.0);
+    float cos_sun = dot(direction, lights.sun_direction);
     float cos_radius = cos(atmosphere.sun_angular_radius);
-    if (draw_sun_disk != 0 && cos_angle > cos_radius &&
-        RaySphereDistance(r, dot(camera_km, direction) / r, camera_altitude_km,
-                          atmosphere.bottom_radius) < 0.0) {
-        float angle = acos(clamp(cos_angle, -1.0, 1.0));
+    if (draw_sun_disk != 0 && cos_sun > cos_radius) {
+        float angle = acos(clamp(cos_sun, -1.0, 1.0));
         float solid_angle = 2.0 * kPi * (1.0 - cos_radius);
-        vec3 disk = lights.sun_illuminance / solid_angle *
-                    SunLimbDarkening(angle / atmosphere.sun_angular_radius);
-        vec3 transmittance = vec3(1.0);
-        vec3 origin = camera_km;
-        if (r > atmosphere.top_radius) {
-            float t_top = RaySphereIntersectNearest(camera_km, direction, atmosphere.top_radius);
-            origin = t_top >= 0.0 ? camera_km + direction * t_top : camera_km;
-        }
-        float r_origin = length(origin);
-        if (r_origin <= atmosphere.top_radius * 1.0001) {
-            transmittance = GetTransmittanceToTopAtmosphereBoundary(
-                atmosphere, transmittance_texture, transmittance_size,
-                min(r_origin, atmosphere.top_radius), dot(origin, direction) / r_origin);
-        }
-        luminance += disk * transmittance;
+        beyond += lights.sun_illuminance / solid_angle *
+                  SunLimbDarkening(angle / atmosphere.sun_angular_radius);
     }
+    if (moon_enabled != 0) beyond += MoonLuminance(direction);
+    if (stars_enabled != 0) beyond += texelFetch(star_texture, pixel, 0).rgb;
+    if (any(greaterThan(beyond, vec3(0.0)))) luminance += beyond * TransmittanceToSpace(direction);
     imageStore(output_image, pixel, vec4(luminance, 1.0));
 }

@@ -75,9 +75,17 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     int use_sky_view;
     int draw_sun_disk;
     float camera_altitude_km;
+    int moon_enabled;
+    glm::vec3 moon_direction;
+    float moon_angular_radius;
+    float moon_albedo;
+    int stars_enabled;
+    int padding0;
     int padding1;
 };
-static_assert(sizeof(FrameUniforms) == 96);
+static_assert(sizeof(FrameUniforms) == 128);
+static_assert(offsetof(FrameUniforms, moon_direction) == 96);
+static_assert(offsetof(FrameUniforms, stars_enabled) == 116);
 static_assert(offsetof(FrameUniforms, world_from_view) == 16);
 static_assert(offsetof(FrameUniforms, output_size) == 64);
 static_assert(offsetof(FrameUniforms, use_sky_view) == 80);

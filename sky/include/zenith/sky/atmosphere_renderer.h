@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -18,7 +19,9 @@ struct RenderOptions {
     // force_ray_march) each pixel is ray marched with ray_march_steps steps.
     bool force_ray_march = false;
     int ray_march_steps = 32;
-    bool draw_sun_disk = true;
+    bool draw_sun_disk = true;  // drawn as a point (energy-conserving) when below a pixel
+    MoonDisk moon;
+    std::vector<StarPoint> stars;  // splatted into the pixel holding each, as E / pixel solid angle
 };
 
 // GPU time of each pass in milliseconds, measured with GL timer queries.

@@ -64,6 +64,20 @@ struct Lights {
     glm::dvec3 moon_illuminance{0.0};
 };
 
+// The Moon drawn as a Lambertian sphere lit by the Sun (its phase and bright limb follow).
+struct MoonDisk {
+    bool enabled = false;
+    glm::dvec3 direction{0.0, 0.0, 1.0};  // unit, toward the Moon's centre
+    double angular_radius = 0.0045;        // rad
+    double albedo = 0.12;                  // Lambertian reflectance (the Moon's mean albedo)
+};
+
+// A point source: a star, or the Sun when its disk is smaller than a pixel.
+struct StarPoint {
+    glm::dvec3 direction{0.0, 0.0, 1.0};  // unit
+    glm::dvec3 illuminance{0.0};          // lux per channel at the top of the atmosphere
+};
+
 // A pinhole camera, OpenGL convention: it looks along -z of its view frame, +y up, +x right.
 struct Camera {
     glm::dvec3 position{0.0, 0.0, 6360e3 + 1.0};  // m, planet-centred

@@ -1,0 +1,54 @@
+// One frame, offscreen: UTC + position + attitude -> ephemeris -> sky state -> GL render ->
+// image file. Used by `zenith render`; replay (issue 5) renders many of these.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "zenith/geo/time.h"
+#include "zenith/sky/atmosphere.h"
+#include "zenith/sky/image_io.h"
+#include "zenith/sky/lut.h"
+#include "zenith/sky/sky_state.h"
+
+namespace zenith::sim {
+
+struct FrameRequest {
+    std::string utc = "2024-06-21T19:00:00Z";  // ISO 8601
+    double lat_deg = 47.45;                     // the built-in scene: over Zurich at FL330,
+    double lon_deg = 8.56;                      // looking west-north-west into the sunset
+    double height_m = 10000.0;                  // above the WGS84 ellipsoid
+    double heading_deg = 300.0;
+    double pitch_deg = 0.0;
+    double roll_deg = 0.0;
+    double fov_deg = 60.0;  // vertical
+    glm::ivec2 size{1280, 720};
+    std::string preset = "earth";  // built-in preset name or JSON file
+    sky::Exposure exposure;        // "auto" unless given (PNG only)
+    std::filesystem::path out = "zenith.png";
+    double star_magnitude_limit = 6.5;
+    bool force_ray_march = false;
+    sky::LutSettings lut_settings;
+};
+
+// Throws std::invalid_argument naming the parameter, value and allowed range for anything out of
+// range (before any rendering, so nothing is written).
+void ValidateFrameRequest(const FrameRequest& request);
+
+struct FrameResult {
+    sky::Image image;           // linear luminance, cd/m^2, row 0 = top
+    double ev100 = 0.0;         // exposure used for a PNG (resolved from "auto" if so)
+    double sun_elevation_deg = 0.0;
+    std::size_t stars_drawn = 0;
+    std::string gl_description;
+};
+
+// Renders (creating a headless GL context: $ZENITH_GL = osmesa|egl) and writes request.out
+// atomically. Stars are drawn when the catalogue is installed; without it, a warning goes to
+// `warning` (if given) and the frame is still rendered.
+FrameResult RenderFrame(const FrameRequest& request, std::string* warning = nullptr);
+
+}  // namespace zenith::sim

@@ -1,0 +1,53 @@
+// From where things are (geo) to what the renderer draws: camera, lights, Moon disk and stars in
+// the atmosphere's planet-centred frame.
+//
+// How the spherical planet meets the WGS84 ellipsoid: the frame's axes are the observer's local
+// east/north/up (up = the ellipsoid normal, as geo/ reports elevations), the sphere's centre lies
+// bottom_radius + height below the camera along that normal, and height is the geodetic height
+// above the ellipsoid. So the ground under the aircraft is at exactly its ellipsoidal height, the
+// zenith and the horizon plane are geo/'s, and the only approximation is the curvature of distant
+// ground (the sphere's radius instead of the ellipsoid's local radii, 6335-6400 km for Earth):
+// the horizon dip from 10 km differs by < 0.5 % (0.016 deg). Placing the camera at its
+// geocentric radius instead would misplace the ground by up to 21 km.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "zenith/geo/ephemeris.h"
+#include "zenith/sky/atmosphere.h"
+#include "zenith/sky/lut.h"
+
+namespace zenith::sky {
+
+// Heading from true north clockwise, pitch up positive, roll right wing down positive (aircraft
+// convention), radians.
+struct Attitude {
+    double heading = 0.0;
+    double pitch = 0.0;
+    double roll = 0.0;
+};
+
+struct SkyState {
+    Camera camera;
+    Lights lights;
+    MoonDisk moon;
+    std::vector<StarPoint> stars;
+    double sun_elevation = 0.0;  // rad, geometric, for exposure and day/night decisions
+};
+
+// Lambertian sphere of `albedo` at phase angle `phase_angle` (rad): the illuminance it sends to
+// the observer per unit solar illuminance, times the solid angle it subtends (Moon as a light).
+double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double angular_radius);
+
+// The world_from_view rotation for an attitude, in the ENU-aligned frame described above.
+glm::dmat3 ViewFromAttitude(const Attitude& attitude);
+
+// Builds the renderer's view of the sky from an ephemeris computed for `observer`. Sun and Moon
+// illuminances scale with their distances (solar_illuminance is for 1 au).
+SkyState MakeSkyState(const geo::SkyEphemeris& ephemeris, const geo::Observer& observer,
+                      const Atmosphere& atmosphere, const Attitude& attitude,
+                      double vertical_fov, double aspect);
+
+}  // namespace zenith::sky

@@ -1,0 +1,87 @@
+#include "zenith/sky/sky_state.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+
+#include "zenith/geo/moon.h"
+#include "zenith/geo/stars.h"
+#include "zenith/geo/sun.h"
+
+namespace zenith::sky {
+namespace {
+
+// Colour of B-V in steps of 0.01 from -0.40 to 4.00 (the catalogue's resolution and
+// geo::ColourFromBMinusV's clamp), computed once: the black-body integral costs ~4 us a call.
+glm::dvec3 StarColour(double b_minus_v) {
+    static const std::array<glm::dvec3, 441> table = [] {
+        std::array<glm::dvec3, 441> t{};
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            t[i] = geo::ColourFromBMinusV(-0.40 + 0.01 * static_cast<double>(i));
+        }
+        return t;
+    }();
+    const double index = std::round((b_minus_v + 0.40) / 0.01);
+    return table[static_cast<std::size_t>(std::clamp(index, 0.0, 440.0))];
+}
+
+}  // namespace
+
+double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double angular_radius) {
+    // Integral of A cos(i) / pi over the visible lit part of a Lambertian sphere:
+    // (2/3) A sin^2(angular radius) Phi(alpha), Phi = (sin a + (pi - a) cos a) / pi.
+    const double a = std::clamp(phase_angle, 0.0, glm::pi<double>());
+    const double phi = (std::sin(a) + (glm::pi<double>() - a) * std::cos(a)) / glm::pi<double>();
+    const double s = std::sin(angular_radius);
+    return 2.0 / 3.0 * albedo * s * s * phi;
+}
+
+glm::dmat3 ViewFromAttitude(const Attitude& attitude) {
+    // ENU axes: x east, y north, z up. Forward from heading and pitch; right level at zero roll,
+    // then both turned about forward by the roll (right wing down for positive roll).
+    const double ch = std::cos(attitude.heading), sh = std::sin(attitude.heading);
+    const double cp = std::cos(attitude.pitch), sp = std::sin(attitude.pitch);
+    const glm::dvec3 forward{sh * cp, ch * cp, sp};
+    const glm::dvec3 level_right{ch, -sh, 0.0};
+    const glm::dvec3 level_up = glm::cross(level_right, forward);
+    const double cr = std::cos(attitude.roll), sr = std::sin(attitude.roll);
+    const glm::dvec3 right = level_right * cr - level_up * sr;
+    const glm::dvec3 up = level_up * cr + level_right * sr;
+    return glm::dmat3(right, up, -forward);
+}
+
+SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
+                      const Atmosphere& atmosphere, const Attitude& attitude,
+                      double vertical_fov, double aspect) {
+    SkyState s;
+    s.camera.position = glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + observer.height_m());
+    s.camera.world_from_view = ViewFromAttitude(attitude);
+    s.camera.vertical_fov = vertical_fov;
+    s.camera.aspect = aspect;
+
+    const double sun_distance_au = e.sun.topocentric.horizontal.distance / geo::kAstronomicalUnit;
+    s.lights.sun_direction = e.sun.topocentric.horizontal.direction_enu;
+    s.lights.sun_illuminance = atmosphere.solar_illuminance / (sun_distance_au * sun_distance_au);
+    s.sun_elevation = e.sun.topocentric.horizontal.elevation;
+
+    s.moon.enabled = true;
+    s.moon.direction = e.moon.topocentric.horizontal.direction_enu;
+    s.moon.angular_radius = 0.5 * e.moon.angular_diameter;
+    s.lights.moon_enabled = true;
+    s.lights.moon_direction = s.moon.direction;
+    s.lights.moon_illuminance =
+        s.lights.sun_illuminance * LambertSphereIlluminanceFactor(
+                                       s.moon.albedo, e.moon_phase.phase_angle,
+                                       s.moon.angular_radius);
+
+    s.stars.reserve(e.stars.size());
+    for (const geo::StarState& star : e.stars) {
+        s.stars.push_back({star.horizontal.direction_enu,
+                           star.illuminance_lux * StarColour(star.star->b_minus_v)});
+    }
+    return s;
+}
+
+}  // namespace zenith::sky

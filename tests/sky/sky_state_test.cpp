@@ -1,0 +1,69 @@
+#include "zenith/sky/sky_state.h"
+
+#include <cmath>
+
+#include <glm/gtc/constants.hpp>
+#include <gtest/gtest.h>
+
+#include "zenith/geo/sun.h"
+
+namespace zenith::sky {
+namespace {
+
+constexpr double kDeg = glm::pi<double>() / 180.0;
+
+void ExpectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
+    EXPECT_NEAR(glm::length(a - b), 0.0, tolerance) << a.x << " " << a.y << " " << a.z;
+}
+
+TEST(Attitude, HeadingPitchRollFollowAircraftConventions) {
+    // Columns: right, up, backward; ENU axes x east, y north, z up.
+    glm::dmat3 m = ViewFromAttitude({0.0, 0.0, 0.0});
+    ExpectNear(-m[2], {0, 1, 0}, 1e-12);  // looking north
+    ExpectNear(m[0], {1, 0, 0}, 1e-12);   // right wing east
+    ExpectNear(m[1], {0, 0, 1}, 1e-12);
+    m = ViewFromAttitude({90.0 * kDeg, 0.0, 0.0});
+    ExpectNear(-m[2], {1, 0, 0}, 1e-12);  // heading 090 looks east
+    m = ViewFromAttitude({0.0, 30.0 * kDeg, 0.0});
+    ExpectNear(-m[2], {0, std::cos(30 * kDeg), std::sin(30 * kDeg)}, 1e-12);  // nose up
+    m = ViewFromAttitude({0.0, 0.0, 20.0 * kDeg});
+    EXPECT_LT(m[0].z, 0.0);  // positive roll: right wing down
+    ExpectNear(-m[2], {0, 1, 0}, 1e-12);
+    // Always a rotation.
+    const glm::dmat3 r = ViewFromAttitude({1.0, -0.4, 2.5});
+    EXPECT_NEAR(glm::determinant(r), 1.0, 1e-12);
+    ExpectNear(glm::transpose(r) * r[0], {1, 0, 0}, 1e-12);
+}
+
+TEST(MoonLight, LambertSphereClosedForms) {
+    const double s = std::sin(0.0045);
+    // Full: (2/3) A sin^2(r); quarter (90 deg): Phi = 1 / pi; new: 0.
+    EXPECT_NEAR(LambertSphereIlluminanceFactor(0.12, 0.0, 0.0045), 2.0 / 3.0 * 0.12 * s * s,
+                1e-15);
+    EXPECT_NEAR(LambertSphereIlluminanceFactor(0.12, glm::half_pi<double>(), 0.0045),
+                2.0 / 3.0 * 0.12 * s * s / glm::pi<double>(), 1e-15);
+    EXPECT_NEAR(LambertSphereIlluminanceFactor(0.12, glm::pi<double>(), 0.0045), 0.0, 1e-18);
+}
+
+TEST(SkyStateFromEphemeris, PlacesCameraAndScalesLights) {
+    const geo::Time t = geo::TimeFromIso8601("2024-01-25T17:54:00Z");  // full Moon
+    const geo::Observer observer(45.0, 7.0, 3000.0);
+    const geo::SkyEphemeris e = geo::Ephemeris().Compute(t, observer);
+    const Atmosphere earth;
+    const SkyState state = MakeSkyState(e, observer, earth, {}, 1.0, 1.5);
+    // The ground under the camera is at its ellipsoidal height; up is the ENU z axis.
+    EXPECT_NEAR(glm::length(state.camera.position) - earth.bottom_radius, 3000.0, 1e-6);
+    ExpectNear(glm::normalize(state.camera.position), {0, 0, 1}, 1e-15);
+    ExpectNear(state.lights.sun_direction, e.sun.topocentric.horizontal.direction_enu, 1e-15);
+    // January: the Earth is near perihelion, the Sun 3 % brighter than at 1 au.
+    const double au = e.sun.topocentric.horizontal.distance / geo::kAstronomicalUnit;
+    EXPECT_NEAR(state.lights.sun_illuminance.y, earth.solar_illuminance.y / (au * au), 1e-6);
+    EXPECT_GT(state.lights.sun_illuminance.y / earth.solar_illuminance.y, 1.03);
+    // Full Moon: a Lambertian sphere of albedo 0.12 gives ~0.2 lux at the top of the
+    // atmosphere; the real Moon gives ~0.3 (opposition surge, not modelled).
+    EXPECT_GT(state.lights.moon_illuminance.y, 0.15);
+    EXPECT_LT(state.lights.moon_illuminance.y, 0.35);
+}
+
+}  // namespace
+}  // namespace zenith::sky
