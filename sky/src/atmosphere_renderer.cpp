@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "gl/atmosphere_uniforms.h"
 #include "gl/shader_library.h"
+#include "reference/atmosphere_functions.h"
 #include "shader_parameters.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/gl/shader.h"
@@ -24,14 +26,16 @@ enum Pass : std::size_t {
     kIrradiancePass,
     kSkyViewPass,
     kAerialPerspectivePass,
-    kRenderPass,
+    kRenderPass,           // the composite with the Sky-View LUT
+    kRenderRayMarchPass,   // the composite ray marching every pixel (space views)
     kPassCount
 };
 
 constexpr std::array<std::string_view, kPassCount> kPassFiles = {
     "atmosphere/transmittance.comp",      "atmosphere/multiple_scattering.comp",
     "atmosphere/irradiance.comp",         "atmosphere/sky_view.comp",
-    "atmosphere/aerial_perspective.comp", "atmosphere/render.comp",
+    "atmosphere/aerial_perspective.comp", "atmosphere/render.frag",
+    "atmosphere/render.frag",
 };
 
 GLuint CreateTexture2D(glm::ivec2 size, GLenum wrap_s = GL_CLAMP_TO_EDGE) {
@@ -103,6 +107,7 @@ struct AtmosphereRenderer::Impl {
     std::array<GLuint, 4> buffers{};  // atmosphere, lights, settings, frame
     GLuint transmittance = 0, multiple_scattering = 0, irradiance = 0, sky_view = 0,
            aerial_perspective = 0, frame = 0, stars = 0;
+    GLuint framebuffer = 0, vertex_array = 0;  // the composite draws a triangle into `frame`
     std::vector<glm::vec4> star_pixels;
     glm::ivec2 frame_size{0, 0};
     std::array<GLuint, kPassCount> queries{};
@@ -111,7 +116,12 @@ struct AtmosphereRenderer::Impl {
     static std::array<gl::Program, kPassCount> BuildPrograms() {
         return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
                 gl::ComputeProgram(kPassFiles[2]), gl::ComputeProgram(kPassFiles[3]),
-                gl::ComputeProgram(kPassFiles[4]), gl::ComputeProgram(kPassFiles[5])};
+                gl::ComputeProgram(kPassFiles[4]),
+                // Two programs from one source: llvmpipe runs both sides of a branch under a
+                // mask, so a per-frame choice made in the shader cost every pixel the 32-step
+                // ray march; chosen here it costs nothing.
+                gl::FullscreenProgram(kPassFiles[5], "#define ZENITH_RAY_MARCH 0\n"),
+                gl::FullscreenProgram(kPassFiles[6], "#define ZENITH_RAY_MARCH 1\n")};
     }
 
     Impl(const Atmosphere& a, const LutSettings& s)
@@ -134,6 +144,8 @@ struct AtmosphereRenderer::Impl {
         sky_view = CreateTexture2D(s.sky_view_size, GL_REPEAT);  // azimuth wraps
         aerial_perspective = CreateTexture3D(s.aerial_perspective_size);
         glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries.size()), queries.data());
+        glCreateFramebuffers(1, &framebuffer);
+        glCreateVertexArrays(1, &vertex_array);  // core profile draws need one, even empty
 
         gl::SettingsUniforms u{};
         u.transmittance_size = s.transmittance_size;
@@ -153,6 +165,8 @@ struct AtmosphereRenderer::Impl {
     }
 
     ~Impl() {
+        glDeleteVertexArrays(1, &vertex_array);
+        glDeleteFramebuffers(1, &framebuffer);
         glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
         const std::array<GLuint, 7> textures = {transmittance, multiple_scattering, irradiance,
                                                 sky_view, aerial_perspective, frame, stars};
@@ -188,6 +202,23 @@ struct AtmosphereRenderer::Impl {
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
 
+    // The composite: a full-screen triangle into `frame` through the framebuffer object.
+    void Draw(Pass pass, glm::ivec2 size) {
+        BindInputs();
+        programs[pass].Use();
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glViewport(0, 0, size.x, size.y);
+        glDisable(GL_BLEND);
+        glDisable(GL_DEPTH_TEST);
+        glBindVertexArray(vertex_array);
+        glBeginQuery(GL_TIME_ELAPSED, queries[pass]);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glEndQuery(GL_TIME_ELAPSED);
+        query_used[pass] = true;
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
+
     void UploadAtmosphere() {
         const auto u = MakeShaderParameters<gl::AtmosphereUniforms>(atmosphere);
         glNamedBufferSubData(buffers[0], 0, sizeof(u), &u);
@@ -198,7 +229,7 @@ struct AtmosphereRenderer::Impl {
         glNamedBufferSubData(buffers[1], 0, sizeof(u), &u);
     }
 
-    void UploadFrame(const Camera& camera, const RenderOptions& options,
+    void UploadFrame(const Camera& camera, const Lights& lights, const RenderOptions& options,
                      bool sun_disk_resolved = true, bool stars_enabled = false) {
         gl::FrameUniforms u{};
         u.camera_km = glm::vec3(camera.position / kKm);
@@ -207,13 +238,21 @@ struct AtmosphereRenderer::Impl {
         u.output_size = options.size;
         u.aspect = static_cast<float>(camera.aspect);
         u.ray_march_steps = options.ray_march_steps;
-        u.use_sky_view = options.force_ray_march ? 0 : 1;
         u.draw_sun_disk = options.draw_sun_disk && sun_disk_resolved ? 1 : 0;
         u.moon_enabled = options.moon.enabled ? 1 : 0;
         u.moon_direction = glm::vec3(glm::normalize(options.moon.direction));
         u.moon_angular_radius = static_cast<float>(options.moon.angular_radius);
         u.moon_albedo = static_cast<float>(options.moon.albedo);
         u.stars_enabled = stars_enabled ? 1 : 0;
+        // Per-frame constants, from the shared functions compiled as C++ (double).
+        const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
+        const glm::dvec3 up = glm::normalize(camera.position);
+        u.sky_view_up = glm::vec3(up);
+        u.sky_view_x = glm::vec3(ref::SkyViewFrameX(up, glm::normalize(lights.sun_direction)));
+        u.horizon_zenith = static_cast<float>(ref::HorizonZenithAngle(
+            a, (glm::length(camera.position) - atmosphere.bottom_radius) / kKm));
+        u.cos_sun_radius = static_cast<float>(std::cos(atmosphere.sun_angular_radius));
+        u.cos_moon_radius = static_cast<float>(std::cos(options.moon.angular_radius));
         u.camera_altitude_km =
             static_cast<float>((glm::length(camera.position) - atmosphere.bottom_radius) / kKm);
         glNamedBufferSubData(buffers[3], 0, sizeof(u), &u);
@@ -254,13 +293,12 @@ void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lig
     Impl& d = *impl_;
     d.UploadLights(lights);
     RenderOptions options;
-    d.UploadFrame(camera, options);
+    d.UploadFrame(camera, lights, options);
     const LutSettings& s = d.settings;
     d.Dispatch(kSkyViewPass, d.sky_view, false, Groups(s.sky_view_size.x, 8),
                Groups(s.sky_view_size.y, 8), 1);
     d.Dispatch(kAerialPerspectivePass, d.aerial_perspective, true,
-               Groups(s.aerial_perspective_size.x, 4), Groups(s.aerial_perspective_size.y, 4),
-               Groups(s.aerial_perspective_size.z, 4));
+               Groups(s.aerial_perspective_size.x, 8), Groups(s.aerial_perspective_size.y, 8), 1);
 }
 
 void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
@@ -279,6 +317,13 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         d.frame = CreateTexture2D(options.size);
         d.stars = CreateTexture2D(options.size);
         d.frame_size = options.size;
+        glNamedFramebufferTexture(d.framebuffer, GL_COLOR_ATTACHMENT0, d.frame, 0);
+        if (glCheckNamedFramebufferStatus(d.framebuffer, GL_FRAMEBUFFER) !=
+            GL_FRAMEBUFFER_COMPLETE) {
+            throw gl::GlError("the RGBA32F frame of " + std::to_string(options.size.x) + "x" +
+                              std::to_string(options.size.y) +
+                              " is not a complete framebuffer on this GL implementation");
+        }
     }
     // A sun disk narrower than a pixel would fall between pixel centres: it becomes a point.
     const double pixel_angle = camera.vertical_fov / options.size.y;
@@ -296,9 +341,9 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
                             d.star_pixels.data());
     }
     d.UploadLights(lights);
-    d.UploadFrame(camera, options, sun_disk_resolved, !points.empty());
-    d.Dispatch(kRenderPass, d.frame, false, Groups(options.size.x, 8), Groups(options.size.y, 8),
-               1);
+    d.UploadFrame(camera, lights, options, sun_disk_resolved, !points.empty());
+    const bool inside = glm::length(camera.position) < d.atmosphere.top_radius;
+    d.Draw(inside && !options.force_ray_march ? kRenderPass : kRenderRayMarchPass, options.size);
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {
@@ -347,7 +392,8 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
         return static_cast<double>(ns) * 1e-6;
     };
     return {ms(kTransmittancePass), ms(kMultipleScatteringPass), ms(kIrradiancePass),
-            ms(kSkyViewPass),       ms(kAerialPerspectivePass),  ms(kRenderPass)};
+            ms(kSkyViewPass),       ms(kAerialPerspectivePass),
+            std::max(ms(kRenderPass), ms(kRenderRayMarchPass))};
 }
 
 }  // namespace zenith::sky

@@ -33,15 +33,13 @@ Parameters MakeShaderParameters(const Atmosphere& a) {
 
 template <typename LightSet>
 LightSet MakeLightSet(const Lights& lights) {
-    using Vec3 = decltype(LightSet{}.sun_direction);
-    using Scalar = decltype(LightSet{}.sun_enabled);
+    using Vec3 = decltype(LightSet{}.light[0].direction);
     LightSet l{};
-    l.sun_direction = Vec3(glm::normalize(lights.sun_direction));
-    l.sun_enabled = Scalar(1);
-    l.sun_illuminance = Vec3(lights.sun_illuminance);
-    l.moon_enabled = Scalar(lights.moon_enabled ? 1 : 0);
-    l.moon_direction = Vec3(glm::normalize(lights.moon_direction));
-    l.moon_illuminance = Vec3(lights.moon_enabled ? lights.moon_illuminance : glm::dvec3(0.0));
+    l.light[0].direction = Vec3(glm::normalize(lights.sun_direction));
+    l.light[0].illuminance = Vec3(lights.sun_illuminance);
+    l.light[1].direction = Vec3(glm::normalize(lights.moon_direction));
+    l.light[1].illuminance = Vec3(lights.moon_illuminance);
+    l.count = lights.moon_enabled ? 2 : 1;
     return l;
 }
 

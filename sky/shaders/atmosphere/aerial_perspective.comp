@@ -1,17 +1,20 @@
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// One invocation per screen cell marches its column of froxels front to back.
+layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba32f) uniform writeonly image3D output_image;
 
 void main() {
-    ivec3 texel = ivec3(gl_GlobalInvocationID.xyz);
-    if (any(greaterThanEqual(texel, aerial_perspective_size.xyz))) return;
-    vec3 direction = CameraDirection(vec2(texel.xy), vec2(aerial_perspective_size.xy));
-    float distance = (float(texel.z) + 0.5) / float(aerial_perspective_size.z) *
-                     aerial_perspective_range_km;
-    int steps = AerialPerspectiveSteps(texel.z, aerial_perspective_size.z,
-                                       aerial_perspective_steps);
-    vec4 value = ComputeAerialPerspective(atmosphere, transmittance_texture, transmittance_size,
-                                          multiple_scattering_texture, multiple_scattering_size,
-                                          irradiance_texture, irradiance_size, lights, camera_km,
-                                          camera_altitude_km, direction, distance, steps);
-    imageStore(output_image, texel, value);
+    ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(cell, aerial_perspective_size.xy))) return;
+    vec3 direction = CameraDirection(vec2(cell), vec2(aerial_perspective_size.xy));
+    ScatteringResult accumulated;
+    accumulated.luminance = vec3(0.0);
+    accumulated.transmittance = vec3(1.0);
+    for (int slice = 0; slice < aerial_perspective_size.z; ++slice) {
+        vec4 value = AdvanceAerialPerspective(
+            atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
+            multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera_km,
+            camera_altitude_km, direction, slice, aerial_perspective_size.z,
+            aerial_perspective_range_km, aerial_perspective_steps, accumulated);
+        imageStore(output_image, ivec3(cell, slice), value);
+    }
 }

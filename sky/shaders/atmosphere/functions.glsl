@@ -372,15 +372,22 @@ vec3 GetGroundSkyIrradiance(IN(IrradianceTexture) irradiance_texture, ivec2 size
 // moon, N_light = 2). Used by the Sky-View and aerial-perspective LUTs and, with more steps, by
 // per-pixel ray marching for views from space.
 
-struct LightSet {
-    vec3 sun_direction;
-    Number sun_enabled;
-    vec3 sun_illuminance;  // lux at the top of the atmosphere
-    Number moon_enabled;
-    vec3 moon_direction;
+struct Light {
+    vec3 direction;     // unit, toward the light
     Number padding0;
-    vec3 moon_illuminance;
+    vec3 illuminance;   // lux at the top of the atmosphere
     Number padding1;
+};
+
+// Light 0 is the Sun (the Sky-View LUT's azimuth origin); light 1, when count is 2, the Moon.
+// A loop over `count` rather than a branch per light: llvmpipe runs both sides of a branch under
+// a mask, but stops a loop when no lane goes on, so a disabled Moon costs nothing.
+struct LightSet {
+    Light light[2];
+    int count;
+    int padding0;
+    int padding1;
+    int padding2;
 };
 
 struct ScatteringResult {
@@ -406,7 +413,8 @@ vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
 }
 
 // Marches from `origin` (km, planet-centred; `origin_altitude` its altitude above the ground, exact)
-// along unit `direction` up to `t_limit` km (or the atmosphere's end) with `steps` steps. If `include_ground`, a ray that ends on the ground adds
+// along unit `direction` over [t_begin, t_limit] km (clipped to the atmosphere) with `steps`
+// steps. If `include_ground`, a ray that ends on the ground adds
 // the Lambertian ground lit by each light directly and through the sky (irradiance LUT; pass
 // include_ground = false while that LUT is being built).
 ScatteringResult IntegrateScatteredLuminance(
@@ -414,7 +422,7 @@ ScatteringResult IntegrateScatteredLuminance(
     ivec2 transmittance_size, IN(MultipleScatteringTexture) multiple_scattering_texture,
     ivec2 multiple_scattering_size, IN(IrradianceTexture) irradiance_texture,
     ivec2 irradiance_size, IN(LightSet) lights, vec3 origin, Number origin_altitude,
-    vec3 direction, Number t_limit, int steps, bool include_ground) {
+    vec3 direction, Number t_begin, Number t_limit, int steps, bool include_ground) {
     ScatteringResult result;
     result.luminance = vec3(0.0);
     result.transmittance = vec3(1.0);
@@ -446,6 +454,7 @@ ScatteringResult IntegrateScatteredLuminance(
         t_end = t_limit;
         ends_on_ground = false;
     }
+    t_start = max(t_start, t_begin);
     if (t_end <= t_start) return result;
 
     Number dt = (t_end - t_start) / Number(steps);
@@ -464,17 +473,11 @@ ScatteringResult IntegrateScatteredLuminance(
         MediumSample s =
             SampleMedium(atmosphere, excess / (r_p + atmosphere.bottom_radius));
         vec3 source = vec3(0.0);
-        if (lights.sun_enabled > 0.0) {
-            source += lights.sun_illuminance *
+        for (int l = 0; l < lights.count; ++l) {
+            source += lights.light[l].illuminance *
                       LightInScattering(atmosphere, transmittance_texture, transmittance_size,
                                         multiple_scattering_texture, multiple_scattering_size, s,
-                                        p, r_p, direction, lights.sun_direction);
-        }
-        if (lights.moon_enabled > 0.0) {
-            source += lights.moon_illuminance *
-                      LightInScattering(atmosphere, transmittance_texture, transmittance_size,
-                                        multiple_scattering_texture, multiple_scattering_size, s,
-                                        p, r_p, direction, lights.moon_direction);
+                                        p, r_p, direction, lights.light[l].direction);
         }
         vec3 step_transmittance = exp(-s.extinction * dt);
         vec3 integral = StepIntegral(s.extinction, dt);
@@ -486,17 +489,9 @@ ScatteringResult IntegrateScatteredLuminance(
         vec3 p = origin + direction * t_end;
         vec3 n_ground = normalize(p);
         vec3 ground = vec3(0.0);
-        if (lights.sun_enabled > 0.0) {
-            Number mu_l = dot(n_ground, lights.sun_direction);
-            ground += lights.sun_illuminance *
-                      (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
-                                                              transmittance_size,
-                                                              atmosphere.bottom_radius, mu_l) +
-                       GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l));
-        }
-        if (lights.moon_enabled > 0.0) {
-            Number mu_l = dot(n_ground, lights.moon_direction);
-            ground += lights.moon_illuminance *
+        for (int l = 0; l < lights.count; ++l) {
+            Number mu_l = dot(n_ground, lights.light[l].direction);
+            ground += lights.light[l].illuminance *
                       (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
                                                               transmittance_size,
                                                               atmosphere.bottom_radius, mu_l) +
@@ -523,17 +518,21 @@ Number HorizonZenithAngle(IN(AtmosphereParameters) atmosphere, Number altitude) 
 }
 
 // uv of a view direction given its zenith angle and its azimuth relative to the sun, [0, 2 pi).
-vec2 GetSkyViewTextureUv(IN(AtmosphereParameters) atmosphere, Number altitude, Number view_zenith,
-                         Number azimuth, ivec2 size) {
-    Number horizon = HorizonZenithAngle(atmosphere, altitude);
+vec2 GetSkyViewTextureUvForHorizon(Number horizon, Number view_zenith, Number azimuth,
+                                   ivec2 size) {
     Number v;
     if (view_zenith < horizon) {
         v = 0.5 + 0.5 * sqrt(clamp((horizon - view_zenith) / horizon, 0.0, 1.0));
     } else {
         v = 0.5 - 0.5 * sqrt(clamp((view_zenith - horizon) / (kPi - horizon), 0.0, 1.0));
     }
-    Number u = azimuth / (2.0 * kPi);
-    return vec2(u, GetTextureCoordFromUnitRange(v, size.y));
+    return vec2(azimuth / (2.0 * kPi), GetTextureCoordFromUnitRange(v, size.y));
+}
+
+vec2 GetSkyViewTextureUv(IN(AtmosphereParameters) atmosphere, Number altitude, Number view_zenith,
+                         Number azimuth, ivec2 size) {
+    return GetSkyViewTextureUvForHorizon(HorizonZenithAngle(atmosphere, altitude), view_zenith,
+                                         azimuth, size);
 }
 
 void GetViewFromSkyViewTextureUv(IN(AtmosphereParameters) atmosphere, Number altitude, vec2 uv,
@@ -586,7 +585,7 @@ vec3 ComputeSkyViewTexel(IN(AtmosphereParameters) atmosphere,
                          ivec2 irradiance_size, IN(LightSet) lights, vec3 camera,
                          Number camera_altitude, vec2 uv, ivec2 size, int steps) {
     vec3 up = normalize(camera);
-    vec3 frame_x = SkyViewFrameX(up, lights.sun_direction);
+    vec3 frame_x = SkyViewFrameX(up, lights.light[0].direction);
     Number view_zenith;
     Number azimuth;
     GetViewFromSkyViewTextureUv(atmosphere, camera_altitude, uv, size, view_zenith, azimuth);
@@ -594,20 +593,27 @@ vec3 ComputeSkyViewTexel(IN(AtmosphereParameters) atmosphere,
     ScatteringResult result = IntegrateScatteredLuminance(
         atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
         multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
-        camera_altitude, direction, 1e9, steps, true);
+        camera_altitude, direction, 0.0, 1e9, steps, true);
     return result.luminance;
+}
+
+// The Sky-View lookup with the frame (up, frame_x) and the horizon's zenith angle already known:
+// they are the same for every pixel of a frame, so the composite gets them from the host.
+vec3 SampleSkyViewInFrame(IN(SkyViewTexture) sky_view_texture, ivec2 size, vec3 up,
+                          vec3 frame_x, Number horizon, vec3 direction) {
+    Number view_zenith;
+    Number azimuth;
+    SkyViewAnglesOfDirection(up, frame_x, direction, view_zenith, azimuth);
+    vec2 uv = GetSkyViewTextureUvForHorizon(horizon, view_zenith, azimuth, size);
+    return vec3(SampleTexture2D(sky_view_texture, uv));
 }
 
 vec3 SampleSkyView(IN(AtmosphereParameters) atmosphere, IN(SkyViewTexture) sky_view_texture,
                    ivec2 size, vec3 camera, Number camera_altitude, vec3 sun_direction,
                    vec3 direction) {
     vec3 up = normalize(camera);
-    vec3 frame_x = SkyViewFrameX(up, sun_direction);
-    Number view_zenith;
-    Number azimuth;
-    SkyViewAnglesOfDirection(up, frame_x, direction, view_zenith, azimuth);
-    vec2 uv = GetSkyViewTextureUv(atmosphere, camera_altitude, view_zenith, azimuth, size);
-    return vec3(SampleTexture2D(sky_view_texture, uv));
+    return SampleSkyViewInFrame(sky_view_texture, size, up, SkyViewFrameX(up, sun_direction),
+                                HorizonZenithAngle(atmosphere, camera_altitude), direction);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -624,14 +630,15 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
     Number mu_s = ClampCosine(2.0 * GetUnitRangeFromTextureCoord(u, irradiance_size.x) - 1.0);
     // Not named `lights`: that is the uniform block member in the passes.
     LightSet unit_sun;
-    unit_sun.sun_direction = vec3(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
-    unit_sun.sun_enabled = 1.0;
-    unit_sun.sun_illuminance = vec3(1.0);
-    unit_sun.moon_enabled = 0.0;
-    unit_sun.moon_direction = vec3(0.0, 0.0, 1.0);
-    unit_sun.moon_illuminance = vec3(0.0);
-    unit_sun.padding0 = 0.0;
-    unit_sun.padding1 = 0.0;
+    unit_sun.light[0].direction = vec3(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
+    unit_sun.light[0].illuminance = vec3(1.0);
+    unit_sun.light[0].padding0 = 0.0;
+    unit_sun.light[0].padding1 = 0.0;
+    unit_sun.light[1] = unit_sun.light[0];
+    unit_sun.count = 1;
+    unit_sun.padding0 = 0;
+    unit_sun.padding1 = 0;
+    unit_sun.padding2 = 0;
     vec3 origin = vec3(0.0, 0.0, atmosphere.bottom_radius);
     // Upper hemisphere in equal-solid-angle strata: cos(theta) uniform in (0, 1].
     vec3 irradiance = vec3(0.0);
@@ -645,7 +652,7 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
         ScatteringResult sky = IntegrateScatteredLuminance(
             atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
             multiple_scattering_size, unused_irradiance_texture, irradiance_size, unit_sun, origin,
-            0.0, direction, 1e9, steps, false);
+            0.0, direction, 0.0, 1e9, steps, false);
         irradiance += sky.luminance * cos_theta;
     }
     return irradiance * (2.0 * kPi / Number(n));  // solid angle 2 pi / n per stratum
@@ -653,27 +660,35 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
 
 // ---------------------------------------------------------------------------------------------
 // Aerial perspective (H20 §5.4): in-scattered luminance (rgb) and mean transmittance (a) from the
-// camera to `distance` km along `direction`; the froxel volume stores this for each screen cell
-// and depth slice.
-vec4 ComputeAerialPerspective(IN(AtmosphereParameters) atmosphere,
+// camera to the centre depth of each slice, for each screen cell. A column is marched once, slice
+// after slice, composing each segment onto what lies in front of it (L += T L_seg, T *= T_seg),
+// which is exact and costs O(slices) rather than O(slices^2) for a march per froxel.
+
+// Steps within one slice: the full-range step budget spread over the slices, at least one.
+int AerialPerspectiveStepsPerSlice(int slices, int full_steps) {
+    return max(1, (full_steps + slices - 1) / slices);
+}
+
+// Advances `accumulated` (camera to the previous slice) through slice `slice` and returns the
+// froxel value. Start a column with luminance 0 and transmittance 1.
+vec4 AdvanceAerialPerspective(IN(AtmosphereParameters) atmosphere,
                               IN(TransmittanceTexture) transmittance_texture,
                               ivec2 transmittance_size,
                               IN(MultipleScatteringTexture) multiple_scattering_texture,
                               ivec2 multiple_scattering_size,
                               IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
                               IN(LightSet) lights, vec3 camera, Number camera_altitude,
-                              vec3 direction, Number distance, int steps) {
-    ScatteringResult result = IntegrateScatteredLuminance(
+                              vec3 direction, int slice, int slices, Number range, int full_steps,
+                              INOUT(ScatteringResult) accumulated) {
+    Number begin = max(Number(slice) - 0.5, 0.0) / Number(slices) * range;
+    Number end = (Number(slice) + 0.5) / Number(slices) * range;
+    ScatteringResult segment = IntegrateScatteredLuminance(
         atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
         multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
-        camera_altitude, direction, distance, steps, false);
-    Number mean_transmittance =
-        (result.transmittance.x + result.transmittance.y + result.transmittance.z) / 3.0;
-    return vec4(result.luminance, mean_transmittance);
-}
-
-// Steps for aerial-perspective slice `slice` of `slices`: proportional to its depth (at least 2),
-// `full_steps` for the farthest, so each step spans about the same distance.
-int AerialPerspectiveSteps(int slice, int slices, int full_steps) {
-    return max(2, int(ceil(Number(full_steps) * (Number(slice) + 0.5) / Number(slices))));
+        camera_altitude, direction, begin, end,
+        AerialPerspectiveStepsPerSlice(slices, full_steps), false);
+    accumulated.luminance += accumulated.transmittance * segment.luminance;
+    accumulated.transmittance *= segment.transmittance;
+    vec3 t = accumulated.transmittance;
+    return vec4(accumulated.luminance, (t.x + t.y + t.z) / 3.0);
 }

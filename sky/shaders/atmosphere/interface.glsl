@@ -31,7 +31,7 @@ layout(std140, binding = 3) uniform FrameBlock {
     ivec2 output_size;
     float aspect;
     int ray_march_steps;
-    int use_sky_view;  // 1: Sky-View LUT inside the atmosphere, 0: ray march every pixel
+    int reserved0;
     int draw_sun_disk;
     float camera_altitude_km;  // above the ground, computed in double on the CPU
     int moon_enabled;
@@ -39,8 +39,12 @@ layout(std140, binding = 3) uniform FrameBlock {
     float moon_angular_radius;
     float moon_albedo;
     int stars_enabled;
-    int padding0;
-    int padding1;
+    float horizon_zenith;   // per-frame constants of the composite, computed on the CPU with the
+    float cos_sun_radius;   // same functions: the Sky-View frame, the horizon's zenith angle and
+    vec3 sky_view_up;       // the cosines of the disks' radii
+    float cos_moon_radius;
+    vec3 sky_view_x;
+    float padding0;
 };
 
 layout(binding = 0) uniform sampler2D transmittance_texture;

@@ -32,19 +32,21 @@ static_assert(offsetof(AtmosphereUniforms, mie_g) == 44);
 static_assert(offsetof(AtmosphereUniforms, solar_illuminance) == 80);
 static_assert(offsetof(AtmosphereUniforms, bottom_radius) == 96);
 
-struct LightUniforms {  // functions.glsl: struct LightSet
-    glm::vec3 sun_direction;
-    float sun_enabled;
-    glm::vec3 sun_illuminance;
-    float moon_enabled;
-    glm::vec3 moon_direction;
-    float padding0;
-    glm::vec3 moon_illuminance;
-    float padding1;
+struct LightUniforms {  // functions.glsl: struct LightSet (array elements 16-byte aligned)
+    struct Light {
+        glm::vec3 direction;
+        float padding0;
+        glm::vec3 illuminance;
+        float padding1;
+    } light[2];
+    int count;
+    int padding0;
+    int padding1;
+    int padding2;
 };
-static_assert(sizeof(LightUniforms) == 64);
-static_assert(offsetof(LightUniforms, moon_enabled) == 28);
-static_assert(offsetof(LightUniforms, moon_illuminance) == 48);
+static_assert(sizeof(LightUniforms::Light) == 32);
+static_assert(sizeof(LightUniforms) == 80);
+static_assert(offsetof(LightUniforms, count) == 64);
 
 struct SettingsUniforms {  // interface.glsl: SettingsBlock
     glm::ivec2 transmittance_size;
@@ -72,7 +74,7 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     glm::ivec2 output_size;
     float aspect;
     int ray_march_steps;
-    int use_sky_view;
+    int reserved0;
     int draw_sun_disk;
     float camera_altitude_km;
     int moon_enabled;
@@ -80,14 +82,20 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     float moon_angular_radius;
     float moon_albedo;
     int stars_enabled;
-    int padding0;
-    int padding1;
+    float horizon_zenith;
+    float cos_sun_radius;
+    glm::vec3 sky_view_up;
+    float cos_moon_radius;
+    glm::vec3 sky_view_x;
+    float padding0;
 };
-static_assert(sizeof(FrameUniforms) == 128);
+static_assert(sizeof(FrameUniforms) == 160);
 static_assert(offsetof(FrameUniforms, moon_direction) == 96);
 static_assert(offsetof(FrameUniforms, stars_enabled) == 116);
+static_assert(offsetof(FrameUniforms, sky_view_up) == 128);
+static_assert(offsetof(FrameUniforms, sky_view_x) == 144);
 static_assert(offsetof(FrameUniforms, world_from_view) == 16);
 static_assert(offsetof(FrameUniforms, output_size) == 64);
-static_assert(offsetof(FrameUniforms, use_sky_view) == 80);
+static_assert(offsetof(FrameUniforms, reserved0) == 80);
 
 }  // namespace zenith::sky::gl

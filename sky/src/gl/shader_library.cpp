@@ -22,8 +22,8 @@ std::string_view EmbeddedShaderFile(std::string_view name) {
     throw GlError("shader file '" + std::string(name) + "' is not embedded in the library");
 }
 
-std::string ComposeComputeShader(std::string_view pass_file) {
-    std::string source = "#version 450 core\n";
+std::string ComposeShader(std::string_view pass_file, std::string_view defines) {
+    std::string source = "#version 450 core\n" + std::string(defines);
     int index = 1;
     for (std::string_view part : kPrelude) {
         source += "#line 1 " + std::to_string(index++) + "\n";
@@ -35,17 +35,36 @@ std::string ComposeComputeShader(std::string_view pass_file) {
     return source;
 }
 
+namespace {
+
+// Rethrows a shader error with the legend of the #line source numbers.
+[[noreturn]] void RethrowWithLegend(const ShaderError& e, std::string_view pass_file) {
+    std::string legend = "\nsource numbers in the log: ";
+    int index = 1;
+    for (std::string_view part : kPrelude) {
+        legend += std::to_string(index++) + " = " + std::string(part) + ", ";
+    }
+    legend += std::to_string(index) + " = " + std::string(pass_file);
+    throw ShaderError(e.what() + legend);
+}
+
+}  // namespace
+
+Program FullscreenProgram(std::string_view fragment_file, std::string_view defines) {
+    const std::string vertex =
+        "#version 450 core\n" + std::string(EmbeddedShaderFile("common/fullscreen.vert"));
+    try {
+        return Program::Graphics(vertex, ComposeShader(fragment_file, defines), fragment_file);
+    } catch (const ShaderError& e) {
+        RethrowWithLegend(e, fragment_file);
+    }
+}
+
 Program ComputeProgram(std::string_view pass_file) {
     try {
-        return Program::Compute(ComposeComputeShader(pass_file), pass_file);
+        return Program::Compute(ComposeShader(pass_file), pass_file);
     } catch (const ShaderError& e) {
-        std::string legend = "\nsource numbers in the log: ";
-        int index = 1;
-        for (std::string_view part : kPrelude) {
-            legend += std::to_string(index++) + " = " + std::string(part) + ", ";
-        }
-        legend += std::to_string(index) + " = " + std::string(pass_file);
-        throw ShaderError(e.what() + legend);
+        RethrowWithLegend(e, pass_file);
     }
 }
 

@@ -14,7 +14,10 @@ std::string_view EmbeddedShaderFile(std::string_view name);
 // "#version 450 core", the shared definitions and atmosphere functions, the pass interface, then
 // `pass_file`. Each part starts with "#line 1 N"; a compile error's "N:line" is translated back to
 // the file name in the thrown ShaderError.
-std::string ComposeComputeShader(std::string_view pass_file);
+// `defines` (e.g. "#define X 1\n") go right after the #version line.
+std::string ComposeShader(std::string_view pass_file, std::string_view defines = {});
 Program ComputeProgram(std::string_view pass_file);
+// The same prelude for a fragment pass; the vertex shader is common/fullscreen.vert.
+Program FullscreenProgram(std::string_view fragment_file, std::string_view defines = {});
 
 }  // namespace zenith::sky::gl

@@ -138,20 +138,18 @@ LutImage AtmosphereReference::AerialPerspective(const Camera& camera,
     const glm::ivec3 size = d.settings.aerial_perspective_size;
     LutImage image(size.x, size.y, size.z);
     const double range_km = d.settings.aerial_perspective_range / kKm;
-    for (int z = 0; z < size.z; ++z) {
-        // Slice z holds the segment up to its centre depth; nearer slices need fewer steps.
-        const double distance = (z + 0.5) / size.z * range_km;
-        const int steps =
-            ref::AerialPerspectiveSteps(z, size.z, d.settings.aerial_perspective_steps);
-        for (int y = 0; y < size.y; ++y) {
-            for (int x = 0; x < size.x; ++x) {
-                const glm::dvec3 direction =
-                    camera.Direction(2.0 * (x + 0.5) / size.x - 1.0, 2.0 * (y + 0.5) / size.y - 1.0);
-                const ref::vec4 value = ref::ComputeAerialPerspective(
+    for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+            const glm::dvec3 direction =
+                camera.Direction(2.0 * (x + 0.5) / size.x - 1.0, 2.0 * (y + 0.5) / size.y - 1.0);
+            ref::ScatteringResult accumulated{ref::vec3(0.0), ref::vec3(1.0)};
+            for (int z = 0; z < size.z; ++z) {
+                const ref::vec4 value = ref::AdvanceAerialPerspective(
                     d.atmosphere, d.transmittance, d.settings.transmittance_size,
                     d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
                     d.settings.irradiance_size, light_set, camera.position / kKm,
-                    d.AltitudeKm(camera.position), direction, distance, steps);
+                    d.AltitudeKm(camera.position), direction, z, size.z, range_km,
+                    d.settings.aerial_perspective_steps, accumulated);
                 image.at(x, y, z) = glm::vec4(value);
             }
         }
@@ -170,6 +168,18 @@ glm::dvec3 AtmosphereReference::TransmittanceIntegrated(double r, double mu, int
                                                             steps);
 }
 
+glm::dvec4 AtmosphereReference::InScattering(const glm::dvec3& origin,
+                                            const glm::dvec3& direction, const Lights& lights,
+                                            double distance, int steps) const {
+    const Impl& d = *impl_;
+    const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
+        d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
+        d.settings.multiple_scattering_size, d.irradiance, d.settings.irradiance_size,
+        d.ToLightSet(lights), origin / kKm, d.AltitudeKm(origin), direction, 0.0,
+        distance / kKm, steps, false);
+    return {r.luminance, (r.transmittance.x + r.transmittance.y + r.transmittance.z) / 3.0};
+}
+
 glm::dvec3 AtmosphereReference::RayMarch(const glm::dvec3& origin, const glm::dvec3& direction,
                                          const Lights& lights, int steps) const {
     const Impl& d = *impl_;
@@ -177,7 +187,7 @@ glm::dvec3 AtmosphereReference::RayMarch(const glm::dvec3& origin, const glm::dv
                d.atmosphere, d.transmittance, d.settings.transmittance_size,
                d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
                d.settings.irradiance_size, d.ToLightSet(lights), origin / kKm,
-               d.AltitudeKm(origin), direction, 1e9, steps, true)
+               d.AltitudeKm(origin), direction, 0.0, 1e9, steps, true)
         .luminance;
 }
 

@@ -34,6 +34,11 @@ public:
     glm::dvec3 TransmittanceFromLut(double r, double mu) const;
     glm::dvec3 TransmittanceIntegrated(double r, double mu, int steps) const;
 
+    // In-scattered luminance (rgb) and mean transmittance (a) from `origin` to `distance` m along
+    // `direction`, marched with `steps` steps, ground not included (an aerial-perspective froxel).
+    glm::dvec4 InScattering(const glm::dvec3& origin, const glm::dvec3& direction,
+                            const Lights& lights, double distance, int steps) const;
+
     // Luminance (cd/m^2) along a view ray by ray marching with `steps` steps, ground included.
     glm::dvec3 RayMarch(const glm::dvec3& origin, const glm::dvec3& direction,
                         const Lights& lights, int steps) const;

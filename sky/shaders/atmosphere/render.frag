@@ -1,7 +1,9 @@
-// Final sky image: the Sky-View LUT inside the atmosphere, per-pixel ray marching above it (or
-// everywhere when use_sky_view is 0), then the sun disk. Writes linear luminance, cd/m^2.
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba32f) uniform writeonly image2D output_image;
+// Final sky image: the Sky-View LUT inside the atmosphere (ZENITH_RAY_MARCH 0), or per-pixel ray
+// marching above it (ZENITH_RAY_MARCH 1; the host picks the program), then the Sun, the Moon and
+// the stars. Writes linear
+// luminance, cd/m^2. A fragment pass over a full-screen triangle: it can draw into a host's
+// framebuffer, and llvmpipe's fragment path is several times faster than compute image stores.
+layout(location = 0) out vec4 out_luminance;
 
 // Solar limb darkening, Hestroffer & Magnan (1998) 5th-order polynomial in mu = cos of the angle
 // from the disk centre, at 680/550/440 nm (Hillaire 2016, Appendix B), divided by its mean over
@@ -44,47 +46,43 @@ vec3 TransmittanceToSpace(vec3 direction) {
 // Luminance of the Moon's disk along `direction`: a Lambertian sphere lit by the Sun, so the lit
 // side faces the Sun whatever the phase (Hillaire 2016 §4.2 leaves this to the artist).
 vec3 MoonLuminance(vec3 direction) {
-    float cos_radius = cos(moon_angular_radius);
-    if (dot(direction, moon_direction) <= cos_radius) return vec3(0.0);
+    if (dot(direction, moon_direction) <= cos_moon_radius) return vec3(0.0);
     // The sphere at unit distance with radius sin(angular radius); nearest hit along the ray.
     float rho = sin(moon_angular_radius);
     float b = dot(direction, moon_direction);
     float t = b - sqrt(max(b * b - (1.0 - rho * rho), 0.0));
     vec3 normal = normalize(direction * t - moon_direction);
-    return lights.sun_illuminance * (moon_albedo / kPi) *
-           max(dot(normal, lights.sun_direction), 0.0);
+    return lights.light[0].illuminance * (moon_albedo / kPi) *
+           max(dot(normal, lights.light[0].direction), 0.0);
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, output_size))) return;
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
     vec3 direction = CameraDirection(vec2(pixel), vec2(output_size));
-    bool inside = camera_altitude_km < atmosphere.top_radius - atmosphere.bottom_radius;
 
-    vec3 luminance;
-    if (use_sky_view != 0 && inside) {
-        luminance = SampleSkyView(atmosphere, sky_view_texture, sky_view_size, camera_km,
-                                  camera_altitude_km, lights.sun_direction, direction);
-    } else {
-        luminance = IntegrateScatteredLuminance(
-                        atmosphere, transmittance_texture, transmittance_size,
-                        multiple_scattering_texture, multiple_scattering_size,
-                        irradiance_texture, irradiance_size, lights, camera_km,
-                        camera_altitude_km, direction, 1e9, ray_march_steps, true).luminance;
-    }
+#if ZENITH_RAY_MARCH
+    vec3 luminance = IntegrateScatteredLuminance(
+                         atmosphere, transmittance_texture, transmittance_size,
+                         multiple_scattering_texture, multiple_scattering_size,
+                         irradiance_texture, irradiance_size, lights, camera_km,
+                         camera_altitude_km, direction, 0.0, 1e9, ray_march_steps,
+                         true).luminance;
+#else
+    vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_size, sky_view_up,
+                                          sky_view_x, horizon_zenith, direction);
+#endif
 
     // What lies beyond the atmosphere, composited after the LUT (H20 §5.3).
     vec3 beyond = vec3(0.0);
-    float cos_sun = dot(direction, lights.sun_direction);
-    float cos_radius = cos(atmosphere.sun_angular_radius);
-    if (draw_sun_disk != 0 && cos_sun > cos_radius) {
+    float cos_sun = dot(direction, lights.light[0].direction);
+    if (draw_sun_disk != 0 && cos_sun > cos_sun_radius) {
         float angle = acos(clamp(cos_sun, -1.0, 1.0));
-        float solid_angle = 2.0 * kPi * (1.0 - cos_radius);
-        beyond += lights.sun_illuminance / solid_angle *
+        float solid_angle = 2.0 * kPi * (1.0 - cos_sun_radius);
+        beyond += lights.light[0].illuminance / solid_angle *
                   SunLimbDarkening(angle / atmosphere.sun_angular_radius);
     }
     if (moon_enabled != 0) beyond += MoonLuminance(direction);
     if (stars_enabled != 0) beyond += texelFetch(star_texture, pixel, 0).rgb;
     if (any(greaterThan(beyond, vec3(0.0)))) luminance += beyond * TransmittanceToSpace(direction);
-    imageStore(output_image, pixel, vec4(luminance, 1.0));
+    out_luminance = vec4(luminance, 1.0);
 }

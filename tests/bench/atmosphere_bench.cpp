@@ -1,0 +1,110 @@
+// Atmosphere passes on the headless GL context (llvmpipe here; a GPU with ZENITH_GL=egl), each
+// iteration ending in glFinish so wall time is GPU time. The Sky-View path and per-pixel ray
+// marching of the same 1280x720 scene run side by side for their ratio (Hillaire 2020 §5.3, §7).
+#include <benchmark/benchmark.h>
+#include <glad/gl.h>
+
+#include <memory>
+
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/gl/context.h"
+
+namespace {
+
+using namespace zenith::sky;
+
+struct Fixture {
+    std::unique_ptr<gl::HeadlessContext> context = gl::CreateHeadlessContextFromEnvironment();
+    Atmosphere earth;
+    AtmosphereRenderer renderer{earth};
+    Camera camera;
+    Lights lights;
+    RenderOptions options;
+
+    Fixture() {
+        camera.position = glm::dvec3(0.0, 0.0, earth.bottom_radius + 1500.0);
+        // Looking at the horizon toward the sun's azimuth, sun 10 deg up: a daytime frame.
+        camera.world_from_view = glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
+                                            glm::dvec3(-1, 0, 0));
+        camera.vertical_fov = 1.0471975511965976;
+        camera.aspect = 16.0 / 9.0;
+        lights.sun_direction = glm::normalize(glm::dvec3(0.98, 0.0, 0.17));
+        options.size = {1280, 720};
+    }
+};
+
+Fixture& Shared() {
+    static Fixture fixture;
+    return fixture;
+}
+
+void ReportPassTimes(benchmark::State& state, const PassTimes& t) {
+    state.counters["transmittance_ms"] = t.transmittance;
+    state.counters["multiple_scattering_ms"] = t.multiple_scattering;
+    state.counters["irradiance_ms"] = t.irradiance;
+    state.counters["sky_view_ms"] = t.sky_view;
+    state.counters["aerial_perspective_ms"] = t.aerial_perspective;
+    state.counters["render_ms"] = t.render;
+}
+
+// Transmittance + multiple scattering + ground irradiance: after an atmosphere change.
+void BM_StaticLutRebuild(benchmark::State& state) {
+    Fixture& f = Shared();
+    for (auto _ : state) {
+        f.renderer.SetAtmosphere(f.earth);
+        glFinish();
+    }
+    ReportPassTimes(state, f.renderer.LastPassTimes());
+}
+BENCHMARK(BM_StaticLutRebuild)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Sky-View + aerial perspective: every frame.
+void BM_FrameLuts(benchmark::State& state) {
+    Fixture& f = Shared();
+    for (auto _ : state) {
+        f.renderer.UpdateFrameLuts(f.camera, f.lights);
+        glFinish();
+    }
+    ReportPassTimes(state, f.renderer.LastPassTimes());
+}
+BENCHMARK(BM_FrameLuts)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_CompositeSkyView720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.renderer.UpdateFrameLuts(f.camera, f.lights);
+    f.options.force_ray_march = false;
+    for (auto _ : state) {
+        f.renderer.Render(f.camera, f.lights, f.options);
+        glFinish();
+    }
+}
+BENCHMARK(BM_CompositeSkyView720p)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_CompositeRayMarch720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.options.force_ray_march = true;
+    f.options.ray_march_steps = static_cast<int>(state.range(0));
+    for (auto _ : state) {
+        f.renderer.Render(f.camera, f.lights, f.options);
+        glFinish();
+    }
+    f.options.force_ray_march = false;
+}
+BENCHMARK(BM_CompositeRayMarch720p)->Arg(32)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The whole clear-sky frame: per-frame LUTs and the composite (the issue's <= 20 ms goal).
+void BM_FullFrame720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.options.force_ray_march = false;
+    for (auto _ : state) {
+        f.renderer.UpdateFrameLuts(f.camera, f.lights);
+        f.renderer.Render(f.camera, f.lights, f.options);
+        glFinish();
+    }
+    ReportPassTimes(state, f.renderer.LastPassTimes());
+}
+BENCHMARK(BM_FullFrame720p)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
