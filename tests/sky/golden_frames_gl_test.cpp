@@ -1,0 +1,162 @@
+// Golden frames (filament renderdiff style): small headless renders of the whole pipeline, from
+// geo's Sun/Moon/stars to the composite, compared with reviewed EXRs in tests/golden under a
+// tolerance that is data. On failure the actual frame and a difference image are written next to
+// the test binary and their paths printed. Goldens change only through the explicit target
+// `cmake --build build --target update_goldens` (ZENITH_UPDATE_GOLDENS=1), then review.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <glm/gtc/constants.hpp>
+#include <gtest/gtest.h>
+
+#include "zenith/geo/ephemeris.h"
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/gl/context.h"
+#include "zenith/sky/image_io.h"
+#include "zenith/sky/sky_state.h"
+
+namespace zenith::sky {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Tolerance as data: luminance within kPixelTolerance (relative, with a floor of 1e-3 of the
+// frame's mean) on at least kPassFraction of the pixels, and never more than kMaxTolerance.
+constexpr double kPixelTolerance = 0.01;
+constexpr double kPassFraction = 0.99;
+constexpr double kMaxTolerance = 0.10;
+constexpr glm::ivec2 kSize{64, 36};
+
+struct Scene {
+    const char* name;
+    const char* utc;
+    double height_m;
+    double pitch_deg;
+    bool toward_sun;  // heading: the Sun's azimuth, else north
+};
+
+// Over Lake Geneva (46.45 N, 6.6 E) on 2024-06-21: noon, sunset and astronomical night.
+constexpr Scene kScenes[] = {
+    {"ground_noon", "2024-06-21T11:30:00Z", 2.0, 15.0, true},
+    {"ground_sunset", "2024-06-21T19:25:00Z", 2.0, 5.0, true},
+    {"ground_night", "2024-06-21T23:30:00Z", 2.0, 40.0, false},
+    {"10km_noon", "2024-06-21T11:30:00Z", 10000.0, 0.0, true},
+    {"10km_sunset", "2024-06-21T19:25:00Z", 10000.0, 0.0, true},
+    {"10km_night", "2024-06-21T23:30:00Z", 10000.0, 20.0, false},
+    {"100km_noon", "2024-06-21T11:30:00Z", 100000.0, -10.0, true},
+    {"100km_sunset", "2024-06-21T19:25:00Z", 100000.0, -5.0, true},
+    {"100km_night", "2024-06-21T23:30:00Z", 100000.0, 0.0, false},
+    {"1000km_noon", "2024-06-21T11:30:00Z", 1000000.0, -45.0, true},
+    {"1000km_sunset", "2024-06-21T19:25:00Z", 1000000.0, -30.0, true},
+    {"1000km_night", "2024-06-21T23:30:00Z", 1000000.0, -20.0, false},
+};
+
+fs::path GoldenPath(const Scene& s) {
+    return fs::path(ZENITH_SOURCE_DIR) / "tests" / "golden" / (std::string(s.name) + ".exr");
+}
+
+double Luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+class GoldenFrames : public ::testing::TestWithParam<Scene> {
+protected:
+    static void SetUpTestSuite() {
+        context_ = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa).release();
+        renderer_ = new AtmosphereRenderer(Atmosphere{});
+        try {
+            catalog_ = new geo::StarCatalog(geo::StarCatalog::Load(6.5));
+        } catch (const geo::CatalogError& e) {
+            std::printf("golden frames without stars: %s\n", e.what());
+        }
+    }
+    static void TearDownTestSuite() {
+        delete catalog_;
+        delete renderer_;
+        delete context_;
+    }
+    static gl::HeadlessContext* context_;
+    static AtmosphereRenderer* renderer_;
+    static geo::StarCatalog* catalog_;
+};
+gl::HeadlessContext* GoldenFrames::context_ = nullptr;
+AtmosphereRenderer* GoldenFrames::renderer_ = nullptr;
+geo::StarCatalog* GoldenFrames::catalog_ = nullptr;
+
+Image Render(const Scene& scene, AtmosphereRenderer& renderer, const geo::StarCatalog* catalog) {
+    const geo::Observer observer(46.45, 6.6, scene.height_m);
+    const geo::Time time = geo::TimeFromIso8601(scene.utc);
+    const geo::SkyEphemeris e = geo::Ephemeris(catalog).Compute(time, observer);
+    const double heading =
+        scene.toward_sun ? e.sun.topocentric.horizontal.azimuth : 0.0;
+    SkyState state = MakeSkyState(e, observer, renderer.atmosphere(),
+                                  {heading, glm::radians(scene.pitch_deg), 0.0},
+                                  glm::radians(90.0), double(kSize.x) / kSize.y);
+    renderer.UpdateFrameLuts(state.camera, state.lights);
+    RenderOptions options;
+    options.size = kSize;
+    options.moon = state.moon;
+    options.stars = state.stars;
+    renderer.Render(state.camera, state.lights, options);
+    const LutImage frame = renderer.ReadFrame();
+    Image image(kSize.x, kSize.y);
+    for (int y = 0; y < kSize.y; ++y) {
+        for (int x = 0; x < kSize.x; ++x) image.at(x, y) = frame.at(x, kSize.y - 1 - y);
+    }
+    return image;
+}
+
+TEST_P(GoldenFrames, MatchesTheReviewedFrame) {
+    const Scene& scene = GetParam();
+    const Image actual = Render(scene, *renderer_, catalog_);
+    const fs::path golden_path = GoldenPath(scene);
+    if (std::getenv("ZENITH_UPDATE_GOLDENS") != nullptr) {
+        WriteExr(golden_path, actual, ExrPixelType::kFloat);
+        std::printf("updated %s\n", golden_path.c_str());
+        return;
+    }
+    if (catalog_ == nullptr && std::string(scene.name).find("night") != std::string::npos) {
+        GTEST_SKIP() << "star catalogue not installed (apt-get install kstars-data)";
+    }
+    ASSERT_TRUE(fs::exists(golden_path)) << "no golden " << golden_path
+                                         << "; create it with the update_goldens target";
+    const Image golden = ReadExr(golden_path);
+    ASSERT_EQ(golden.width, actual.width);
+    ASSERT_EQ(golden.height, actual.height);
+
+    double mean = 0.0;
+    for (const glm::vec4& p : golden.pixels) mean += Luminance(p);
+    mean /= static_cast<double>(golden.pixels.size());
+    const double floor = std::max(1e-3 * mean, 1e-9);
+    std::size_t within = 0;
+    double worst = 0.0;
+    Image diff(golden.width, golden.height);
+    for (std::size_t i = 0; i < golden.pixels.size(); ++i) {
+        const double g = Luminance(golden.pixels[i]), a = Luminance(actual.pixels[i]);
+        const double relative = std::abs(a - g) / std::max(std::abs(g), floor);
+        worst = std::max(worst, relative);
+        if (relative <= kPixelTolerance) ++within;
+        diff.pixels[i] = glm::vec4(static_cast<float>(relative));
+    }
+    const double fraction = static_cast<double>(within) / static_cast<double>(golden.pixels.size());
+    if (fraction < kPassFraction || worst > kMaxTolerance) {
+        const fs::path out = fs::path(ZENITH_BINARY_DIR) / "golden_failures";
+        fs::create_directories(out);
+        WriteExr(out / (std::string(scene.name) + "_actual.exr"), actual, ExrPixelType::kFloat);
+        WriteExr(out / (std::string(scene.name) + "_diff.exr"), diff, ExrPixelType::kFloat);
+        ADD_FAILURE() << scene.name << ": " << 100.0 * fraction << " % of pixels within "
+                      << 100.0 * kPixelTolerance << " % (need " << 100.0 * kPassFraction
+                      << " %), worst " << 100.0 * worst << " %; wrote " << out.string() << "/"
+                      << scene.name << "_{actual,diff}.exr";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Views, GoldenFrames, ::testing::ValuesIn(kScenes),
+                         [](const ::testing::TestParamInfo<Scene>& param) {
+                             return std::string(param.param.name);
+                         });
+
+}  // namespace
+}  // namespace zenith::sky
