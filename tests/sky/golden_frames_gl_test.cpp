@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include <glm/gtc/constants.hpp>
@@ -54,6 +55,9 @@ constexpr Scene kScenes[] = {
     {"1000km_sunset", "2024-06-21T19:25:00Z", 1000000.0, -30.0, true},
     {"1000km_night", "2024-06-21T23:30:00Z", 1000000.0, -20.0, false},
 };
+
+// gtest prints the parameter in test names and failures.
+void PrintTo(const Scene& scene, std::ostream* os) { *os << scene.name; }
 
 fs::path GoldenPath(const Scene& s) {
     return fs::path(ZENITH_SOURCE_DIR) / "tests" / "golden" / (std::string(s.name) + ".exr");
