@@ -202,12 +202,16 @@ struct AtmosphereRenderer::Impl {
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
 
-    // The composite: a full-screen triangle into `frame` through the framebuffer object.
-    void Draw(Pass pass, glm::ivec2 size) {
+    // The composite: a full-screen triangle into `target` (our frame's FBO or the host's).
+    void Draw(Pass pass, GLuint target, glm::ivec4 viewport) {
+        GLint host_framebuffer = 0;
+        GLint host_viewport[4] = {0, 0, 0, 0};
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &host_framebuffer);
+        glGetIntegerv(GL_VIEWPORT, host_viewport);
         BindInputs();
         programs[pass].Use();
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-        glViewport(0, 0, size.x, size.y);
+        glBindFramebuffer(GL_FRAMEBUFFER, target);
+        glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
         glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
         glBindVertexArray(vertex_array);
@@ -215,7 +219,8 @@ struct AtmosphereRenderer::Impl {
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glEndQuery(GL_TIME_ELAPSED);
         query_used[pass] = true;
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(host_framebuffer));
+        glViewport(host_viewport[0], host_viewport[1], host_viewport[2], host_viewport[3]);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     }
 
@@ -244,6 +249,10 @@ struct AtmosphereRenderer::Impl {
         u.moon_angular_radius = static_cast<float>(options.moon.angular_radius);
         u.moon_albedo = static_cast<float>(options.moon.albedo);
         u.stars_enabled = stars_enabled ? 1 : 0;
+        if (options.target_framebuffer) {
+            u.viewport_x = options.target_viewport.x;
+            u.viewport_y = options.target_viewport.y;
+        }
         // Per-frame constants, from the shared functions compiled as C++ (double).
         const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
         const glm::dvec3 up = glm::normalize(camera.position);
@@ -310,6 +319,15 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
                                     std::to_string(options.size.y) +
                                     " is out of range (expected 1..16384 per axis)");
     }
+    const bool to_host = options.target_framebuffer.has_value();
+    if (to_host && (options.target_viewport.z != options.size.x ||
+                    options.target_viewport.w != options.size.y)) {
+        throw std::invalid_argument("RenderOptions: target_viewport size " +
+                                    std::to_string(options.target_viewport.z) + "x" +
+                                    std::to_string(options.target_viewport.w) +
+                                    " differs from size " + std::to_string(options.size.x) + "x" +
+                                    std::to_string(options.size.y));
+    }
     if (options.size != d.frame_size) {
         for (GLuint* t : {&d.frame, &d.stars}) {
             if (*t != 0) glDeleteTextures(1, t);
@@ -343,7 +361,9 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     d.UploadLights(lights);
     d.UploadFrame(camera, lights, options, sun_disk_resolved, !points.empty());
     const bool inside = glm::length(camera.position) < d.atmosphere.top_radius;
-    d.Draw(inside && !options.force_ray_march ? kRenderPass : kRenderRayMarchPass, options.size);
+    d.Draw(inside && !options.force_ray_march ? kRenderPass : kRenderRayMarchPass,
+           to_host ? *options.target_framebuffer : d.framebuffer,
+           to_host ? options.target_viewport : glm::ivec4(0, 0, options.size.x, options.size.y));
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {

@@ -31,7 +31,7 @@ layout(std140, binding = 3) uniform FrameBlock {
     ivec2 output_size;
     float aspect;
     int ray_march_steps;
-    int reserved0;
+    int viewport_x;  // origin of the viewport drawn into (a host's framebuffer may offset it)
     int draw_sun_disk;
     float camera_altitude_km;  // above the ground, computed in double on the CPU
     int moon_enabled;
@@ -44,7 +44,7 @@ layout(std140, binding = 3) uniform FrameBlock {
     vec3 sky_view_up;       // the cosines of the disks' radii
     float cos_moon_radius;
     vec3 sky_view_x;
-    float padding0;
+    int viewport_y;
 };
 
 layout(binding = 0) uniform sampler2D transmittance_texture;

@@ -57,7 +57,7 @@ vec3 MoonLuminance(vec3 direction) {
 }
 
 void main() {
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(viewport_x, viewport_y);
     vec3 direction = CameraDirection(vec2(pixel), vec2(output_size));
 
 #if ZENITH_RAY_MARCH

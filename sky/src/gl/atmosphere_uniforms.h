@@ -74,7 +74,7 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     glm::ivec2 output_size;
     float aspect;
     int ray_march_steps;
-    int reserved0;
+    int viewport_x;
     int draw_sun_disk;
     float camera_altitude_km;
     int moon_enabled;
@@ -87,7 +87,7 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     glm::vec3 sky_view_up;
     float cos_moon_radius;
     glm::vec3 sky_view_x;
-    float padding0;
+    int viewport_y;
 };
 static_assert(sizeof(FrameUniforms) == 160);
 static_assert(offsetof(FrameUniforms, moon_direction) == 96);
@@ -96,6 +96,7 @@ static_assert(offsetof(FrameUniforms, sky_view_up) == 128);
 static_assert(offsetof(FrameUniforms, sky_view_x) == 144);
 static_assert(offsetof(FrameUniforms, world_from_view) == 16);
 static_assert(offsetof(FrameUniforms, output_size) == 64);
-static_assert(offsetof(FrameUniforms, reserved0) == 80);
+static_assert(offsetof(FrameUniforms, viewport_x) == 80);
+static_assert(offsetof(FrameUniforms, viewport_y) == 156);
 
 }  // namespace zenith::sky::gl

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -22,6 +23,11 @@ struct RenderOptions {
     bool draw_sun_disk = true;  // drawn as a point (energy-conserving) when below a pixel
     MoonDisk moon;
     std::vector<StarPoint> stars;  // splatted into the pixel holding each, as E / pixel solid angle
+    // Draw into this framebuffer object of the host (0 = the default framebuffer) over the
+    // viewport (x, y, width, height) instead of the renderer's own RGBA32F frame; `size` must be
+    // the viewport's size. The host's framebuffer binding and viewport are restored afterwards.
+    std::optional<unsigned> target_framebuffer;
+    glm::ivec4 target_viewport{0, 0, 0, 0};
 };
 
 // GPU time of each pass in milliseconds, measured with GL timer queries.

@@ -1,0 +1,114 @@
+// zenith::sim::SkySystem — what a flight-simulator host creates once and drives every frame.
+//
+//   auto sky = SkySystem::CreateHeadless();                 // or CreateInHostContext(getProc)
+//   sky->SetTime(geo::TimeFromIso8601("2024-06-21T19:00:00Z"));
+//   every frame:
+//     sky->AdvanceTime(dt_s);                               // simulation time, optional warp
+//     sky->SetGeodetic(lat_deg, lon_deg, height_m);         // or SetEcef(position_m)
+//     sky->SetAttitude(heading, pitch, roll);               // radians; or SetViewFromEnu(m)
+//     sky->SetProjection(vertical_fov, aspect);
+//     sky->Update();                                        // ephemeris, lights, per-frame LUTs
+//     sky->Render(framebuffer, viewport);                   // or RenderOffscreen(size)
+//     const SkyLighting& light = sky->lighting();           // for the host's own shading
+//
+// Units are SI (metres, seconds, radians); light in lux, luminance in cd/m^2. The world frame of
+// directions is the observer's local ENU (east, north, up = WGS84 ellipsoid normal); ECEF
+// versions are given too.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "zenith/geo/ephemeris.h"
+#include "zenith/geo/time.h"
+#include "zenith/sky/atmosphere.h"
+#include "zenith/sky/gl/loader.h"
+#include "zenith/sky/lut.h"
+#include "zenith/sky/sky_state.h"
+
+namespace zenith::sim {
+
+// A getProcAddress callback: eglGetProcAddress, OSMesaGetProcAddress, glfwGetProcAddress, ...
+using GetProcAddressFn = sky::gl::GetProcAddressFn;
+
+struct SkySystemSettings {
+    std::string preset = "earth";     // built-in preset name or JSON file
+    sky::LutSettings lut_settings;    // LUT sizes and step counts
+    double star_magnitude_limit = 6.5;
+    // Stars' apparent places are refreshed when simulation time moves by this much (the sky
+    // turns 15"/s, a pixel of a 60 deg, 1280 px view is ~170").
+    double star_refresh_s = 1.0;
+};
+
+enum class DayPhase { kDay, kCivilTwilight, kNauticalTwilight, kAstronomicalTwilight, kNight };
+const char* ToString(DayPhase phase);
+
+// What the host's own shading needs, at the aircraft.
+struct SkyLighting {
+    glm::dvec3 sun_direction_enu{0.0, 0.0, 1.0};
+    glm::dvec3 sun_direction_ecef{0.0, 0.0, 1.0};
+    glm::dvec3 moon_direction_enu{0.0, 0.0, 1.0};
+    glm::dvec3 moon_direction_ecef{0.0, 0.0, 1.0};
+    // Illuminance on a surface facing the light, after the atmosphere (lux, RGB).
+    glm::dvec3 sun_illuminance{0.0};
+    glm::dvec3 moon_illuminance{0.0};
+    // Sky (not Sun or Moon) illuminance on a horizontal surface (lux, RGB), from the
+    // ground-irradiance LUT: exact at the ground, an overestimate at altitude.
+    glm::dvec3 sky_irradiance{0.0};
+    double sun_elevation = 0.0;  // rad, geometric
+    double moon_illuminated_fraction = 0.0;
+    DayPhase phase = DayPhase::kDay;
+};
+
+class SkySystem {
+public:
+    // Owns a headless GL context (ZENITH_GL = osmesa | egl). Throws sky::gl::GlError when none
+    // can be made, saying what was tried and what to install.
+    static std::unique_ptr<SkySystem> CreateHeadless(const SkySystemSettings& settings = {});
+    // Uses the host's current GL 4.5 context: the host keeps it current whenever it calls
+    // Update or Render.
+    static std::unique_ptr<SkySystem> CreateInHostContext(GetProcAddressFn get_proc_address,
+                                                          const SkySystemSettings& settings = {});
+    ~SkySystem();
+    SkySystem(const SkySystem&) = delete;
+    SkySystem& operator=(const SkySystem&) = delete;
+
+    void SetTime(const geo::Time& utc);
+    // Moves simulation time on by seconds x warp (warp 60: a minute per second).
+    void AdvanceTime(double seconds, double warp = 1.0);
+    const geo::Time& time() const;
+
+    // Throws geo::ObserverError for an impossible position.
+    void SetGeodetic(double lat_deg, double lon_deg, double height_m);
+    void SetEcef(const glm::dvec3& position_m);
+    void SetAttitude(double heading, double pitch, double roll);
+    // Columns right, up, backward of the camera in the observer's ENU frame.
+    void SetViewFromEnu(const glm::dmat3& world_from_view);
+    void SetProjection(double vertical_fov, double aspect);
+    void SetAtmosphere(const sky::Atmosphere& atmosphere);
+
+    // Ephemeris, lights, lighting and per-frame LUTs for the current state.
+    void Update();
+    // Draws the sky as linear luminance (cd/m^2) into the host's framebuffer object over
+    // viewport (x, y, width, height); framebuffer 0 is the default one.
+    void Render(unsigned framebuffer, const glm::ivec4& viewport);
+    // Draws into the system's own RGBA32F frame and reads it back (row 0 = bottom).
+    sky::LutImage RenderOffscreen(const glm::ivec2& size);
+
+    const SkyLighting& lighting() const;
+    const geo::SkyEphemeris& ephemeris() const;
+    // GL names, for sampling on the host's side: the aerial-perspective froxel volume (rgb
+    // in-scattered luminance, a mean transmittance) and the transmittance LUT.
+    unsigned aerial_perspective_texture() const;
+    unsigned transmittance_texture() const;
+
+private:
+    struct Impl;
+    explicit SkySystem(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace zenith::sim

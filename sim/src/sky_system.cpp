@@ -1,0 +1,219 @@
+#include "zenith/sim/sky_system.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <GeographicLib/Geocentric.hpp>
+#include <glm/gtc/constants.hpp>
+
+#include "zenith/geo/earth_orientation.h"
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/gl/context.h"
+#include "zenith/sky/lighting.h"
+
+namespace zenith::sim {
+namespace {
+
+DayPhase PhaseOf(double sun_elevation) {
+    // Sunrise/sunset at -0.833 deg (refraction and the Sun's radius); twilights by the usual
+    // civil/nautical/astronomical depressions of 6, 12 and 18 deg.
+    const double deg = glm::degrees(sun_elevation);
+    if (deg > -0.833) return DayPhase::kDay;
+    if (deg > -6.0) return DayPhase::kCivilTwilight;
+    if (deg > -12.0) return DayPhase::kNauticalTwilight;
+    if (deg > -18.0) return DayPhase::kAstronomicalTwilight;
+    return DayPhase::kNight;
+}
+
+}  // namespace
+
+const char* ToString(DayPhase phase) {
+    switch (phase) {
+        case DayPhase::kDay: return "day";
+        case DayPhase::kCivilTwilight: return "civil twilight";
+        case DayPhase::kNauticalTwilight: return "nautical twilight";
+        case DayPhase::kAstronomicalTwilight: return "astronomical twilight";
+        case DayPhase::kNight: return "night";
+    }
+    return "?";
+}
+
+struct SkySystem::Impl {
+    std::unique_ptr<sky::gl::HeadlessContext> context;  // null inside a host's context
+    SkySystemSettings settings;
+    sky::Atmosphere atmosphere;
+    std::optional<geo::StarCatalog> catalog;
+    std::unique_ptr<sky::AtmosphereRenderer> renderer;
+    sky::LutImage ground_irradiance;
+
+    geo::Time time = geo::TimeNow();
+    geo::Observer observer{0.0, 0.0, 0.0};
+    std::optional<sky::Attitude> attitude = sky::Attitude{};
+    glm::dmat3 world_from_view{1.0};
+    double vertical_fov = glm::radians(60.0);
+    double aspect = 16.0 / 9.0;
+
+    geo::SkyEphemeris ephemeris;
+    std::vector<geo::StarState> stars;  // refreshed every star_refresh_s of simulation time
+    double stars_jd_utc = -1e300;
+    glm::dvec3 stars_observer_ecef{1e300};
+    sky::SkyState state;
+    SkyLighting lighting;
+
+    Impl(const SkySystemSettings& s, std::unique_ptr<sky::gl::HeadlessContext> c)
+        : context(std::move(c)), settings(s), atmosphere(sky::LoadAtmosphere(s.preset)) {
+        try {
+            catalog = geo::StarCatalog::Load(s.star_magnitude_limit);
+        } catch (const geo::CatalogError&) {
+            // Without kstars-data the sky has no stars; everything else works.
+        }
+        renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
+        ground_irradiance = renderer->ReadGroundIrradiance();
+    }
+};
+
+SkySystem::SkySystem(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+SkySystem::~SkySystem() = default;
+
+std::unique_ptr<SkySystem> SkySystem::CreateHeadless(const SkySystemSettings& settings) {
+    auto context = sky::gl::CreateHeadlessContextFromEnvironment();
+    return std::unique_ptr<SkySystem>(
+        new SkySystem(std::make_unique<Impl>(settings, std::move(context))));
+}
+
+std::unique_ptr<SkySystem> SkySystem::CreateInHostContext(GetProcAddressFn get_proc_address,
+                                                          const SkySystemSettings& settings) {
+    if (get_proc_address == nullptr) {
+        throw std::invalid_argument("CreateInHostContext: get_proc_address is null");
+    }
+    sky::gl::LoadGlFunctions(get_proc_address);
+    return std::unique_ptr<SkySystem>(new SkySystem(std::make_unique<Impl>(settings, nullptr)));
+}
+
+void SkySystem::SetTime(const geo::Time& utc) { impl_->time = utc; }
+
+void SkySystem::AdvanceTime(double seconds, double warp) {
+    if (!(std::isfinite(seconds) && std::isfinite(warp))) {
+        throw std::invalid_argument("AdvanceTime: seconds and warp must be finite");
+    }
+    const double dt = seconds * warp / geo::kSecondsPerDay;
+    geo::Time& t = impl_->time;
+    t.jd_utc += dt;
+    t.jd_ut1 += dt;
+    t.jd_tt += dt;
+}
+
+const geo::Time& SkySystem::time() const { return impl_->time; }
+
+void SkySystem::SetGeodetic(double lat_deg, double lon_deg, double height_m) {
+    impl_->observer = geo::Observer(lat_deg, lon_deg, height_m);
+}
+
+void SkySystem::SetEcef(const glm::dvec3& p) {
+    double lat = 0.0, lon = 0.0, h = 0.0;
+    GeographicLib::Geocentric::WGS84().Reverse(p.x, p.y, p.z, lat, lon, h);
+    impl_->observer = geo::Observer(lat, lon, h);
+}
+
+void SkySystem::SetAttitude(double heading, double pitch, double roll) {
+    impl_->attitude = sky::Attitude{heading, pitch, roll};
+}
+
+void SkySystem::SetViewFromEnu(const glm::dmat3& world_from_view) {
+    impl_->attitude.reset();
+    impl_->world_from_view = world_from_view;
+}
+
+void SkySystem::SetProjection(double vertical_fov, double aspect) {
+    if (!(vertical_fov > 0.0 && vertical_fov < glm::pi<double>() && aspect > 0.0)) {
+        throw std::invalid_argument("SetProjection: vertical_fov in (0, pi) rad and aspect > 0");
+    }
+    impl_->vertical_fov = vertical_fov;
+    impl_->aspect = aspect;
+}
+
+void SkySystem::SetAtmosphere(const sky::Atmosphere& atmosphere) {
+    impl_->atmosphere = atmosphere;
+    impl_->renderer->SetAtmosphere(atmosphere);
+    impl_->ground_irradiance = impl_->renderer->ReadGroundIrradiance();
+}
+
+void SkySystem::Update() {
+    Impl& d = *impl_;
+    // Stars move slowly on the sky; their apparent places (0.9 ms for 8,400 stars) are refreshed
+    // only when time or place has moved enough, the Sun and Moon every frame.
+    const bool refresh_stars =
+        d.catalog && (std::abs(d.time.jd_utc - d.stars_jd_utc) * geo::kSecondsPerDay >=
+                          d.settings.star_refresh_s ||
+                      glm::length(d.observer.ecef() - d.stars_observer_ecef) > 1000.0);
+    geo::EphemerisOptions options;
+    options.star_min_elevation = -0.1;
+    d.ephemeris = geo::Ephemeris(refresh_stars ? &*d.catalog : nullptr)
+                      .Compute(d.time, d.observer, options);
+    if (refresh_stars) {
+        d.stars = d.ephemeris.stars;
+        d.stars_jd_utc = d.time.jd_utc;
+        d.stars_observer_ecef = d.observer.ecef();
+    } else {
+        d.ephemeris.stars = d.stars;
+    }
+    const sky::Attitude attitude = d.attitude.value_or(sky::Attitude{});
+    d.state = sky::MakeSkyState(d.ephemeris, d.observer, d.atmosphere, attitude, d.vertical_fov,
+                                d.aspect);
+    if (!d.attitude) d.state.camera.world_from_view = d.world_from_view;
+    d.renderer->UpdateFrameLuts(d.state.camera, d.state.lights);
+
+    SkyLighting& l = d.lighting;
+    const glm::dmat3 ecef_from_enu = d.observer.ecef_from_enu();
+    l.sun_direction_enu = d.state.lights.sun_direction;
+    l.moon_direction_enu = d.state.lights.moon_direction;
+    l.sun_direction_ecef = ecef_from_enu * l.sun_direction_enu;
+    l.moon_direction_ecef = ecef_from_enu * l.moon_direction_enu;
+    const double height = d.observer.height_m();
+    l.sun_illuminance = d.state.lights.sun_illuminance *
+                        sky::TransmittanceToLight(d.atmosphere, height, l.sun_direction_enu.z,
+                                                  d.atmosphere.sun_angular_radius);
+    l.moon_illuminance = d.state.lights.moon_illuminance *
+                         sky::TransmittanceToLight(d.atmosphere, height, l.moon_direction_enu.z,
+                                                   d.state.moon.angular_radius);
+    l.sky_irradiance =
+        d.state.lights.sun_illuminance *
+            sky::SampleGroundIrradiance(d.ground_irradiance, l.sun_direction_enu.z) +
+        d.state.lights.moon_illuminance *
+            sky::SampleGroundIrradiance(d.ground_irradiance, l.moon_direction_enu.z);
+    l.sun_elevation = d.ephemeris.sun.topocentric.horizontal.elevation;
+    l.moon_illuminated_fraction = d.ephemeris.moon_phase.illuminated_fraction;
+    l.phase = PhaseOf(l.sun_elevation);
+}
+
+void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
+    Impl& d = *impl_;
+    sky::RenderOptions options;
+    options.size = {viewport.z, viewport.w};
+    options.target_framebuffer = framebuffer;
+    options.target_viewport = viewport;
+    options.moon = d.state.moon;
+    options.stars = d.state.stars;
+    d.renderer->Render(d.state.camera, d.state.lights, options);
+}
+
+sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
+    Impl& d = *impl_;
+    sky::RenderOptions options;
+    options.size = size;
+    options.moon = d.state.moon;
+    options.stars = d.state.stars;
+    d.renderer->Render(d.state.camera, d.state.lights, options);
+    return d.renderer->ReadFrame();
+}
+
+const SkyLighting& SkySystem::lighting() const { return impl_->lighting; }
+const geo::SkyEphemeris& SkySystem::ephemeris() const { return impl_->ephemeris; }
+unsigned SkySystem::aerial_perspective_texture() const {
+    return impl_->renderer->aerial_perspective_texture();
+}
+unsigned SkySystem::transmittance_texture() const {
+    return impl_->renderer->transmittance_texture();
+}
+
+}  // namespace zenith::sim

@@ -1,0 +1,119 @@
+// The host API end to end on a headless context: lighting readback, time warp, and drawing into
+// a host's framebuffer object at an offset viewport.
+#include "zenith/sim/sky_system.h"
+
+#include <glad/gl.h>
+
+#include <cmath>
+#include <vector>
+
+#include <glm/gtc/constants.hpp>
+#include <gtest/gtest.h>
+
+namespace zenith::sim {
+namespace {
+
+double Y(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+class SkySystemTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { sky_ = SkySystem::CreateHeadless().release(); }
+    static void TearDownTestSuite() { delete sky_; }
+    static SkySystem* sky_;
+};
+SkySystem* SkySystemTest::sky_ = nullptr;
+
+TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
+    sky_->SetTime(geo::TimeFromIso8601("2024-06-21T11:30:00Z"));
+    sky_->SetGeodetic(47.45, 8.56, 420.0);
+    sky_->SetAttitude(glm::radians(180.0), 0.1, 0.0);
+    sky_->SetProjection(1.0, 16.0 / 9.0);
+    sky_->Update();
+    const SkyLighting& day = sky_->lighting();
+    EXPECT_EQ(day.phase, DayPhase::kDay);
+    EXPECT_GT(day.sun_elevation, glm::radians(60.0));
+    // Direct sun at the ground with the sun 66 deg up: ~100 klux (Frostbite 2016 §4.1.1:
+    // 100,000-120,000 lux), the sky another ~15 klux on a horizontal surface.
+    EXPECT_GT(Y(day.sun_illuminance), 90000.0);
+    EXPECT_LT(Y(day.sun_illuminance), 125000.0);
+    EXPECT_GT(Y(day.sky_irradiance), 5000.0);
+    EXPECT_LT(Y(day.sky_irradiance), 40000.0);
+    EXPECT_NEAR(glm::length(day.sun_direction_enu), 1.0, 1e-12);
+    EXPECT_NEAR(glm::length(day.sun_direction_ecef), 1.0, 1e-12);
+
+    sky_->SetTime(geo::TimeFromIso8601("2024-06-21T23:30:00Z"));
+    sky_->Update();
+    const SkyLighting& night = sky_->lighting();
+    EXPECT_EQ(night.phase, DayPhase::kNight);
+    EXPECT_EQ(Y(night.sun_illuminance), 0.0);
+    // Full Moon (2024-06-22) and up: a fraction of a lux.
+    EXPECT_GT(night.moon_illuminated_fraction, 0.95);
+    EXPECT_GT(Y(night.moon_illuminance), 0.01);
+    EXPECT_LT(Y(night.moon_illuminance), 0.4);
+}
+
+TEST_F(SkySystemTest, TimeWarpAndEcefPositions) {
+    sky_->SetTime(geo::TimeFromIso8601("2024-06-21T12:00:00Z"));
+    const double jd0 = sky_->time().jd_utc;
+    sky_->AdvanceTime(60.0, 60.0);  // a simulated minute at 60x: one hour
+    // To the resolution of a Julian date held in one double (~40 us).
+    EXPECT_NEAR((sky_->time().jd_utc - jd0) * geo::kSecondsPerDay, 3600.0, 1e-4);
+    EXPECT_NEAR(sky_->time().DeltaT(), 69.184, 1e-3);
+
+    sky_->SetGeodetic(-33.9, 151.2, 11000.0);
+    sky_->Update();
+    const glm::dvec3 sun_from_geodetic = sky_->lighting().sun_direction_enu;
+    sky_->SetEcef(geo::Observer(-33.9, 151.2, 11000.0).ecef());
+    sky_->Update();
+    EXPECT_NEAR(glm::length(sky_->lighting().sun_direction_enu - sun_from_geodetic), 0.0, 1e-9);
+}
+
+TEST_F(SkySystemTest, DrawsIntoTheHostFramebufferViewport) {
+    sky_->SetTime(geo::TimeFromIso8601("2024-06-21T17:00:00Z"));
+    sky_->SetGeodetic(47.45, 8.56, 3000.0);
+    sky_->SetAttitude(glm::radians(270.0), 0.05, 0.0);
+    sky_->SetProjection(1.0, 1.0);
+    sky_->Update();
+    const sky::LutImage offscreen = sky_->RenderOffscreen({32, 32});
+
+    // A host framebuffer 64x64 filled with a marker; the sky goes into (16, 8, 32, 32).
+    GLuint texture = 0, framebuffer = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA32F, 64, 64);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    const float marker[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, marker);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(1, 2, 3, 4);  // the host's own state, to be restored
+    sky_->Render(framebuffer, {16, 8, 32, 32});
+    GLint bound = 0, viewport[4] = {};
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    EXPECT_EQ(static_cast<GLuint>(bound), framebuffer);
+    EXPECT_EQ(viewport[0], 1);
+    EXPECT_EQ(viewport[3], 4);
+    std::vector<glm::vec4> pixels(64 * 64);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
+                      pixels.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &texture);
+    for (int y = 0; y < 64; ++y) {
+        for (int x = 0; x < 64; ++x) {
+            const glm::vec4& p = pixels[static_cast<std::size_t>(y * 64 + x)];
+            const bool inside = x >= 16 && x < 48 && y >= 8 && y < 40;
+            if (!inside) {
+                ASSERT_EQ(p.r, -1.0f) << x << "," << y;
+            } else {
+                // The same image as offscreen, pixel for pixel.
+                ASSERT_NEAR(p.g, offscreen.at(x - 16, y - 8).g,
+                            1e-5 * std::abs(offscreen.at(x - 16, y - 8).g))
+                    << x << "," << y;
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace zenith::sim
