@@ -14,6 +14,8 @@ packages=(
     libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri mesa-common-dev python3-glad
     # sky: frame output (HDR OpenEXR, tone-mapped PNG)
     libopenexr-dev libpng-dev
+    # sim: flight logs (GPX/KML XML), EGM96 geoid grid for MSL -> WGS84 heights (egm96_15.gtx)
+    libtinyxml2-dev proj-data
     # tests and benchmarks
     libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -1,0 +1,115 @@
+// Flight-log readers for replay: IGC, GPX 1.1 tracks, KML gx:Track and a documented CSV
+// (data/flights/README.md), into one list of time-ordered samples.
+//
+// Readers are forgiving and explicit: a record that cannot be used is skipped with a reason that
+// names the source and line number; whatever can be used is used; the summary counts what was
+// skipped and keeps the first few reasons. A log with no usable sample at all, or an IGC log with
+// no date, throws FlightLogError.
+//
+// Altitudes are kept apart by what they measure: a sample holds each kind the log gives (an IGC B
+// record has both a pressure and a GNSS altitude) and never converts one into another; Trajectory
+// (trajectory.h) chooses one kind and converts it to WGS84 ellipsoidal height for rendering.
+//
+// Times are UTC seconds since 1970-01-01T00:00:00Z on the POSIX scale (every day 86400 s, so a
+// leap second has no number of its own, as in every log format read here).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "zenith/geo/time.h"
+
+namespace zenith::sim {
+
+// Thrown when a log cannot be read at all (unreadable file, unknown format, no usable sample,
+// IGC without HFDTE date, CSV without the needed columns). The message names the source and,
+// where there is one, the line.
+class FlightLogError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+enum class LogFormat { kIgc, kGpx, kKml, kCsv };
+std::string_view LogFormatName(LogFormat format);
+
+// What an altitude measures.
+enum class AltitudeKind {
+    kPressure,   // pressure altitude: ISA height for the static pressure, 1013.25 hPa datum
+    kMsl,        // GNSS/geometric height above mean sea level (the geoid, EGM96-like)
+    kEllipsoid,  // GNSS height above the WGS84 ellipsoid
+};
+std::string_view AltitudeKindName(AltitudeKind kind);
+
+// Attitude of the body axes (x forward, y right, z down) in the local north-east-down frame,
+// rotated heading, then pitch, then roll (aerospace 3-2-1 Euler angles). Radians.
+struct Attitude {
+    double heading = 0.0;  // from true north, clockwise
+    double pitch = 0.0;    // nose up positive
+    double roll = 0.0;     // right wing down positive
+};
+
+struct FlightSample {
+    double time_s = 0.0;  // UTC, POSIX seconds
+    double lat_deg = 0.0;
+    double lon_deg = 0.0;  // [-180, 180)
+    // Each altitude the log gives for this fix, metres; absent when the log has none or it was
+    // flagged invalid (an IGC 'V' fix has no GNSS altitude).
+    std::optional<double> pressure_altitude;
+    std::optional<double> msl_altitude;
+    std::optional<double> ellipsoid_height;
+    std::optional<Attitude> attitude;  // only when the log records it
+    int line = 0;                      // 1-based source line of the record
+
+    std::optional<double> Altitude(AltitudeKind kind) const;
+};
+
+struct SkippedRecord {
+    int line = 0;
+    std::string reason;
+};
+
+// What a reader made of a log. Notes are things worth knowing that skipped nothing (gaps, a
+// crossing of the antimeridian, a fix at a pole, GNSS altitudes dropped from 'V' fixes).
+struct ReadSummary {
+    static constexpr std::size_t kMaxListed = 8;
+
+    int records = 0;  // data records seen (B records, trkpt, when/coord pairs, CSV rows)
+    int used = 0;     // samples kept
+    int skipped = 0;  // records dropped
+    std::vector<SkippedRecord> first_skipped;  // the first kMaxListed, in line order
+    std::vector<std::string> notes;
+
+    // One line per fact: "used 1790 of 1800 records; skipped 10: line 12: ...".
+    std::string ToString() const;
+};
+
+struct FlightLog {
+    std::string source;  // file name or caller-given name, used in messages
+    LogFormat format = LogFormat::kCsv;
+    std::vector<FlightSample> samples;  // strictly increasing time
+    ReadSummary summary;
+    std::string description;  // e.g. IGC pilot/glider, GPX/KML track name; may be empty
+
+    // Kinds that at least one sample has, in the enum's order.
+    std::vector<AltitudeKind> AltitudeKinds() const;
+    bool HasAttitude() const;  // every sample has one
+};
+
+// Reads a file, choosing the reader by extension (.igc .gpx .kml .csv, any case).
+FlightLog ReadFlightLog(const std::filesystem::path& path);
+// Readers over text already in memory; source names it in messages.
+FlightLog ParseIgc(std::string_view text, std::string source = "<igc>");
+FlightLog ParseGpx(std::string_view text, std::string source = "<gpx>");
+FlightLog ParseKml(std::string_view text, std::string source = "<kml>");
+FlightLog ParseCsv(std::string_view text, std::string source = "<csv>");
+FlightLog ParseFlightLog(std::string_view text, LogFormat format, std::string source);
+
+// Conversions between the POSIX time scale used here and the geo civil time.
+double UnixSecondsFromCivil(const geo::CivilTime& utc);
+geo::CivilTime CivilFromUnixSeconds(double time_s);
+
+}  // namespace zenith::sim

@@ -1,0 +1,445 @@
+// Flight-log readers: the sample flights in data/flights, and malformed logs given inline, whose
+// messages must name the line.
+#include "zenith/sim/flight_log.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace zenith::sim {
+namespace {
+
+const std::string kFlights = std::string(ZENITH_SOURCE_DIR) + "/data/flights/";
+constexpr double kRadPerDeg = std::numbers::pi / 180.0;
+
+double Iso(const char* text) { return UnixSecondsFromCivil(geo::ParseIso8601(text)); }
+
+bool AnySkippedContains(const FlightLog& log, const std::string& text) {
+    return std::any_of(
+        log.summary.first_skipped.begin(), log.summary.first_skipped.end(),
+        [&](const SkippedRecord& s) { return s.reason.find(text) != std::string::npos; });
+}
+
+bool AnyNoteContains(const FlightLog& log, const std::string& text) {
+    return std::any_of(log.summary.notes.begin(), log.summary.notes.end(),
+                       [&](const std::string& n) { return n.find(text) != std::string::npos; });
+}
+
+std::string ThrownMessage(auto&& f) {
+    try {
+        f();
+    } catch (const FlightLogError& e) {
+        return e.what();
+    }
+    return "(nothing thrown)";
+}
+
+TEST(UnixTime, RoundTripsCivil) {
+    EXPECT_DOUBLE_EQ(UnixSecondsFromCivil({1970, 1, 1, 0, 0, 0.0}), 0.0);
+    EXPECT_DOUBLE_EQ(UnixSecondsFromCivil({2024, 6, 22, 3, 30, 0.0}), 1719027000.0);
+    const geo::CivilTime t = CivilFromUnixSeconds(1719027000.25);
+    EXPECT_EQ(t.year, 2024);
+    EXPECT_EQ(t.month, 6);
+    EXPECT_EQ(t.day, 22);
+    EXPECT_EQ(t.hour, 3);
+    EXPECT_EQ(t.minute, 30);
+    EXPECT_NEAR(t.second, 0.25, 1e-6);
+}
+
+// --- sample flights ---------------------------------------------------------------------------
+
+TEST(SampleFlights, GliderIgc) {
+    const FlightLog log = ReadFlightLog(kFlights + "glider_sisteron.igc");
+    EXPECT_EQ(log.format, LogFormat::kIgc);
+    EXPECT_EQ(log.summary.skipped, 0) << log.summary.ToString();
+    EXPECT_EQ(log.samples.size(), 1800u);
+    EXPECT_DOUBLE_EQ(log.samples.front().time_s, Iso("2024-07-14T12:00:01Z"));
+    EXPECT_DOUBLE_EQ(log.samples.back().time_s, Iso("2024-07-14T12:30:00Z"));
+    EXPECT_NE(log.description.find("ASK 21"), std::string::npos);
+    // Both altitudes, kept apart: pressure is 58 m below GNSS (QNH 1020 hPa) give or take noise.
+    const auto kinds = log.AltitudeKinds();
+    ASSERT_EQ(kinds.size(), 2u);
+    EXPECT_EQ(kinds[0], AltitudeKind::kPressure);
+    EXPECT_EQ(kinds[1], AltitudeKind::kMsl);
+    const FlightSample& s = log.samples.front();
+    EXPECT_NEAR(*s.msl_altitude - *s.pressure_altitude, 58.0, 5.0);
+    EXPECT_FALSE(s.ellipsoid_height);
+    EXPECT_FALSE(log.HasAttitude());
+    EXPECT_NEAR(s.lat_deg, 44.0 + 18.018 / 60.0, 1e-9);
+    EXPECT_NEAR(s.lon_deg, 5.0 + 57.011 / 60.0, 1e-9);
+}
+
+TEST(SampleFlights, AirlinerGpxCrossesAntimeridian) {
+    const FlightLog log = ReadFlightLog(kFlights + "airliner_nadi_climb.gpx");
+    EXPECT_EQ(log.format, LogFormat::kGpx);
+    EXPECT_EQ(log.summary.skipped, 0) << log.summary.ToString();
+    EXPECT_EQ(log.samples.size(), 526u);
+    EXPECT_EQ(log.AltitudeKinds(), std::vector<AltitudeKind>{AltitudeKind::kMsl});
+    const double top =
+        std::max_element(log.samples.begin(), log.samples.end(), [](const auto& a, const auto& b) {
+            return *a.msl_altitude < *b.msl_altitude;
+        })->msl_altitude.value();
+    EXPECT_NEAR(top, 11909.0, 5.0);  // FL390 on an ISA day, geometric
+    EXPECT_TRUE(AnyNoteContains(log, "180 deg meridian")) << log.summary.ToString();
+    EXPECT_GT(log.samples.front().lon_deg, 177.0);
+    EXPECT_LT(log.samples.back().lon_deg, -178.5);
+}
+
+TEST(SampleFlights, SunsetApproachKmlHasAttitude) {
+    const FlightLog log = ReadFlightLog(kFlights + "sunset_approach_sfo.kml");
+    EXPECT_EQ(log.format, LogFormat::kKml);
+    EXPECT_EQ(log.summary.skipped, 0) << log.summary.ToString();
+    EXPECT_TRUE(log.HasAttitude());
+    EXPECT_EQ(log.AltitudeKinds(), std::vector<AltitudeKind>{AltitudeKind::kMsl});
+    EXPECT_DOUBLE_EQ(log.samples.back().time_s, Iso("2024-06-22T03:30:00Z"));
+    const Attitude& a = *log.samples.back().attitude;
+    EXPECT_NEAR(a.heading, 298.0 * kRadPerDeg, 1e-9);
+    EXPECT_NEAR(a.roll, 0.0, 1e-9);
+    // The base turn banks right.
+    const double max_roll =
+        std::max_element(log.samples.begin(), log.samples.end(), [](const auto& x, const auto& y) {
+            return x.attitude->roll < y.attitude->roll;
+        })->attitude->roll;
+    EXPECT_NEAR(max_roll, std::atan(80.0 * 3.0 * kRadPerDeg / 9.80665), 1e-3);
+}
+
+TEST(SampleFlights, BalloonCsvTo35Km) {
+    const FlightLog log = ReadFlightLog(kFlights + "balloon_esrange.csv");
+    EXPECT_EQ(log.format, LogFormat::kCsv);
+    EXPECT_EQ(log.summary.skipped, 0) << log.summary.ToString();
+    EXPECT_TRUE(log.HasAttitude());
+    const auto kinds = log.AltitudeKinds();
+    ASSERT_EQ(kinds.size(), 2u);
+    EXPECT_EQ(kinds[0], AltitudeKind::kPressure);
+    EXPECT_EQ(kinds[1], AltitudeKind::kEllipsoid);
+    EXPECT_NEAR(*log.samples.back().ellipsoid_height, 35025.0, 10.0);
+    EXPECT_LT(*log.samples.back().pressure_altitude, *log.samples.back().ellipsoid_height - 500.0);
+}
+
+// --- IGC --------------------------------------------------------------------------------------
+
+constexpr const char* kIgcHeader =
+    "AXXX001\n"
+    "HFDTE140724\n"
+    "HFALGALTGPS:GEO\n";
+
+TEST(IgcReader, ReadsBRecordFields) {
+    const FlightLog log = ParseIgc(std::string(kIgcHeader) +
+                                       "B1200004418018N00557011EA0174101800\n"
+                                       "B1200014418018S00557011WA-001201800\n",
+                                   "t.igc");
+    ASSERT_EQ(log.samples.size(), 2u);
+    EXPECT_DOUBLE_EQ(log.samples[0].time_s, Iso("2024-07-14T12:00:00Z"));
+    EXPECT_EQ(*log.samples[0].pressure_altitude, 1741.0);
+    EXPECT_EQ(*log.samples[0].msl_altitude, 1800.0);
+    EXPECT_LT(log.samples[1].lat_deg, 0.0);
+    EXPECT_LT(log.samples[1].lon_deg, 0.0);
+    EXPECT_EQ(*log.samples[1].pressure_altitude, -12.0);
+    EXPECT_EQ(log.samples[1].line, 5);
+}
+
+TEST(IgcReader, BothDateFormsAndEllipsoidDatum) {
+    const std::string b =
+        "B2359594418018N00557011EA0174101800\n"
+        "B0000014418018N00557011EA0174101800\n";
+    const FlightLog a = ParseIgc("HFDTEDATE:311224,02\nHFALGALTGPS:ELL\n" + b);
+    ASSERT_EQ(a.samples.size(), 2u);
+    EXPECT_DOUBLE_EQ(a.samples[0].time_s, Iso("2024-12-31T23:59:59Z"));
+    // Past midnight UTC the date moves on.
+    EXPECT_DOUBLE_EQ(a.samples[1].time_s, Iso("2025-01-01T00:00:01Z"));
+    EXPECT_TRUE(a.samples[0].ellipsoid_height);
+    EXPECT_FALSE(a.samples[0].msl_altitude);
+    const FlightLog old = ParseIgc("HFDTE311224\n" + b);
+    EXPECT_DOUBLE_EQ(old.samples[0].time_s, a.samples[0].time_s);
+}
+
+TEST(IgcReader, NoDateIsAnErrorThatSaysWhat) {
+    const std::string msg = ThrownMessage(
+        [] { ParseIgc("AXXX\nB1200004418018N00557011EA0174101800\n", "nodate.igc"); });
+    EXPECT_NE(msg.find("nodate.igc"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("HFDTE"), std::string::npos) << msg;
+}
+
+TEST(IgcReader, BadRecordsAreSkippedWithLineNumbers) {
+    const std::string text = std::string(kIgcHeader) +
+                             "B1200004418018N00557011EA0174101800\n"   // 4 ok
+                             "B1200014418018N00557011EA01741\n"        // 5 truncated
+                             "B1200024461018N00557011EA0174101800\n"   // 6 minutes >= 60
+                             "B1200034418018N00557011XA0174101800\n"   // 7 bad E/W
+                             "B1200044418018N00557011EX0174101800\n"   // 8 bad validity
+                             "B1200054418018N00557011EA01741018x0\n"   // 9 bad altitude
+                             "B1200054418018N00557011EA0174101800\n"   // 10 ok
+                             "B1200054418018N00557011EA0174101800\n"   // 11 duplicate time
+                             "B1159594418018N00557011EA0174101800\n"   // 12 backwards
+                             "B12006x4418018N00557011EA0174101800\n"   // 13 bad time
+                             "B1200064418018N00557011EV0174101800\n"   // 14 V fix: no GNSS alt
+                             "\x01garbage\n"                           // 15 not a record
+                             "B1200074418018N00557011EA0174101800\n";  // 16 ok
+    const FlightLog log = ParseIgc(text, "bad.igc");
+    EXPECT_EQ(log.samples.size(), 4u) << log.summary.ToString();
+    EXPECT_EQ(log.summary.skipped, 9);
+    EXPECT_EQ(log.summary.records, 13);
+    EXPECT_EQ(log.summary.used, 4);
+    EXPECT_TRUE(AnySkippedContains(log, "bad.igc:5: B record truncated"));
+    EXPECT_TRUE(AnySkippedContains(log, "bad.igc:6: bad latitude"));
+    EXPECT_TRUE(AnySkippedContains(log, "bad.igc:7: bad longitude"));
+    EXPECT_TRUE(AnySkippedContains(log, "bad.igc:8: bad fix validity"));
+    // Only the first kMaxListed reasons are kept; the count says how many there were.
+    EXPECT_EQ(log.summary.first_skipped.size(), ReadSummary::kMaxListed);
+    EXPECT_FALSE(log.samples[2].msl_altitude);  // the V fix
+    EXPECT_TRUE(log.samples[2].pressure_altitude);
+    EXPECT_TRUE(AnyNoteContains(log, "flagged V"));
+    const std::string summary = log.summary.ToString();
+    EXPECT_NE(summary.find("used 4 of 13 records; skipped 9"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("and 1 more skipped"), std::string::npos) << summary;
+}
+
+TEST(IgcReader, DuplicateAndBackwardTimesNameTheLine) {
+    const std::string text = std::string(kIgcHeader) +
+                             "B1200004418018N00557011EA0174101800\n"   // 4
+                             "B1200004418018N00557011EA0174101800\n"   // 5 duplicate
+                             "B1159594418018N00557011EA0174101800\n"   // 6 backwards
+                             "B1200014418018N00557011EA0174101800\n";  // 7
+    const FlightLog log = ParseIgc(text, "t.igc");
+    EXPECT_EQ(log.samples.size(), 2u);
+    EXPECT_TRUE(AnySkippedContains(log, "t.igc:5: duplicate time 12:00:00.000 (also at line 4)"))
+        << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "t.igc:6: time goes backwards")) << log.summary.ToString();
+}
+
+TEST(IgcReader, ATimeSpikeDropsOnlyItself) {
+    const std::string text = std::string(kIgcHeader) +
+                             "B1200004418018N00557011EA0174101800\n"   // 4
+                             "B1300004418018N00557011EA0174101800\n"   // 5 spike
+                             "B1200014418018N00557011EA0174101800\n"   // 6
+                             "B1200024418018N00557011EA0174101800\n";  // 7
+    const FlightLog log = ParseIgc(text, "t.igc");
+    EXPECT_EQ(log.samples.size(), 3u) << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "t.igc:5: time jumps ahead")) << log.summary.ToString();
+}
+
+TEST(IgcReader, IRecordExtensionsAndGapNotes) {
+    const std::string text = std::string(kIgcHeader) + "I023638FXA3940SIU\n" +
+                             "B120000441801 8N00557011EA0174101800\n"  // 5: space in latitude
+                             "B1200014418018N00557011EA017410180000311\n"
+                             "B1200024418018N00557011EA017410180000311\n"
+                             "B1200034418018N00557011EA0174101800003\n"     // short extension
+                             "B1210004418018N00557011EA017410180000311\n";  // 9: 10-minute gap
+    const FlightLog log = ParseIgc(text, "t.igc");
+    EXPECT_EQ(log.samples.size(), 4u);
+    EXPECT_TRUE(AnySkippedContains(log, "t.igc:5: bad latitude"));
+    EXPECT_TRUE(AnyNoteContains(log, "shorter than the I record")) << log.summary.ToString();
+    EXPECT_TRUE(AnyNoteContains(log, "t.igc:9: gap of 597 s")) << log.summary.ToString();
+}
+
+TEST(IgcReader, NothingUsableThrows) {
+    const std::string msg =
+        ThrownMessage([] { ParseIgc(std::string(kIgcHeader) + "B12000044\n", "short.igc"); });
+    EXPECT_NE(msg.find("short.igc: no usable IGC record"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("short.igc:4: B record truncated"), std::string::npos) << msg;
+}
+
+// --- GPX --------------------------------------------------------------------------------------
+
+constexpr const char* kGpx = R"(<?xml version="1.0"?>
+<gpx version="1.1" creator="t" xmlns="http://www.topografix.com/GPX/1/1">
+ <trk><name>T</name><trkseg>
+  <trkpt lat="10.0" lon="179.999"><ele>100</ele><time>2024-01-01T00:00:00Z</time></trkpt>
+  <trkpt lat="10.0" lon="-179.999"><ele>110</ele><time>2024-01-01T00:00:01Z</time></trkpt>
+  <trkpt lat="95.0" lon="0"><ele>110</ele><time>2024-01-01T00:00:02Z</time></trkpt>
+  <trkpt lat="10.0" lon="-179.998"><ele>x</ele><time>2024-01-01T00:00:03Z</time></trkpt>
+  <trkpt lat="10.0" lon="-179.997"><ele>120</ele></trkpt>
+  <trkpt lat="10.0" lon="-179.996"><time>2024-13-01T00:00:05Z</time></trkpt>
+  <trkpt lat="10.0" lon="-179.995"><time>2024-01-01T00:00:06+01:00</time></trkpt>
+  <trkpt lat="10.0" lon="-179.994"><time>2024-01-01T00:00:07Z</time></trkpt>
+ </trkseg></trk>
+</gpx>
+)";
+
+TEST(GpxReader, ReadsTrackPointsAndSkipsBadOnes) {
+    const FlightLog log = ParseGpx(kGpx, "t.gpx");
+    ASSERT_EQ(log.samples.size(), 3u) << log.summary.ToString();
+    EXPECT_EQ(log.description, "T");
+    EXPECT_EQ(*log.samples[0].msl_altitude, 100.0);
+    EXPECT_EQ(log.samples[0].line, 4);
+    EXPECT_FALSE(log.samples[2].msl_altitude);  // no <ele>: kept, without altitude
+    EXPECT_EQ(log.summary.records, 8);
+    EXPECT_TRUE(AnySkippedContains(log, "t.gpx:6: position out of range"))
+        << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "t.gpx:7: bad <ele>"));
+    EXPECT_TRUE(AnySkippedContains(log, "t.gpx:8: trkpt without <time>"));
+    EXPECT_TRUE(AnySkippedContains(log, "t.gpx:9: bad <time>"));
+    // 00:00:06+01:00 is 23:00:06 the day before: backwards.
+    EXPECT_TRUE(AnySkippedContains(log, "t.gpx:10: time goes backwards"));
+    EXPECT_TRUE(AnyNoteContains(log, "t.gpx:5: track crosses the 180 deg meridian"));
+}
+
+TEST(GpxReader, TruncatedFileIsReadUpToTheLastCompletePoint) {
+    const std::string full = kGpx;
+    const std::string cut = full.substr(0, full.find("<trkpt lat=\"95.0\"") + 30);
+    const FlightLog log = ParseGpx(cut, "cut.gpx");
+    EXPECT_EQ(log.samples.size(), 2u) << log.summary.ToString();
+    ASSERT_FALSE(log.summary.first_skipped.empty());
+    EXPECT_NE(log.summary.first_skipped[0].reason.find("cut.gpx:6: XML not well-formed"),
+              std::string::npos)
+        << log.summary.ToString();
+    EXPECT_NE(log.summary.first_skipped[0].reason.find("read up to line 5"), std::string::npos);
+}
+
+TEST(GpxReader, NotGpxThrows) {
+    EXPECT_NE(ThrownMessage([] { ParseGpx("<kml/>", "x.gpx"); }).find("not a GPX document"),
+              std::string::npos);
+    EXPECT_NE(ThrownMessage([] { ParseGpx("<gpx><trk>", "x.gpx"); }).find("x.gpx:1: XML"),
+              std::string::npos);
+}
+
+// --- KML --------------------------------------------------------------------------------------
+
+constexpr const char* kKml = R"(<?xml version="1.0" encoding="UTF-8"?>
+<kml xmlns="http://www.opengis.net/kml/2.2" xmlns:gx="http://www.google.com/kml/ext/2.2">
+<Document><Placemark><name>K</name>
+<gx:Track>
+  <altitudeMode>absolute</altitudeMode>
+  <when>2024-06-22T03:00:00Z</when>
+  <when>2024-06-22T03:00:01Z</when>
+  <when>2024-06-22T03:00:02Z</when>
+  <when>2024-06-22T03:00:03Z</when>
+  <gx:coord>-122.0 37.0 1000</gx:coord>
+  <gx:coord>-122.001 37.0 1001</gx:coord>
+  <gx:coord>-122.002 nope 1002</gx:coord>
+  <gx:coord>-122.003 37.0 1003</gx:coord>
+  <gx:angles>270 2 -10</gx:angles>
+  <gx:angles>270 2</gx:angles>
+  <gx:angles>270 2 -10</gx:angles>
+  <gx:angles>271 2 -10</gx:angles>
+</gx:Track>
+</Placemark></Document></kml>
+)";
+
+TEST(KmlReader, ReadsWhenCoordAngles) {
+    const FlightLog log = ParseKml(kKml, "t.kml");
+    ASSERT_EQ(log.samples.size(), 2u) << log.summary.ToString();
+    EXPECT_EQ(log.description, "K");
+    EXPECT_EQ(*log.samples[0].msl_altitude, 1000.0);
+    EXPECT_NEAR(log.samples[0].attitude->heading, 270.0 * kRadPerDeg, 1e-12);
+    EXPECT_NEAR(log.samples[0].attitude->pitch, 2.0 * kRadPerDeg, 1e-12);
+    EXPECT_NEAR(log.samples[0].attitude->roll, -10.0 * kRadPerDeg, 1e-12);
+    EXPECT_EQ(log.samples[1].line, 13);
+    EXPECT_TRUE(AnySkippedContains(log, "t.kml:12: bad <gx:coord>")) << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "t.kml:15: bad <gx:angles>")) << log.summary.ToString();
+}
+
+TEST(KmlReader, UnpairedWhenAndRelativeAltitudes) {
+    std::string text = kKml;
+    text.replace(text.find("absolute"), 8, "relativeToGround");
+    text.insert(text.find("  <gx:coord>"), "  <when>2024-06-22T03:00:04Z</when>\n");
+    const FlightLog log = ParseKml(text, "t.kml");
+    EXPECT_TRUE(AnySkippedContains(log, "t.kml:10: <when> #5 has no matching <gx:coord>"))
+        << log.summary.ToString();
+    EXPECT_TRUE(AnyNoteContains(log, "relativeToGround"));
+    EXPECT_FALSE(log.samples[0].msl_altitude);
+}
+
+TEST(KmlReader, TruncatedFileKeepsCompleteSamples) {
+    const std::string full = kKml;
+    const std::string cut = full.substr(0, full.find("<gx:angles>"));
+    const FlightLog log = ParseKml(cut, "cut.kml");
+    EXPECT_EQ(log.samples.size(), 3u) << log.summary.ToString();
+    EXPECT_FALSE(log.HasAttitude());
+    EXPECT_TRUE(AnySkippedContains(log, "XML not well-formed")) << log.summary.ToString();
+}
+
+TEST(KmlReader, NoTrackThrows) {
+    const std::string msg = ThrownMessage([] {
+        ParseKml("<kml><Document><Placemark><LineString/></Placemark></Document></kml>", "l.kml");
+    });
+    EXPECT_NE(msg.find("l.kml: no gx:Track"), std::string::npos) << msg;
+}
+
+// --- CSV --------------------------------------------------------------------------------------
+
+TEST(CsvReader, IsoAndUnixTimesUnitsAndAttitude) {
+    const FlightLog log = ParseCsv(
+        "# comment\n"
+        "time,lat_deg,lon_deg,alt_msl_ft,alt_pressure_ft,alt_wgs84_m,heading_deg,pitch_deg,"
+        "roll_deg,note\n"
+        "2024-06-22T03:00:00Z,37,-122,1000,900,320.5,90,1,2,a\n"
+        "1719025201,37,-122.001,1010,910,,90,1,2,\"b, quoted\"\n",
+        "t.csv");
+    ASSERT_EQ(log.samples.size(), 2u) << log.summary.ToString();
+    EXPECT_DOUBLE_EQ(log.samples[1].time_s - log.samples[0].time_s, 1.0);
+    EXPECT_DOUBLE_EQ(*log.samples[0].msl_altitude, 304.8);
+    EXPECT_DOUBLE_EQ(*log.samples[0].pressure_altitude, 900 * 0.3048);
+    EXPECT_DOUBLE_EQ(*log.samples[0].ellipsoid_height, 320.5);
+    EXPECT_FALSE(log.samples[1].ellipsoid_height);
+    EXPECT_NEAR(log.samples[0].attitude->heading, std::numbers::pi / 2, 1e-12);
+    EXPECT_EQ(log.samples[0].line, 3);
+    EXPECT_TRUE(AnyNoteContains(log, "columns not used: note"));
+}
+
+TEST(CsvReader, OpenSkyStateVectors) {
+    const FlightLog log = ParseCsv(
+        "time,icao24,lat,lon,velocity,heading,vertrate,callsign,onground,alert,spi,squawk,"
+        "baroaltitude,geoaltitude,lastposupdate,lastcontact\n"
+        "1719025200,4b1805,47.1,8.5,200.5,45.0,5.2,SWR123,False,False,False,1000,10000.0,"
+        "10250.0,1719025199.9,1719025200.1\n"
+        "1719025210,4b1805,,,200.5,45.0,5.2,SWR123,False,False,False,1000,10050.0,"
+        "10300.0,1719025209.9,1719025210.1\n"
+        "1719025220,4b1805,47.12,8.52,200.5,45.0,5.2,SWR123,False,False,False,1000,10100.0,"
+        "10350.0,1719025219.9,1719025220.1\n",
+        "opensky.csv");
+    ASSERT_EQ(log.samples.size(), 2u);
+    EXPECT_EQ(*log.samples[0].pressure_altitude, 10000.0);
+    EXPECT_EQ(*log.samples[0].ellipsoid_height, 10250.0);
+    EXPECT_FALSE(log.samples[0].attitude);
+    EXPECT_TRUE(AnySkippedContains(log, "opensky.csv:3: no position"));
+    EXPECT_TRUE(AnyNoteContains(log, "'heading' (OpenSky"));
+}
+
+TEST(CsvReader, BadRowsNameTheirLines) {
+    const FlightLog log = ParseCsv(
+        "time,lat,lon,alt_msl_m\n"
+        "2024-06-22T03:00:00Z,89.9999,0,100\n"      // 2 ok, near the pole: note
+        "2024-06-22T03:00:01Z,89.9999,180\n"        // 3 truncated
+        "2024-06-22T03:00:02Z,89.9999,180,1e400\n"  // 4 not finite
+        "2024-06-22T03:00:03Z,89.9999,180,12,13\n"  // 5 too many fields
+        "2024-06-22T03:00:04Z,-91,180,12\n"         // 6 out of range
+        "2024-06-22T03:00:05Z,89.9999,180,12\n"     // 7 ok, lon 180 -> -180
+        "2024-06-22T03:00:06Z,\"89.9999,180,12\n"   // 8 open quote
+        "yesterday,89.9999,180,12\n",               // 9 bad time
+        "b.csv");
+    EXPECT_EQ(log.samples.size(), 2u) << log.summary.ToString();
+    EXPECT_EQ(log.samples[1].lon_deg, -180.0);
+    EXPECT_TRUE(AnySkippedContains(log, "b.csv:3: 3 fields for 4 columns (truncated row?)"));
+    EXPECT_TRUE(AnySkippedContains(log, "b.csv:4: bad alt_msl_m"));
+    EXPECT_TRUE(AnySkippedContains(log, "b.csv:5: 5 fields for 4 columns"));
+    EXPECT_TRUE(AnySkippedContains(log, "b.csv:6: position out of range"));
+    EXPECT_TRUE(AnySkippedContains(log, "b.csv:8: unclosed quote"));
+    EXPECT_TRUE(AnySkippedContains(log, "b.csv:9: bad time 'yesterday'"));
+    EXPECT_TRUE(AnyNoteContains(log, "b.csv:2: fix at the pole"));
+}
+
+TEST(CsvReader, HeaderErrorsThrow) {
+    EXPECT_NE(ThrownMessage([] {
+                  ParseCsv("time,lat,lon,alt\n", "h.csv");
+              }).find("h.csv:1: altitude column 'alt' does not say its datum and unit"),
+              std::string::npos);
+    EXPECT_NE(ThrownMessage([] {
+                  ParseCsv("time,lat,alt_msl_m\n", "h.csv");
+              }).find("header needs columns time, lat and lon"),
+              std::string::npos);
+    EXPECT_NE(ThrownMessage([] {
+                  ParseCsv("time,lat,lon,heading_deg\n", "h.csv");
+              }).find("attitude needs all three"),
+              std::string::npos);
+    EXPECT_NE(ThrownMessage([] { ReadFlightLog("/nonexistent/flight.igc"); }).find("cannot open"),
+              std::string::npos);
+    EXPECT_NE(ThrownMessage([] { ReadFlightLog("flight.txt"); }).find("unknown flight-log"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace zenith::sim
