@@ -1,0 +1,138 @@
+// A flight log as a continuous trajectory for replay: position, velocity and attitude at any
+// time, with heights converted to the WGS84 ellipsoid.
+//
+// Positions: cubic Hermite in ECEF (GeographicLib::Geocentric) through the samples, tangents
+// from the non-uniform three-point derivative (exact for a quadratic path; Catmull-Rom for even
+// spacing), one-sided at the ends of a segment. C1, exact at the samples, and free of the
+// longitude wrap and the pole, which exist only in geodetic coordinates.
+//
+// Attitude: from the log where it has one; otherwise derived at each sample from the track
+// through it and its neighbours (about attitude_half_window_s either side), in the local
+// horizontal plane: heading = course over ground (no wind is known, so heading = track), pitch =
+// flight-path angle atan(vertical speed / ground speed), bank for a coordinated turn
+// tan(phi) = V omega / g, with V and omega from the circle through the three points, exact for a
+// constant-speed turn. Between samples the ECEF-from-body rotation is slerped, so the attitude
+// stays continuous over a pole where heading is not.
+//
+// Gaps: samples more than max_gap_s apart start a new segment; At() is invalid inside a gap
+// and outside [start_time_s(), end_time_s()].
+//
+// Heights: one altitude kind is used for the whole trajectory (altitude_kind()); samples
+// without it are dropped with a note. MSL heights get the geoid undulation N from a GTX grid
+// (EGM96 15' from Debian's proj-data, /usr/share/proj/egm96_15.gtx, or $ZENITH_GEOID_GTX);
+// without one, MSL is used as ellipsoidal height and notes() says so (error |N| <= ~107 m).
+// Pressure altitude is taken as ISA geopotential height with no QNH and no temperature known,
+// converted to geometric height above MSL (notes() says so; the real atmosphere can differ by
+// hundreds of metres at altitude).
+#pragma once
+
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "zenith/sim/flight_log.h"
+
+namespace zenith::sim {
+
+inline constexpr double kStandardGravity = 9.80665;   // m/s^2 (ISA, CGPM 1901)
+inline constexpr double kIsaEarthRadius = 6356766.0;  // m, for geopotential height (ISO 2533)
+
+// Geoid undulation N (geoid above WGS84 ellipsoid, metres) from a grid in NOAA's GTX format:
+// big-endian header (lower-left lat, lon, spacing lat, lon in degrees; rows, columns), then
+// rows x columns big-endian float32 from south-west, row by row. Bilinear interpolation; on
+// the 15' EGM96 grid that is within a few centimetres of the grid's own model except in steep
+// mountains (decimetres).
+class GeoidGrid {
+  public:
+    // Throws FlightLogError naming the file and what is wrong with it.
+    static GeoidGrid LoadGtx(const std::filesystem::path& path);
+    // $ZENITH_GEOID_GTX if set, else /usr/share/proj/egm96_15.gtx; loaded once; nullptr when
+    // neither can be read.
+    static const GeoidGrid* Default();
+
+    double UndulationAt(double lat_deg, double lon_deg) const;
+    const std::string& source() const { return source_; }
+
+  private:
+    std::string source_;
+    double lat0_deg_ = 0.0, lon0_deg_ = 0.0, dlat_deg_ = 0.0, dlon_deg_ = 0.0;
+    int rows_ = 0, cols_ = 0;
+    bool wraps_ = false;  // columns span 360 degrees
+    std::vector<float> values_;
+};
+
+// ISA pressure altitude (geopotential metres) -> geometric height above MSL, metres:
+// z = R H / (R - H), R = kIsaEarthRadius. Valid where ISA is defined (up to 80 km).
+double GeometricFromGeopotential(double geopotential_height);
+
+struct TrajectoryOptions {
+    // Which altitude to use; default: the kind most samples have, ties going to ellipsoid,
+    // then MSL, then pressure (geometric beats pressure when QNH is unknown).
+    std::optional<AltitudeKind> altitude;
+    double max_gap_s = 120.0;
+    double attitude_half_window_s = 1.0;
+    // Geoid for MSL -> ellipsoid; nullptr: GeoidGrid::Default(). ignore_geoid: use N = 0.
+    const GeoidGrid* geoid = nullptr;
+    bool ignore_geoid = false;
+};
+
+struct TrajectoryState {
+    bool valid = false;  // false outside the flight or inside a gap; other fields unset then
+    double time_s = 0.0;
+    glm::dvec3 ecef{0.0};           // m, WGS84
+    glm::dvec3 velocity_ecef{0.0};  // m/s
+    double lat_deg = 0.0;
+    double lon_deg = 0.0;
+    double height = 0.0;  // m above the WGS84 ellipsoid
+    Attitude attitude;    // in the local NED frame at this position
+    glm::dquat ecef_from_body{1.0, 0.0, 0.0, 0.0};
+    bool attitude_from_log = false;  // both neighbouring samples carried a logged attitude
+};
+
+class Trajectory {
+  public:
+    // Throws FlightLogError when no sample has the requested (or any) altitude.
+    explicit Trajectory(const FlightLog& log, const TrajectoryOptions& options = {});
+
+    TrajectoryState At(double time_s) const;
+
+    double start_time_s() const { return knots_.front().time_s; }
+    double end_time_s() const { return knots_.back().time_s; }
+    AltitudeKind altitude_kind() const { return altitude_kind_; }
+    // How the heights and attitudes were made (altitude kind, geoid, ISA, derived attitude).
+    const std::vector<std::string>& notes() const { return notes_; }
+    std::size_t size() const { return knots_.size(); }
+    // [start, end] of each stretch where At() is valid, in time order.
+    std::vector<std::pair<double, double>> ValidIntervals() const;
+
+  private:
+    struct Knot {
+        double time_s;
+        glm::dvec3 ecef;
+        glm::dvec3 tangent;  // m/s
+        glm::dquat ecef_from_body;
+        double height;  // m above the ellipsoid
+        bool attitude_from_log;
+        int segment;
+    };
+    std::vector<Knot> knots_;
+    AltitudeKind altitude_kind_ = AltitudeKind::kEllipsoid;
+    std::vector<std::string> notes_;
+};
+
+// Rotation from the body axes (x forward, y right, z down) to ECEF, for an attitude given in
+// the NED frame at (lat, lon); and back.
+glm::dquat EcefFromBody(const Attitude& attitude, double lat_deg, double lon_deg);
+Attitude AttitudeFromEcefFromBody(const glm::dquat& ecef_from_body, double lat_deg, double lon_deg);
+// Columns north, east, down in ECEF.
+glm::dmat3 EcefFromNed(double lat_deg, double lon_deg);
+
+// Bank angle (radians, right wing down for a right turn) of a coordinated level turn at
+// ground speed V (m/s) and turn rate omega (rad/s, clockwise from above positive).
+double CoordinatedTurnBank(double speed, double turn_rate);
+
+}  // namespace zenith::sim
