@@ -9,7 +9,7 @@ derivable attitude is consistent with the path. Times were chosen with `zenith e
 
   glider  Sisteron      2024-07-14 12:00-12:30 UTC  Sun near its highest (el ~66 deg)
   climb   Nadi -> FL390 2024-06-21 18:20-18:55 UTC  Sunrise at 18:44 UTC on the ground, earlier aloft
-  sunset  SFO 28R       2024-06-22 03:20-03:30 UTC  Sun el +1.7 -> 0.0 deg at az 299 deg, dead ahead
+  sunset  SFO 28R       2024-06-22 03:22-03:30 UTC  Sun el +1.3 -> 0.0 deg at az 299 deg, dead ahead
   balloon Esrange       2024-06-24 21:30-23:40 UTC  Midnight Sun, el ~1.3 deg, to 35 km
 
 Usage: python3 data/flights/generate_samples.py [output_dir]
@@ -325,6 +325,7 @@ def balloon(path):
 
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
+    os.makedirs(out, exist_ok=True)
     glider(os.path.join(out, "glider_sisteron.igc"))
     airliner(os.path.join(out, "airliner_nadi_climb.gpx"))
     approach(os.path.join(out, "sunset_approach_sfo.kml"))

@@ -80,7 +80,8 @@ struct ReadSummary {
     int records = 0;  // data records seen (B records, trkpt, when/coord pairs, CSV rows)
     int used = 0;     // samples kept
     int skipped = 0;  // records dropped
-    std::vector<SkippedRecord> first_skipped;  // the first kMaxListed, in line order
+    // Up to kMaxListed reasons, sorted by line: the reader's own first, then time-order drops.
+    std::vector<SkippedRecord> first_skipped;
     std::vector<std::string> notes;
 
     // One line per fact: "used 1790 of 1800 records; skipped 10: line 12: ...".
