@@ -1,15 +1,22 @@
-// Prints the Sun's elevation at J2000.0 over Greenwich: proves the installed headers and
-// library work from a separate project.
+// Uses each installed library from a separate project: geo (ephemeris), sky (presets) and sim
+// (the batch record). No GL context is needed.
 #include <cmath>
 #include <cstdio>
 
 #include <zenith/geo/ephemeris.h>
+#include <zenith/sim/ephemeris_report.h>
+#include <zenith/sky/atmosphere.h>
+
+#include <nlohmann/json.hpp>
 
 int main() {
     const zenith::geo::Time t = zenith::geo::TimeFromIso8601("2000-01-01T12:00:00Z");
     const zenith::geo::Observer greenwich(51.4769, 0.0, 46.0);
     const auto e = zenith::geo::Ephemeris().Compute(t, greenwich);
-    const double elevation_deg = e.sun.elevation * 180.0 / 3.14159265358979323846;
-    std::printf("sun elevation %.3f deg\n", elevation_deg);
+    const double elevation_deg = zenith::sim::EphemerisRecord(e)["sun_el_deg"].get<double>();
+    const zenith::sky::Atmosphere earth;
+    zenith::sky::Validate(earth);
+    std::printf("sun elevation %.3f deg, Rayleigh %.3e /m\n", elevation_deg,
+                earth.rayleigh_scattering.b);
     return std::abs(elevation_deg - 15.5) < 1.0 ? 0 : 1;  // winter noon sun at 51.5 N
 }
