@@ -6,6 +6,11 @@
 #include <optional>
 #include <string>
 
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -13,6 +18,7 @@
 #include "zenith/geo/ephemeris.h"
 #include "zenith/sim/ephemeris_report.h"
 #include "zenith/sim/render_frame.h"
+#include "zenith/sim/replay.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/error.h"
 
@@ -157,6 +163,63 @@ int RunRender(sim::FrameRequest request, const std::string& size, const std::str
     return 0;
 }
 
+std::atomic<bool> g_stop{false};
+extern "C" void OnInterrupt(int) { g_stop.store(true); }
+
+int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
+                     const std::string& exposure, const std::string& format,
+                     const std::string& camera, const std::string& shard) {
+    request.size = ParseSize(size);
+    request.exposure = sky::ExposureFromString(exposure);
+    request.camera = sim::ParseReplayCamera(camera);
+    if (format != "png" && format != "exr" && format != "both") {
+        throw std::invalid_argument("--format = " + format + " is not known (expected png, exr "
+                                    "or both)");
+    }
+    request.write_png = format != "exr";
+    request.write_exr = format != "png";
+    if (!shard.empty()) {
+        request.shard = sim::ParseShard(shard);
+    } else if (const auto from_slurm = sim::ShardFromEnvironment()) {
+        request.shard = *from_slurm;
+    }
+    // Ctrl-C (or a scheduler's SIGTERM) stops after the frame in progress; rerun to resume.
+    std::signal(SIGINT, OnInterrupt);
+    std::signal(SIGTERM, OnInterrupt);
+    const bool tty = isatty(STDERR_FILENO) != 0;
+    std::size_t last_line = 0;
+    auto on_progress = [&](const sim::ReplayProgress& p) {
+        const double rate = p.seconds > 0.0 ? static_cast<double>(p.rendered) / p.seconds : 0.0;
+        const double eta = rate > 0.0 ? static_cast<double>(p.total - p.done) / rate : 0.0;
+        if (tty) {
+            constexpr int kWidth = 30;
+            const int filled = static_cast<int>(kWidth * p.done / std::max<std::size_t>(p.total, 1));
+            fmt::print(stderr, "\r[{:<{}}] {}/{} frames ({} skipped)  {:.2f} fps  ETA {:02d}:{:02d}",
+                       std::string(static_cast<std::size_t>(filled), '='), kWidth, p.done, p.total,
+                       p.skipped, rate, static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+        } else if (p.done == p.total || p.done >= last_line + std::max<std::size_t>(p.total / 10, 1)) {
+            last_line = p.done;
+            fmt::print(stderr, "zenith replay: {}/{} frames ({} skipped), {:.2f} fps, ETA {:.0f} s\n",
+                       p.done, p.total, p.skipped, rate, eta);
+        }
+    };
+    fmt::print(stderr, "zenith replay: {} (shard {}/{})\n", request.flight.string(),
+               request.shard.index, request.shard.count);
+    const sim::ReplayResult result = sim::RunReplay(request, g_stop, on_progress);
+    if (tty) fmt::print(stderr, "\n");
+    fmt::print(stderr, "{}\n", result.log_summary);
+    fmt::print(stderr, "zenith replay: rendered {}, skipped {} of this shard's {} frames ({} in "
+               "the flight) into {}\n", result.progress.rendered, result.progress.skipped,
+               result.progress.total, result.frames_in_flight, request.out_dir.string());
+    if (!result.video_status.empty()) fmt::print(stderr, "zenith replay: {}\n", result.video_status);
+    if (result.interrupted) {
+        fmt::print(stderr, "zenith replay: stopped; every written frame is complete; run the same "
+                   "command again to resume\n");
+        return 130;
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -231,6 +294,42 @@ int main(int argc, char** argv) {
                      "ray march every pixel instead of using the Sky-View LUT");
     render->add_option("--out", out, "output file, .exr or .png")->capture_default_str();
 
+    sim::ReplayRequest replay;
+    std::string replay_size = "640x360", replay_exposure = "auto", replay_format = "png",
+                replay_camera = "cockpit", replay_shard, replay_flight, replay_out = "replay",
+                replay_video;
+    std::optional<double> replay_start, replay_end;
+    CLI::App* replay_cmd = app.add_subcommand(
+        "replay", "Render a recorded flight (IGC, GPX, KML gx:Track, CSV) into frames and video; "
+                  "resumable, shardable");
+    replay_cmd->add_option("flight", replay_flight, "flight log (.igc .gpx .kml .csv)")
+        ->required();
+    replay_cmd->add_option("--out", replay_out, "output directory for frame_NNNNNN.png/.exr")
+        ->capture_default_str();
+    replay_cmd->add_option("--fps", replay.fps, "frames per second of flight time")
+        ->capture_default_str();
+    replay_cmd->add_option("--size", replay_size, "frame size WxH")->capture_default_str();
+    replay_cmd->add_option("--camera", replay_camera, "cockpit, chase or ground")
+        ->capture_default_str();
+    replay_cmd->add_option("--fov", replay.fov_deg, "vertical field of view, degrees")
+        ->capture_default_str();
+    replay_cmd->add_option("--exposure", replay_exposure, "EV100 for PNG frames, or auto")
+        ->capture_default_str();
+    replay_cmd->add_option("--format", replay_format, "png, exr or both")->capture_default_str();
+    replay_cmd->add_option("--time-offset", replay.time_offset_s,
+                           "seconds added to the log's times for the sky")
+        ->capture_default_str();
+    replay_cmd->add_option("--time-warp", replay.time_warp, "sky time per flight time")
+        ->capture_default_str();
+    replay_cmd->add_option("--start", replay_start, "flight seconds to start at");
+    replay_cmd->add_option("--end", replay_end, "flight seconds to end at");
+    replay_cmd->add_option("--preset", replay.preset, "atmosphere preset or JSON file")
+        ->capture_default_str();
+    replay_cmd->add_option("--shard", replay_shard,
+                           "K/N: render frames i with i mod N = K (default: Slurm array task "
+                           "variables, else all)");
+    replay_cmd->add_option("--video", replay_video, "encode the PNG frames to this MP4 (ffmpeg)");
+
     CLI::App* info = app.add_subcommand(
         "info", "Versions, the headless GL context (ZENITH_GL=osmesa|egl), star catalogue");
 
@@ -242,6 +341,15 @@ int main(int argc, char** argv) {
 
     try {
         if (*ephemeris) return eph.batch_in.empty() ? RunSingle(eph) : RunBatch(eph);
+        if (*replay_cmd) {
+            replay.flight = replay_flight;
+            replay.out_dir = replay_out;
+            replay.video = replay_video;
+            replay.start_s = replay_start;
+            replay.end_s = replay_end;
+            return RunReplayCommand(replay, replay_size, replay_exposure, replay_format,
+                                    replay_camera, replay_shard);
+        }
         if (*render) {
             frame.out = out;
             return RunRender(frame, size, exposure, quality);
