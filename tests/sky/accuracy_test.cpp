@@ -1,0 +1,181 @@
+// Accuracy of the LUT renderer against the independent path tracer in the scenarios of Hillaire
+// 2020 §6 (reference/accuracy.h): bounds measured at this test's size and sample count, with
+// margin, per channel. The larger table is BENCHMARKS.md, "sky: accuracy against the path
+// tracer" (tests/bench/accuracy_report.cpp).
+//
+// Two measures per scenario:
+//   - the mean bias, renderer mean / reference mean - 1, against its Monte Carlo standard error
+//     (the reference's pixels are independent): a sensitive detector of a gain or colour error;
+//   - the relative RMSE with the reference's noise removed in quadrature (accuracy.h), bounding
+//     per-pixel errors (a misplaced aureole, horizon or terminator).
+// Three scenarios have errors well beyond the paper's (BENCHMARKS.md has the analysis); their
+// bounds only guard against getting worse and say so.
+#include "zenith/sky/reference/accuracy.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+namespace zenith::sky::reference {
+namespace {
+
+// Sanitizer builds run ~10x slower: fewer paths, so more reference noise; the bounds below hold
+// for both (noise-corrected RMSE, bias in standard errors).
+#if defined(__SANITIZE_ADDRESS__)
+constexpr std::int64_t kSamples = 64;
+#else
+constexpr std::int64_t kSamples = 256;
+#endif
+// Mean-bias tolerance in standard errors of the reference mean: 4 sigma, a false alarm rate of
+// 6e-5 per channel, with fixed seeds anyway.
+constexpr double kSigmas = 4.0;
+
+AccuracyOptions TestOptions() {
+    AccuracyOptions options;
+    options.width = 24;
+    options.height = 16;
+    options.samples = kSamples;
+    options.threads = 2;
+    return options;
+}
+
+const AccuracyScenario& Scenario(const std::string& name) {
+    static const std::vector<AccuracyScenario> scenarios = PaperScenarios();
+    for (const AccuracyScenario& s : scenarios) {
+        if (s.name == name) return s;
+    }
+    throw std::invalid_argument("no scenario " + name);
+}
+
+AccuracyResult Measure(const std::string& name) {
+    const AccuracyResult r = MeasureAccuracy(Scenario(name), TestOptions());
+    const glm::dvec3 rel = r.RelativeRmse(), corrected = r.RelativeRmseNoiseCorrected(),
+                     noise = r.RelativeNoise(), bias = r.MeanBias(), sigma = r.MeanBiasError();
+    std::printf(
+        "%s (%s, %lld paths/pixel): relative RMSE (%.4f, %.4f, %.4f), noise (%.4f, %.4f, %.4f), "
+        "noise-corrected (%.4f, %.4f, %.4f), mean bias (%+.4f, %+.4f, %+.4f) +- (%.4f, %.4f, "
+        "%.4f); %.2f s + %.2f s\n",
+        name.c_str(), r.ray_marched ? "ray march" : "Sky-View", static_cast<long long>(kSamples),
+        rel.x, rel.y, rel.z, noise.x, noise.y, noise.z, corrected.x, corrected.y, corrected.z,
+        bias.x, bias.y, bias.z, sigma.x, sigma.y, sigma.z, r.renderer_seconds, r.reference_seconds);
+    return r;
+}
+
+// Per channel: |mean bias| <= bias_bound + kSigmas standard errors, and the noise-corrected
+// relative RMSE <= rmse_bound. `if (!(x <= bound))` so that NaN fails.
+void ExpectWithin(const AccuracyResult& r, const char* name, double bias_bound, double rmse_bound) {
+    const glm::dvec3 bias = r.MeanBias(), sigma = r.MeanBiasError(),
+                     rmse = r.RelativeRmseNoiseCorrected();
+    for (int c = 0; c < 3; ++c) {
+        const double allowed = bias_bound + kSigmas * sigma[c];
+        if (!(std::abs(bias[c]) <= allowed)) {
+            ADD_FAILURE() << name << " channel " << c << ": mean bias " << bias[c] << " exceeds "
+                          << bias_bound << " + " << kSigmas << " x " << sigma[c];
+        }
+        if (!(rmse[c] <= rmse_bound)) {
+            ADD_FAILURE() << name << " channel " << c << ": noise-corrected relative RMSE "
+                          << rmse[c] << " exceeds " << rmse_bound;
+        }
+    }
+}
+
+// Bounds measured at 256 and 64 paths per pixel (BENCHMARKS.md has the 96x64 table); the Earth
+// ones are about twice the largest measured value, so noise and a changed seed stay inside.
+
+// Measured: bias -1.1, -1.3, -2.0 % (significant: the renderer is slightly dark in blue, within
+// the paper's reported level), noise-corrected RMSE <= 0.03.
+constexpr double kDaytimeBias = 0.04;
+constexpr double kDaytimeRmse = 0.08;
+TEST(Accuracy, EarthDaytime) {
+    ExpectWithin(Measure("earth_daytime"), "earth_daytime", kDaytimeBias, kDaytimeRmse);
+}
+
+// Measured: bias -3.0, -3.5, -4.6 %, noise-corrected RMSE <= 0.065 (the aureole of the low sun,
+// sampled by the Sky-View LUT's 200 x 100 texels).
+constexpr double kSunsetBias = 0.07;
+constexpr double kSunsetRmse = 0.12;
+TEST(Accuracy, EarthSunset) {
+    ExpectWithin(Measure("earth_sunset"), "earth_sunset", kSunsetBias, kSunsetRmse);
+}
+
+// Measured: bias +1.3 .. +2.6 %, noise-corrected RMSE <= 0.04: ray marching with 32 steps from
+// space is as close as the paper's space view.
+constexpr double kEarthSpaceBias = 0.05;
+constexpr double kEarthSpaceRmse = 0.12;
+TEST(Accuracy, EarthSpace) {
+    ExpectWithin(Measure("earth_space"), "earth_space", kEarthSpaceBias, kEarthSpaceRmse);
+}
+
+// Known discrepancy, a guard only. With the sun 4 deg below the horizon the renderer's multiple
+// scattering is 2.2-2.5x the path tracer's (bias +27, +53, +55 %): the multiple-scattering LUT
+// has 32 texels linear in mu_s (3.6 deg each near the horizon) and interpolates linearly a term
+// that falls by an order of magnitude between -2 and -6 deg. With 256 texels the excess is gone
+// (BENCHMARKS.md). Fixing it should make this bound far tighter.
+constexpr double kShadowBias = 0.8;
+constexpr double kShadowRmse = 1.2;
+TEST(Accuracy, EarthShadowKnownMultipleScatteringExcess) {
+    ExpectWithin(Measure("earth_shadow"), "earth_shadow", kShadowBias, kShadowRmse);
+}
+
+// Known discrepancy, a guard only: Hillaire 2020 §5.5 treats light as isotropic after the second
+// bounce; Mars dust (g = 0.65, optical depth 0.5, single-scattering albedo >= 0.85) seen at a
+// scattering angle of 110 deg gets 2.2x the path tracer's multiple scattering (bias +51..+58 %).
+// The paper's own Mars-like RMSE is small because its atmosphere differs (accuracy.h).
+constexpr double kMarsBias = 0.8;
+constexpr double kMarsRmse = 1.8;
+TEST(Accuracy, MarsSpaceKnownAnisotropyExcess) {
+    ExpectWithin(Measure("mars_space"), "mars_space", kMarsBias, kMarsRmse);
+}
+
+// The paper's limit (Fig. 12, "the hue can be lost or even start to drift"), asserted as it is:
+// with 50x Rayleigh the slant optical depth to a 45 deg sun is 8 (R) to 47 (B), the directly lit
+// neighbourhood from which Psi_ms is built (Eq. 7-10) is dark, and the renderer loses the light
+// that diffuses down: it keeps ~10 % of the red and < 0.1 % of the green and blue luminance of
+// the path-traced sky (a whitish sky rendered dark red). If this starts failing because the
+// renderer got closer, update BENCHMARKS.md and tighten.
+constexpr double kThickRedBiasLow = -0.97;
+constexpr double kThickRedBiasHigh = -0.8;
+constexpr double kThickGreenBlueBiasHigh = -0.9;
+constexpr double kThickRmse = 1.5;
+TEST(Accuracy, ThickDaytimeLosesDiffusedLight) {
+    const AccuracyResult r = Measure("thick_daytime");
+    const glm::dvec3 bias = r.MeanBias();
+    EXPECT_GE(bias.r, kThickRedBiasLow);
+    EXPECT_LE(bias.r, kThickRedBiasHigh);
+    EXPECT_LE(bias.g, kThickGreenBlueBiasHigh);
+    EXPECT_LE(bias.b, kThickGreenBlueBiasHigh);
+    const glm::dvec3 rmse = r.RelativeRmseNoiseCorrected();
+    for (int c = 0; c < 3; ++c) EXPECT_LE(rmse[c], kThickRmse) << "channel " << c;
+}
+
+// The reference's noise estimate is what the RMSE floor rests on: it must shrink as 1/sqrt(N).
+TEST(Accuracy, ReferenceNoiseFallsAsOneOverSqrtSamples) {
+    AccuracyOptions options = TestOptions();
+    options.width = 8;
+    options.height = 6;
+    options.samples = kSamples / 4;
+    const AccuracyResult few = MeasureAccuracy(Scenario("earth_daytime"), options);
+    options.samples = kSamples;
+    const AccuracyResult many = MeasureAccuracy(Scenario("earth_daytime"), options);
+    for (int c = 0; c < 3; ++c) {
+        // Expected ratio 2; the per-pixel variance estimates themselves scatter by ~10 %.
+        const double ratio = few.noise[c] / many.noise[c];
+        EXPECT_GT(ratio, 1.6) << "channel " << c;
+        EXPECT_LT(ratio, 2.5) << "channel " << c;
+    }
+    // The LUT image is deterministic.
+    EXPECT_EQ(few.renderer.rgb, many.renderer.rgb);
+}
+
+TEST(Accuracy, RejectsBadOptions) {
+    AccuracyOptions options = TestOptions();
+    options.width = 0;
+    EXPECT_THROW(MeasureAccuracy(Scenario("earth_daytime"), options), std::invalid_argument);
+    options = TestOptions();
+    options.samples = 1;
+    EXPECT_THROW(MeasureAccuracy(Scenario("earth_daytime"), options), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace zenith::sky::reference
