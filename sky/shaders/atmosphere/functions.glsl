@@ -264,11 +264,23 @@ vec3 GetTransmittanceToSun(IN(AtmosphereParameters) atmosphere,
 }
 
 // ---------------------------------------------------------------------------------------------
-// Multiple-scattering LUT (H20 §5.5): u = 0.5 + 0.5 mu_s, v = h / (R_t - R).
+// Multiple-scattering LUT (H20 §5.5): v = h / (R_t - R) as in the paper, but u = 0.5 + 0.5 sign(mu_s)
+// sqrt(|mu_s|) instead of 0.5 + 0.5 mu_s: Psi_ms falls steeply through twilight, and with the
+// paper's linear u, 32 texels put 3.6 deg of sun elevation per texel at the horizon, where linear
+// interpolation overshot the Earth's shadow sky by half (tests/sky/accuracy_test.cpp).
+
+Number MultipleScatteringUFromMuS(Number mu_s) {
+    return clamp(0.5 + 0.5 * sign(mu_s) * sqrt(abs(mu_s)), 0.0, 1.0);
+}
+
+Number MuSFromMultipleScatteringU(Number u) {
+    Number x = 2.0 * u - 1.0;
+    return ClampCosine(sign(x) * x * x);
+}
 
 vec2 GetMultipleScatteringTextureUv(IN(AtmosphereParameters) atmosphere, Number r, Number mu_s,
                                     ivec2 size) {
-    Number x_mu_s = clamp(0.5 + 0.5 * mu_s, 0.0, 1.0);
+    Number x_mu_s = MultipleScatteringUFromMuS(mu_s);
     Number x_h = clamp((r - atmosphere.bottom_radius) /
                            (atmosphere.top_radius - atmosphere.bottom_radius), 0.0, 1.0);
     return vec2(GetTextureCoordFromUnitRange(x_mu_s, size.x),
@@ -303,7 +315,7 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
                                     int sqrt_directions, int steps) {
     Number x_mu_s = GetUnitRangeFromTextureCoord(uv.x, size.x);
     Number x_h = GetUnitRangeFromTextureCoord(uv.y, size.y);
-    Number mu_s = ClampCosine(2.0 * x_mu_s - 1.0);
+    Number mu_s = MuSFromMultipleScatteringU(x_mu_s);
     Number r = atmosphere.bottom_radius +
                clamp(x_h, 0.0, 1.0) * (atmosphere.top_radius - atmosphere.bottom_radius);
     // Keep the sample strictly inside the shell so rays from the ground start above it.
@@ -337,7 +349,12 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
             // exp(-sigma_t t) over [0, dt] times the in-scattering source.
             vec3 integral = StepIntegral(s.extinction, dt);
             l += throughput * s.scattering * sun * IsotropicPhase() * integral;  // Eq. 6
-            l_f += throughput * s.scattering * integral;                          // Eq. 8
+            // Eq. 8, with the aerosols' reduced scattering coefficient (1 - g) sigma_s: H20
+            // transfers orders >= 3 isotropically, and for forward-peaked dust the isotropic
+            // medium transporting the same light is the reduced one (similarity relation, van de
+            // Hulst); light scattered forward is light not yet scattered. Without it Mars' dusty
+            // sky (g = 0.65) came out 1.5x the path tracer's.
+            l_f += throughput * (s.scattering - s.mie_scattering * atmosphere.mie_g) * integral;
             throughput *= step_transmittance;
         }
         if (hits_ground) {
