@@ -59,6 +59,7 @@ struct SkySystem::Impl {
     glm::dvec3 stars_observer_ecef{1e300};
     sky::SkyState state;
     SkyLighting lighting;
+    std::optional<sky::SceneDepth> scene_depth;
 
     Impl(const SkySystemSettings& s, std::unique_ptr<sky::gl::HeadlessContext> c)
         : context(std::move(c)), settings(s), atmosphere(sky::LoadAtmosphere(s.preset)) {
@@ -138,6 +139,15 @@ void SkySystem::SetAtmosphere(const sky::Atmosphere& atmosphere) {
     impl_->ground_irradiance = impl_->renderer->ReadGroundIrradiance();
 }
 
+void SkySystem::SetSceneDepth(unsigned depth_texture, double near_m, double far_m) {
+    if (!(depth_texture != 0 && near_m > 0.0 && far_m > near_m)) {
+        throw std::invalid_argument("SetSceneDepth: needs a texture and 0 < near_m < far_m");
+    }
+    impl_->scene_depth = sky::SceneDepth{depth_texture, near_m, far_m};
+}
+
+void SkySystem::ClearSceneDepth() { impl_->scene_depth.reset(); }
+
 void SkySystem::Update() {
     Impl& d = *impl_;
     // Stars move slowly on the sky; their apparent places (0.9 ms for 8,400 stars) are refreshed
@@ -192,6 +202,7 @@ void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
     options.size = {viewport.z, viewport.w};
     options.target_framebuffer = framebuffer;
     options.target_viewport = viewport;
+    options.scene_depth = d.scene_depth;
     options.moon = d.state.moon;
     options.stars = d.state.stars;
     d.renderer->Render(d.state.camera, d.state.lights, options);

@@ -28,6 +28,8 @@ enum Pass : std::size_t {
     kAerialPerspectivePass,
     kRenderPass,           // the composite with the Sky-View LUT
     kRenderRayMarchPass,   // the composite ray marching every pixel (space views)
+    kRenderDepthPass,      // the same two over the host's depth buffer (aerial perspective)
+    kRenderRayMarchDepthPass,
     kPassCount
 };
 
@@ -35,6 +37,7 @@ constexpr std::array<std::string_view, kPassCount> kPassFiles = {
     "atmosphere/transmittance.comp",      "atmosphere/multiple_scattering.comp",
     "atmosphere/irradiance.comp",         "atmosphere/sky_view.comp",
     "atmosphere/aerial_perspective.comp", "atmosphere/render.frag",
+    "atmosphere/render.frag",             "atmosphere/render.frag",
     "atmosphere/render.frag",
 };
 
@@ -120,8 +123,14 @@ struct AtmosphereRenderer::Impl {
                 // Two programs from one source: llvmpipe runs both sides of a branch under a
                 // mask, so a per-frame choice made in the shader cost every pixel the 32-step
                 // ray march; chosen here it costs nothing.
-                gl::FullscreenProgram(kPassFiles[5], "#define ZENITH_RAY_MARCH 0\n"),
-                gl::FullscreenProgram(kPassFiles[6], "#define ZENITH_RAY_MARCH 1\n")};
+                gl::FullscreenProgram(kPassFiles[5],
+                                      "#define ZENITH_RAY_MARCH 0\n#define ZENITH_SCENE_DEPTH 0\n"),
+                gl::FullscreenProgram(kPassFiles[6],
+                                      "#define ZENITH_RAY_MARCH 1\n#define ZENITH_SCENE_DEPTH 0\n"),
+                gl::FullscreenProgram(kPassFiles[7],
+                                      "#define ZENITH_RAY_MARCH 0\n#define ZENITH_SCENE_DEPTH 1\n"),
+                gl::FullscreenProgram(kPassFiles[8],
+                                      "#define ZENITH_RAY_MARCH 1\n#define ZENITH_SCENE_DEPTH 1\n")};
     }
 
     Impl(const Atmosphere& a, const LutSettings& s)
@@ -185,6 +194,7 @@ struct AtmosphereRenderer::Impl {
         glBindTextureUnit(2, irradiance);
         glBindTextureUnit(3, sky_view);
         glBindTextureUnit(4, stars != 0 ? stars : transmittance);  // unused when no stars
+        glBindTextureUnit(6, aerial_perspective);
     }
 
     // Runs one compute pass writing `output` (bound as image unit 0), timed by a query.
@@ -203,7 +213,7 @@ struct AtmosphereRenderer::Impl {
     }
 
     // The composite: a full-screen triangle into `target` (our frame's FBO or the host's).
-    void Draw(Pass pass, GLuint target, glm::ivec4 viewport) {
+    void Draw(Pass pass, GLuint target, glm::ivec4 viewport, GLuint scene_depth = 0) {
         GLint host_framebuffer = 0;
         GLint host_viewport[4] = {0, 0, 0, 0};
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &host_framebuffer);
@@ -212,13 +222,21 @@ struct AtmosphereRenderer::Impl {
         programs[pass].Use();
         glBindFramebuffer(GL_FRAMEBUFFER, target);
         glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
-        glDisable(GL_BLEND);
         glDisable(GL_DEPTH_TEST);
+        if (scene_depth != 0) {
+            // Premultiplied: the output is (L, T) over geometry and (sky, 0) elsewhere.
+            glBindTextureUnit(5, scene_depth);
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_SRC_ALPHA);
+        } else {
+            glDisable(GL_BLEND);
+        }
         glBindVertexArray(vertex_array);
         glBeginQuery(GL_TIME_ELAPSED, queries[pass]);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glEndQuery(GL_TIME_ELAPSED);
         query_used[pass] = true;
+        glDisable(GL_BLEND);
         glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(host_framebuffer));
         glViewport(host_viewport[0], host_viewport[1], host_viewport[2], host_viewport[3]);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -252,6 +270,10 @@ struct AtmosphereRenderer::Impl {
         if (options.target_framebuffer) {
             u.viewport_x = options.target_viewport.x;
             u.viewport_y = options.target_viewport.y;
+        }
+        if (options.scene_depth) {
+            u.scene_near_m = static_cast<float>(options.scene_depth->near_m);
+            u.scene_far_m = static_cast<float>(options.scene_depth->far_m);
         }
         // Per-frame constants, from the shared functions compiled as C++ (double).
         const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
@@ -360,10 +382,20 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     }
     d.UploadLights(lights);
     d.UploadFrame(camera, lights, options, sun_disk_resolved, !points.empty());
+    if (options.scene_depth &&
+        !(to_host && options.scene_depth->texture != 0 && options.scene_depth->near_m > 0.0 &&
+          options.scene_depth->far_m > options.scene_depth->near_m)) {
+        throw std::invalid_argument("RenderOptions::scene_depth needs a host framebuffer, a depth "
+                                    "texture and 0 < near_m < far_m");
+    }
     const bool inside = glm::length(camera.position) < d.atmosphere.top_radius;
-    d.Draw(inside && !options.force_ray_march ? kRenderPass : kRenderRayMarchPass,
-           to_host ? *options.target_framebuffer : d.framebuffer,
-           to_host ? options.target_viewport : glm::ivec4(0, 0, options.size.x, options.size.y));
+    const bool ray_march = !inside || options.force_ray_march;
+    const Pass pass = options.scene_depth
+                          ? (ray_march ? kRenderRayMarchDepthPass : kRenderDepthPass)
+                          : (ray_march ? kRenderRayMarchPass : kRenderPass);
+    d.Draw(pass, to_host ? *options.target_framebuffer : d.framebuffer,
+           to_host ? options.target_viewport : glm::ivec4(0, 0, options.size.x, options.size.y),
+           options.scene_depth ? options.scene_depth->texture : 0);
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {
@@ -413,7 +445,8 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
     };
     return {ms(kTransmittancePass), ms(kMultipleScatteringPass), ms(kIrradiancePass),
             ms(kSkyViewPass),       ms(kAerialPerspectivePass),
-            std::max(ms(kRenderPass), ms(kRenderRayMarchPass))};
+            std::max({ms(kRenderPass), ms(kRenderRayMarchPass), ms(kRenderDepthPass),
+                      ms(kRenderRayMarchDepthPass)})};
 }
 
 }  // namespace zenith::sky

@@ -700,6 +700,22 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
 // after slice, composing each segment onto what lies in front of it (L += T L_seg, T *= T_seg),
 // which is exact and costs O(slices) rather than O(slices^2) for a march per froxel.
 
+// Reads the froxel volume at screen uv and a distance (km): slice centres are at
+// (z + 0.5) / slices * range. Nearer than the first centre, the first slice's in-scattering and
+// optical depth are scaled by the distance (they grow from zero at the camera); beyond the
+// range, the last slice is used. Returns (luminance, mean transmittance).
+vec4 SampleAerialPerspective(IN(AerialPerspectiveTexture) aerial_perspective_texture, vec2 uv,
+                             Number distance, Number range, int slices) {
+    Number w = distance / range;
+    Number first = 0.5 / Number(slices);
+    if (w >= first) {
+        return SampleTexture3D(aerial_perspective_texture, vec3(uv, clamp(w, first, 1.0 - first)));
+    }
+    vec4 v = SampleTexture3D(aerial_perspective_texture, vec3(uv, first));
+    Number f = max(w, 0.0) / first;
+    return vec4(vec3(v.x, v.y, v.z) * f, pow(max(v.w, 1e-6), f));
+}
+
 // Steps within one slice: the full-range step budget spread over the slices, at least one.
 int AerialPerspectiveStepsPerSlice(int slices, int full_steps) {
     return max(1, (full_steps + slices - 1) / slices);

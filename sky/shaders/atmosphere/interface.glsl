@@ -45,6 +45,10 @@ layout(std140, binding = 3) uniform FrameBlock {
     float cos_moon_radius;
     vec3 sky_view_x;
     int viewport_y;
+    float scene_near_m;  // the host's perspective projection, for its depth buffer
+    float scene_far_m;
+    int padding1;
+    int padding2;
 };
 
 layout(binding = 0) uniform sampler2D transmittance_texture;
@@ -52,6 +56,8 @@ layout(binding = 1) uniform sampler2D multiple_scattering_texture;
 layout(binding = 2) uniform sampler2D irradiance_texture;
 layout(binding = 3) uniform sampler2D sky_view_texture;
 layout(binding = 4) uniform sampler2D star_texture;  // point sources as luminance, frame-sized
+layout(binding = 5) uniform sampler2D scene_depth_texture;  // the host's depth (0..1)
+layout(binding = 6) uniform sampler3D aerial_perspective_texture;
 
 // World direction through the centre of pixel/cell `cell` of a grid of `grid` cells covering the
 // view (NDC y up, so row 0 is the bottom row, as in GL textures).

@@ -84,5 +84,26 @@ void main() {
     if (moon_enabled != 0) beyond += MoonLuminance(direction);
     if (stars_enabled != 0) beyond += texelFetch(star_texture, pixel, 0).rgb;
     if (any(greaterThan(beyond, vec3(0.0)))) luminance += beyond * TransmittanceToSpace(direction);
+
+#if ZENITH_SCENE_DEPTH
+    // The host's geometry: where its depth is nearer than the far plane, the output is the
+    // aerial perspective in front of it, premultiplied for blending (ONE, SRC_ALPHA):
+    // framebuffer = in-scattered + transmittance * the host's colour (H20 §5.4).
+    float depth = texelFetch(scene_depth_texture, pixel, 0).r;
+    if (depth < 1.0) {
+        float z_ndc = 2.0 * depth - 1.0;
+        float eye_depth = 2.0 * scene_near_m * scene_far_m /
+                          (scene_far_m + scene_near_m - z_ndc * (scene_far_m - scene_near_m));
+        vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
+        float distance_km = eye_depth * length(vec3(ndc.x * tan_half_fov * aspect,
+                                                    ndc.y * tan_half_fov, 1.0)) / 1000.0;
+        out_luminance = SampleAerialPerspective(
+            aerial_perspective_texture, (vec2(pixel) + 0.5) / vec2(output_size), distance_km,
+            aerial_perspective_range_km, aerial_perspective_size.z);
+        return;
+    }
+    out_luminance = vec4(luminance, 0.0);
+#else
     out_luminance = vec4(luminance, 1.0);
+#endif
 }

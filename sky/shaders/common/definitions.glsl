@@ -9,5 +9,7 @@
 #define MultipleScatteringTexture sampler2D
 #define SkyViewTexture sampler2D
 #define IrradianceTexture sampler2D
+#define AerialPerspectiveTexture sampler3D
 #define kPi 3.14159265358979323846
 vec4 SampleTexture2D(sampler2D t, vec2 uv) { return textureLod(t, uv, 0.0); }
+vec4 SampleTexture3D(sampler3D t, vec3 uvw) { return textureLod(t, uvw, 0.0); }

@@ -88,8 +88,13 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     float cos_moon_radius;
     glm::vec3 sky_view_x;
     int viewport_y;
+    float scene_near_m;
+    float scene_far_m;
+    int padding1;
+    int padding2;
 };
-static_assert(sizeof(FrameUniforms) == 160);
+static_assert(sizeof(FrameUniforms) == 176);
+static_assert(offsetof(FrameUniforms, scene_near_m) == 160);
 static_assert(offsetof(FrameUniforms, moon_direction) == 96);
 static_assert(offsetof(FrameUniforms, stars_enabled) == 116);
 static_assert(offsetof(FrameUniforms, sky_view_up) == 128);

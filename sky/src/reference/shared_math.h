@@ -84,12 +84,59 @@ private:
     std::vector<vec4> texels_;
 };
 
+// A float RGBA volume with GL_LINEAR semantics, clamped (or repeating, for tileable noise).
+class Texture3D {
+public:
+    Texture3D() = default;
+    Texture3D(int width, int height, int depth, bool wrap = false)
+        : size_(width, height, depth), wrap_(wrap),
+          texels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
+                  static_cast<std::size_t>(depth)) {}
+    ivec3 size() const { return size_; }
+    vec4& at(int x, int y, int z) { return texels_[Index(x, y, z)]; }
+    const vec4& at(int x, int y, int z) const { return texels_[Index(x, y, z)]; }
+
+    vec4 Sample(vec3 uvw) const {
+        const vec3 p = uvw * vec3(size_) - 0.5;
+        const vec3 f = glm::floor(p);
+        const ivec3 i = ivec3(f);
+        const vec3 t = p - f;
+        vec4 result(0.0);
+        for (int corner = 0; corner < 8; ++corner) {
+            const ivec3 o((corner & 1), (corner >> 1) & 1, (corner >> 2) & 1);
+            const double w = (o.x ? t.x : 1.0 - t.x) * (o.y ? t.y : 1.0 - t.y) *
+                             (o.z ? t.z : 1.0 - t.z);
+            result += w * Fetch(i + o);
+        }
+        return result;
+    }
+
+private:
+    std::size_t Index(int x, int y, int z) const {
+        return (static_cast<std::size_t>(z) * static_cast<std::size_t>(size_.y) +
+                static_cast<std::size_t>(y)) * static_cast<std::size_t>(size_.x) +
+               static_cast<std::size_t>(x);
+    }
+    const vec4& Fetch(ivec3 p) const {
+        for (int a = 0; a < 3; ++a) {
+            p[a] = wrap_ ? ((p[a] % size_[a]) + size_[a]) % size_[a]
+                         : std::clamp(p[a], 0, size_[a] - 1);
+        }
+        return at(p.x, p.y, p.z);
+    }
+    ivec3 size_{0};
+    bool wrap_ = false;
+    std::vector<vec4> texels_;
+};
+
 using TransmittanceTexture = Texture2D;
 using MultipleScatteringTexture = Texture2D;
 using SkyViewTexture = Texture2D;
 using IrradianceTexture = Texture2D;
+using AerialPerspectiveTexture = Texture3D;
 
 inline vec4 SampleTexture2D(const Texture2D& t, vec2 uv) { return t.Sample(uv); }
+inline vec4 SampleTexture3D(const Texture3D& t, vec3 uvw) { return t.Sample(uvw); }
 
 }  // namespace zenith::sky::ref
 

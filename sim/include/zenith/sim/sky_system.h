@@ -89,6 +89,11 @@ public:
     void SetViewFromEnu(const glm::dmat3& world_from_view);
     void SetProjection(double vertical_fov, double aspect);
     void SetAtmosphere(const sky::Atmosphere& atmosphere);
+    // The host's depth texture (0..1, standard perspective with these planes, metres) for the
+    // next Render calls: its geometry gets aerial perspective, framebuffer = L + T * colour, and
+    // the sky is drawn only where the depth is at the far plane. Clear with ClearSceneDepth().
+    void SetSceneDepth(unsigned depth_texture, double near_m, double far_m);
+    void ClearSceneDepth();
 
     // Ephemeris, lights, lighting and per-frame LUTs for the current state.
     void Update();

@@ -14,6 +14,16 @@
 
 namespace zenith::sky {
 
+// The host's depth buffer, to draw aerial perspective over its geometry: a depth texture (0..1,
+// standard OpenGL perspective projection with these near and far planes, metres) of the
+// viewport's size. Pixels nearer than the far plane get in-scattering and transmittance
+// blended over the host's colour (framebuffer = L + T * colour); the others get the sky.
+struct SceneDepth {
+    unsigned texture = 0;
+    double near_m = 0.5;
+    double far_m = 100000.0;
+};
+
 struct RenderOptions {
     glm::ivec2 size{1280, 720};
     // Inside the atmosphere the sky comes from the Sky-View LUT; above it (or always, if
@@ -28,6 +38,7 @@ struct RenderOptions {
     // the viewport's size. The host's framebuffer binding and viewport are restored afterwards.
     std::optional<unsigned> target_framebuffer;
     glm::ivec4 target_viewport{0, 0, 0, 0};
+    std::optional<SceneDepth> scene_depth;  // with a host framebuffer only
 };
 
 // GPU time of each pass in milliseconds, measured with GL timer queries.
