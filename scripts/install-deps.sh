@@ -16,6 +16,8 @@ packages=(
     libopenexr-dev libpng-dev
     # sim: flight logs (GPX/KML XML), EGM96 geoid grid for MSL -> WGS84 heights (egm96_15.gtx)
     libtinyxml2-dev proj-data
+    # vis: zenith-plot (Debian's VTK 9 is X11-only: Xvfb + xauth for headless plots, xvfb-run)
+    libvtk9-dev xvfb xauth
     # tests and benchmarks
     libgtest-dev libgmock-dev libbenchmark-dev
 )
