@@ -1,0 +1,260 @@
+// Weather presets and maps (clouds/weather.h): the shipped presets load and validate, bad files
+// are refused with a message that names the file, the problem and what is expected, procedural
+// maps are deterministic, tile, keep coverage 0 exactly clear, and images load from PNG and EXR.
+#include <gtest/gtest.h>
+#include <png.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+
+#include "zenith/sky/clouds/weather.h"
+#include "zenith/sky/image_io.h"
+
+namespace zenith::sky::clouds {
+namespace {
+
+std::filesystem::path TempDir(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::path(ZENITH_BINARY_DIR) / "test-tmp" /
+                                      (name + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+// The message of the WeatherError `f` throws, or "" (and a failure) if it does not throw.
+template <class F>
+std::string ErrorOf(F&& f) {
+    try {
+        f();
+    } catch (const WeatherError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no WeatherError";
+    return "";
+}
+
+void ExpectMentions(const std::string& message, std::initializer_list<const char*> parts) {
+    for (const char* part : parts) {
+        EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' not in: " << message;
+    }
+}
+
+// One layer of JSON with `field` replaced.
+std::string LayerJson(const std::string& extra = "", const std::string& coverage = "0.4") {
+    return R"({"name": "t", "layers": [{"base_altitude_m": 1500, "top_altitude_m": 4000,
+        "coverage": )" + coverage + R"(, "cloud_type": "cumulus", "precipitation": 0,
+        "map_period_m": 60000, "map": {"procedural": "uniform"})" + extra + "}]}";
+}
+
+TEST(CloudWeatherPresets, EveryPresetLoadsAndValidates) {
+    for (const char* name :
+         {"clear", "scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus"}) {
+        SCOPED_TRACE(name);
+        const Weather weather = LoadWeather(name);
+        EXPECT_EQ(weather.name, name);
+        EXPECT_FALSE(weather.description.empty());
+        EXPECT_NO_THROW(Validate(weather));
+        for (const CloudLayer& layer : weather.layers) {
+            const WeatherMap map = BuildWeatherMap(layer);
+            EXPECT_EQ(map.size, layer.map.size);
+        }
+    }
+    EXPECT_TRUE(LoadWeather("clear").layers.empty());
+    const Weather cb = LoadWeather("cumulonimbus");
+    ASSERT_EQ(cb.layers.size(), 1u);
+    EXPECT_EQ(cb.layers[0].cloud_type, 1.0);
+    EXPECT_EQ(cb.layers[0].top_altitude, 12000.0);
+    const Weather broken = LoadWeather("broken");
+    ASSERT_EQ(broken.layers.size(), 2u);  // several layers at different altitudes
+    EXPECT_LE(broken.layers[0].top_altitude, broken.layers[1].base_altitude);
+    const CloudLayer& cu = LoadWeather("scattered_cumulus").layers[0];
+    EXPECT_EQ(cu.wind_speed, 8.0);
+    EXPECT_NEAR(cu.wind_from, 1.5 * std::numbers::pi, 1e-15);
+}
+
+TEST(CloudWeatherPresets, UnknownPresetListsTheShippedOnes) {
+    ExpectMentions(ErrorOf([] { LoadWeather("drizzle"); }),
+                   {"drizzle.json", "scattered_cumulus", "overcast_stratus"});
+}
+
+TEST(CloudWeatherPresets, BadFieldsAreNamedWithValueAndRange) {
+    ExpectMentions(ErrorOf([] { ParseWeatherJson(LayerJson("", "1.5"), "w.json"); }),
+                   {"w.json", "layers[0].coverage", "1.5", "0 <= value <= 1"});
+    ExpectMentions(ErrorOf([] { ParseWeatherJson(LayerJson(", \"colour\": 1"), "w.json"); }),
+                   {"layers[0].colour", "unknown key", "coverage"});
+    ExpectMentions(
+        ErrorOf([] { ParseWeatherJson(LayerJson(", \"wind_speed_m_s\": 400"), "w.json"); }),
+        {"wind_speed_m_s = 400 m/s", "150 m/s"});
+    ExpectMentions(ErrorOf([] {
+                       ParseWeatherJson(R"({"layers": [{"base_altitude_m": 1500,
+                           "top_altitude_m": 4000, "coverage": 0.4, "cloud_type": "nimbus",
+                           "precipitation": 0, "map_period_m": 60000,
+                           "map": {"procedural": "uniform"}}]})",
+                                        "w.json");
+                   }),
+                   {"cloud_type", "'nimbus'", "cumulonimbus"});
+    ExpectMentions(ErrorOf([] {
+                       ParseWeatherJson(R"({"layers": [{"base_altitude_m": 3000,
+                           "top_altitude_m": 2000, "coverage": 0.4, "cloud_type": 0.5,
+                           "precipitation": 0, "map_period_m": 60000,
+                           "map": {"procedural": "uniform"}}]})",
+                                        "w.json");
+                   }),
+                   {"top_altitude_m = 2000 m", "base = 3000 m"});
+    ExpectMentions(ErrorOf([] { ParseWeatherJson(R"({"layers": [)", "w.json"); }),
+                   {"w.json", "JSON syntax"});
+    ExpectMentions(ErrorOf([] { ParseWeatherJson(R"({"layers": [{}]})", "w.json"); }),
+                   {"layers[0].base_altitude_m", "missing"});
+    // Overlapping layers.
+    Weather two = ParseWeatherJson(LayerJson(), "w.json");
+    two.layers.push_back(two.layers[0]);
+    ExpectMentions(ErrorOf([&] { Validate(two); }),
+                   {"layers[1]", "base_altitude = 1500 m", "do not overlap"});
+    // Procedural map parameters.
+    ExpectMentions(ErrorOf([] {
+                       ParseWeatherJson(R"({"layers": [{"base_altitude_m": 1500,
+                           "top_altitude_m": 4000, "coverage": 0.4, "cloud_type": 0.5,
+                           "precipitation": 0, "map_period_m": 60000,
+                           "map": {"procedural": "patches", "size": 300}}]})",
+                                        "w.json");
+                   }),
+                   {"map.size = 300", "power of two"});
+}
+
+TEST(CloudWeatherMaps, ProceduralMapsAreDeterministicInRangeAndTile) {
+    for (const char* name : {"scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus"}) {
+        for (const CloudLayer& layer : LoadWeather(name).layers) {
+            SCOPED_TRACE(std::string(name) + " " + layer.name);
+            const WeatherMap map = BuildWeatherMap(layer);
+            EXPECT_EQ(map.texels, BuildWeatherMap(layer).texels);
+            double coverage = 0.0, interior = 0.0, wrap = 0.0;
+            const int n = map.size;
+            for (int y = 0; y < n; ++y) {
+                for (int x = 0; x < n; ++x) {
+                    const glm::vec4 t = map.at(x, y);
+                    for (int c = 0; c < 4; ++c) {
+                        ASSERT_TRUE(t[c] >= 0.0f && t[c] <= 1.0f) << x << "," << y << " " << c;
+                    }
+                    coverage += t.x;
+                    const double dx = std::abs(map.at((x + 1) % n, y).x - t.x);
+                    const double dy = std::abs(map.at(x, (y + 1) % n).x - t.x);
+                    (x + 1 == n ? wrap : interior) += dx;
+                    (y + 1 == n ? wrap : interior) += dy;
+                }
+            }
+            coverage /= n * n;
+            // The map's mean coverage is the layer's (cells add full-cover cores on top).
+            EXPECT_NEAR(coverage, layer.coverage, layer.map.kind == WeatherMapSource::Kind::kCells ? 0.3 : 0.12);
+            // Tiling: the seam costs no more than any other column or row.
+            EXPECT_LE(wrap / (2.0 * n), 1.3 * interior / (2.0 * n * (n - 1)) + 1e-6);
+        }
+    }
+}
+
+TEST(CloudWeatherMaps, CoverageZeroIsExactlyClearForEveryProceduralKind) {
+    CloudLayer layer;
+    layer.coverage = 0.0;
+    layer.precipitation = 0.5;
+    for (auto kind : {WeatherMapSource::Kind::kUniform, WeatherMapSource::Kind::kPatches,
+                      WeatherMapSource::Kind::kCells}) {
+        layer.map.kind = kind;
+        layer.map.variation = 1.0;
+        const WeatherMap map = BuildWeatherMap(layer);
+        for (const glm::vec4& t : map.texels) ASSERT_EQ(t.x, 0.0f);
+    }
+}
+
+TEST(CloudWeatherMaps, WindCarriesTheWeatherDownwind) {
+    CloudLayer layer;
+    layer.wind_speed = 10.0;
+    layer.wind_from = 1.5 * std::numbers::pi;  // a west wind blows toward the east
+    const glm::dvec2 d = WindDisplacement(layer, 60.0);
+    EXPECT_NEAR(d.x, 600.0, 1e-9);
+    EXPECT_NEAR(d.y, 0.0, 1e-9);
+    layer.wind_from = 0.0;  // from the north, toward the south
+    EXPECT_NEAR(WindDisplacement(layer, 1.0).y, -10.0, 1e-12);
+}
+
+// --- images -----------------------------------------------------------------------------------
+
+void WritePngRaw(const std::filesystem::path& path, int width, int height, png_uint_32 format,
+                 unsigned char value = 128) {
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    image.width = static_cast<png_uint_32>(width);
+    image.height = static_cast<png_uint_32>(height);
+    image.format = format;
+    std::vector<unsigned char> pixels(PNG_IMAGE_SIZE(image), value);
+    ASSERT_TRUE(png_image_write_to_file(&image, path.c_str(), 0, pixels.data(), 0, nullptr));
+}
+
+TEST(CloudWeatherImages, LoadsPngAndExr) {
+    const std::filesystem::path dir = TempDir("weather-images");
+    WritePngRaw(dir / "ok.png", 64, 64, PNG_FORMAT_RGB, 51);
+    const WeatherMap png = LoadWeatherMapImage(dir / "ok.png");
+    EXPECT_EQ(png.size, 64);
+    EXPECT_EQ(png.at(10, 20), glm::vec4(0.2f, 0.2f, 0.2f, 1.0f));
+
+    Image exr(32, 32, glm::vec4(0.25f, 0.0f, 0.5f, 0.75f));
+    exr.at(3, 4) = glm::vec4(1.0f, 1.0f, 0.0f, 0.0f);
+    WriteExr(dir / "ok.exr", exr);
+    const WeatherMap map = LoadWeatherMapImage(dir / "ok.exr");
+    EXPECT_EQ(map.size, 32);
+    EXPECT_EQ(map.at(0, 0), glm::vec4(0.25f, 0.0f, 0.5f, 0.75f));
+    EXPECT_EQ(map.at(3, 4), glm::vec4(1.0f, 1.0f, 0.0f, 0.0f));
+
+    // A preset naming a map file relative to itself.
+    std::ofstream(dir / "front.json")
+        << R"({"layers": [{"base_altitude_m": 1000, "top_altitude_m": 3000, "coverage": 0.5,
+              "cloud_type": "stratus", "precipitation": 0.1, "map_period_m": 20000,
+              "map": {"file": "ok.exr"}}]})";
+    const Weather weather = LoadWeather((dir / "front.json").string());
+    EXPECT_EQ(weather.layers[0].map.file, dir / "ok.exr");
+    EXPECT_EQ(BuildWeatherMap(weather.layers[0]).texels, map.texels);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(CloudWeatherImages, BadImagesAreRefusedWithFileProblemAndExpectation) {
+    const std::filesystem::path dir = TempDir("weather-bad");
+    const auto error = [&](const std::string& file) {
+        return ErrorOf([&] { LoadWeatherMapImage(dir / file); });
+    };
+    WritePngRaw(dir / "wide.png", 64, 32, PNG_FORMAT_RGB);
+    ExpectMentions(error("wide.png"), {"wide.png", "not square: 64x32", "power of two"});
+    WritePngRaw(dir / "odd.png", 100, 100, PNG_FORMAT_RGB);
+    ExpectMentions(error("odd.png"), {"odd.png", "not a power of two: 100x100", "e.g. 256x256"});
+    WritePngRaw(dir / "tiny.png", 8, 8, PNG_FORMAT_RGB);
+    ExpectMentions(error("tiny.png"), {"tiny.png", "8x8", "[16, 4096]"});
+    WritePngRaw(dir / "grey.png", 64, 64, PNG_FORMAT_GRAY);
+    ExpectMentions(error("grey.png"), {"grey.png", "1 channel", "8-bit RGB (3 channels"});
+    WritePngRaw(dir / "rgba.png", 64, 64, PNG_FORMAT_RGBA);
+    ExpectMentions(error("rgba.png"), {"rgba.png", "4 channels (RGBA)", "OpenEXR"});
+    std::ofstream(dir / "fake.png") << "this is not a png";
+    ExpectMentions(error("fake.png"), {"fake.png", "not a PNG"});
+    std::ofstream(dir / "map.tif") << "x";
+    ExpectMentions(error("map.tif"), {"map.tif", "unknown extension '.tif'", ".png or .exr"});
+
+    Image nan(16, 16, glm::vec4(0.5f));
+    nan.at(5, 7).y = std::numeric_limits<float>::quiet_NaN();
+    WriteExr(dir / "nan.exr", nan);
+    ExpectMentions(error("nan.exr"),
+                   {"nan.exr", "non-finite", "pixel (5, 7)", "G (precipitation)", "[0, 1]"});
+    Image high(16, 16, glm::vec4(0.5f));
+    high.at(15, 0).x = 1.5f;
+    WriteExr(dir / "high.exr", high);
+    ExpectMentions(error("high.exr"),
+                   {"high.exr", "out of range", "pixel (15, 0)", "R (coverage) = 1.5"});
+    Image wide(32, 16, glm::vec4(0.5f));
+    WriteExr(dir / "wide.exr", wide);
+    ExpectMentions(error("wide.exr"), {"wide.exr", "not square: 32x16"});
+    std::ofstream(dir / "fake.exr") << "nope";
+    ExpectMentions(error("fake.exr"), {"fake.exr", "cannot read as OpenEXR"});
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace zenith::sky::clouds
