@@ -1,0 +1,252 @@
+// Laws of the cloud density (sky/shaders/clouds/functions.glsl compiled as C++): coverage 0 is
+// exactly the clear sky, nothing outside the layer, the height signal of H16 Eq. 5.1, erosion
+// that only removes, density monotonic in coverage, tiling with the weather map's period, and
+// the dome projection that keeps the shell at a constant altitude over the curved planet.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
+
+#include "reference/cloud_functions.h"
+
+namespace zenith::sky::ref {
+namespace {
+
+using clouds::CloudLayer;
+using clouds::WeatherMapSource;
+
+const clouds::CloudNoise& Noise() {
+    static const clouds::CloudNoise noise =
+        clouds::LoadOrGenerateCloudNoise(
+            clouds::CloudNoiseSettings{},
+            std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache")
+            .noise;
+    return noise;
+}
+const Texture3D& Shape() {
+    static const Texture3D t = ToTexture(Noise().shape);
+    return t;
+}
+const Texture3D& Detail() {
+    static const Texture3D t = ToTexture(Noise().detail);
+    return t;
+}
+
+// A cumulus layer 1.5-4 km, weather tile 40 km, shape noise 10 km (2.5 km in altitude), detail
+// 2 km: both noises tile a whole number of times per weather tile.
+CloudLayerParameters Layer() {
+    CloudLayerParameters p{};
+    p.bottom_radius = 6360.0;
+    p.base_altitude = 1.5;
+    p.top_altitude = 4.0;
+    p.weather_period = 40.0;
+    p.shape_period = 10.0;
+    p.shape_period_y = 2.5;
+    p.detail_period = 2.0;
+    p.erosion_strength = 0.5;
+    p.wind_offset_x = 0.0;
+    p.wind_offset_z = 0.0;
+    return p;
+}
+
+RepeatTexture2D WeatherFor(double coverage, WeatherMapSource::Kind kind, double type = 0.5,
+                           double precipitation = 0.0) {
+    CloudLayer layer;
+    layer.coverage = coverage;
+    layer.cloud_type = type;
+    layer.precipitation = precipitation;
+    layer.map.kind = kind;
+    layer.map.size = 64;
+    layer.map.cells_per_tile = 6;
+    layer.map.variation = 0.8;
+    return ToTexture(clouds::BuildWeatherMap(layer));
+}
+
+struct Point {
+    vec2 ground;
+    double altitude;
+};
+
+std::vector<Point> RandomPoints(int n, double altitude_lo, double altitude_hi, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> g(-100.0, 100.0), a(altitude_lo, altitude_hi);
+    std::vector<Point> points;
+    for (int i = 0; i < n; ++i) points.push_back({vec2(g(rng), g(rng)), a(rng)});
+    return points;
+}
+
+double Density(const CloudLayerParameters& layer, const RepeatTexture2D& weather,
+               const Point& p) {
+    return SampleCloudDensityAt(layer, weather, Shape(), Detail(), p.ground, p.altitude).density;
+}
+
+TEST(CloudDensity, CoverageZeroIsExactlyTheClearSky) {
+    for (auto kind : {WeatherMapSource::Kind::kUniform, WeatherMapSource::Kind::kPatches,
+                      WeatherMapSource::Kind::kCells}) {
+        const RepeatTexture2D weather = WeatherFor(0.0, kind, 1.0, 1.0);
+        for (const Point& p : RandomPoints(20000, 0.0, 6.0, 1)) {
+            ASSERT_EQ(Density(Layer(), weather, p), 0.0);
+        }
+    }
+    // And clouds do appear with coverage, on the same points.
+    const RepeatTexture2D weather = WeatherFor(0.6, WeatherMapSource::Kind::kUniform);
+    int cloudy = 0;
+    for (const Point& p : RandomPoints(20000, 1.5, 4.0, 1)) cloudy += Density(Layer(), weather, p) > 0.0;
+    EXPECT_GT(cloudy, 500);
+}
+
+TEST(CloudDensity, NothingBelowTheBaseOrAboveTheTop) {
+    const RepeatTexture2D weather = WeatherFor(1.0, WeatherMapSource::Kind::kUniform, 1.0);
+    for (const Point& p : RandomPoints(5000, -1.0, 1.5, 2)) ASSERT_EQ(Density(Layer(), weather, p), 0.0);
+    for (const Point& p : RandomPoints(5000, 4.0, 20.0, 3)) ASSERT_EQ(Density(Layer(), weather, p), 0.0);
+    double largest = 0.0;
+    for (const Point& p : RandomPoints(5000, 1.5, 4.0, 4)) {
+        const double d = Density(Layer(), weather, p);
+        ASSERT_GE(d, 0.0);
+        ASSERT_LE(d, 1.0);
+        largest = std::max(largest, d);
+    }
+    EXPECT_GT(largest, 0.3);
+}
+
+TEST(CloudDensity, HeightSignalIsTheParabolaOfEquation51) {
+    for (const double h : {0.2, 1.0, 2.0, 7.5}) {
+        const double a = 1.0;
+        EXPECT_EQ(CloudHeightSignal(a, a, h), 0.0);
+        EXPECT_NEAR(CloudHeightSignal(a + h, a, h), 0.0, 1e-14);
+        EXPECT_NEAR(CloudHeightSignal(a + 0.5 * h, a, h), 1.0, 1e-15);  // the maximum, 1
+        EXPECT_NEAR(CloudHeightSignal(a + 0.25 * h, a, h), 0.75, 1e-15);
+        EXPECT_EQ(CloudHeightSignal(a - 0.1, a, h), 0.0);
+        EXPECT_EQ(CloudHeightSignal(a + h + 0.1, a, h), 0.0);
+        for (int i = 0; i <= 100; ++i) {
+            const double x = a + h * i / 100.0;
+            EXPECT_NEAR(CloudHeightSignal(x, a, h), (x - a) * (x - a - h) * -4.0 / (h * h), 1e-14);
+            EXPECT_LE(CloudHeightSignal(x, a, h), 1.0);
+            EXPECT_NEAR(CloudHeightSignal(x, a, h), CloudHeightSignal(2.0 * a + h - x, a, h), 1e-14);
+        }
+    }
+    EXPECT_EQ(CloudHeightSignal(1.0, 1.0, 0.0), 0.0);
+    // H16 Fig. 5.2: a_s = 1, h = 2, density above 0 between altitudes 1 and 3.
+    EXPECT_GT(CloudHeightSignal(1.01, 1.0, 2.0), 0.0);
+    EXPECT_GT(CloudHeightSignal(2.99, 1.0, 2.0), 0.0);
+}
+
+TEST(CloudDensity, ErosionOnlyRemovesDensity) {
+    const RepeatTexture2D weather = WeatherFor(0.7, WeatherMapSource::Kind::kPatches);
+    CloudLayerParameters smooth = Layer(), eroded = Layer();
+    smooth.erosion_strength = 0.0;
+    eroded.erosion_strength = 0.7;
+    int removed = 0;
+    for (const Point& p : RandomPoints(20000, 1.5, 4.0, 5)) {
+        const double d0 = Density(smooth, weather, p), d1 = Density(eroded, weather, p);
+        ASSERT_LE(d1, d0) << p.ground.x << " " << p.ground.y << " " << p.altitude;
+        removed += d1 < d0;
+    }
+    EXPECT_GT(removed, 100);
+    for (int i = 0; i <= 100; ++i) {
+        for (int j = 0; j <= 10; ++j) {
+            const double d = i / 100.0, e = j / 10.0;
+            EXPECT_LE(CloudErode(d, e), d);
+            EXPECT_GE(CloudErode(d, e), 0.0);
+        }
+    }
+    EXPECT_EQ(CloudErode(1.0, 0.6), 1.0);
+}
+
+TEST(CloudDensity, MoreCoverageNeverMeansLessCloud) {
+    const RepeatTexture2D thin = WeatherFor(0.3, WeatherMapSource::Kind::kUniform);
+    const RepeatTexture2D thick = WeatherFor(0.8, WeatherMapSource::Kind::kUniform);
+    double sum_thin = 0.0, sum_thick = 0.0;
+    for (const Point& p : RandomPoints(10000, 1.5, 4.0, 6)) {
+        const double a = Density(Layer(), thin, p), b = Density(Layer(), thick, p);
+        ASSERT_LE(a, b + 1e-15);
+        sum_thin += a, sum_thick += b;
+    }
+    EXPECT_GT(sum_thick, 2.0 * sum_thin);
+}
+
+TEST(CloudDensity, TilesWithTheWeatherPeriodAlsoInWind) {
+    const RepeatTexture2D weather = WeatherFor(0.6, WeatherMapSource::Kind::kPatches);
+    CloudLayerParameters layer = Layer();
+    layer.wind_offset_x = 3.7;
+    layer.wind_offset_z = -12.1;
+    int cloudy = 0;
+    for (const Point& p : RandomPoints(5000, 1.5, 4.0, 7)) {
+        const double d = Density(layer, weather, p);
+        cloudy += d > 0.0;
+        for (const vec2 shift : {vec2(40.0, 0.0), vec2(0.0, -40.0), vec2(80.0, 120.0)}) {
+            ASSERT_NEAR(Density(layer, weather, {p.ground + shift, p.altitude}), d, 1e-9);
+        }
+    }
+    EXPECT_GT(cloudy, 200);
+    // Wind moves the whole field: the density at g with offset w is the still density at g + w.
+    const CloudLayerParameters still = Layer();
+    for (const Point& p : RandomPoints(2000, 1.5, 4.0, 8)) {
+        ASSERT_NEAR(Density(layer, weather, p),
+                    Density(still, weather, {p.ground + vec2(3.7, -12.1), p.altitude}), 1e-9);
+    }
+}
+
+TEST(CloudDensity, DomeProjectionKeepsTheShellAtConstantAltitude) {
+    const CloudLayerParameters layer = Layer();
+    const RepeatTexture2D weather = WeatherFor(0.8, WeatherMapSource::Kind::kUniform, 1.0);
+    const double r = layer.bottom_radius;
+    for (const double arc : {0.0, 0.001, 5.0, 100.0, 300.0, 1000.0}) {
+        const double theta = arc / r;
+        for (const double azimuth : {0.0, 1.0, 2.5}) {
+            const vec3 up(std::sin(theta) * std::cos(azimuth), std::cos(theta),
+                          std::sin(theta) * std::sin(azimuth));
+            const vec2 ground = CloudGroundCoordinates(layer, (r + 2.7) * up);
+            // Arc length along the ground, whatever the altitude of the point.
+            EXPECT_NEAR(glm::length(ground), arc, 1e-9 * (1.0 + arc));
+            EXPECT_NEAR(glm::length(CloudGroundCoordinates(layer, (r + 9.0) * up) - ground), 0.0,
+                        1e-9 * (1.0 + arc));
+            const CloudSample s = SampleCloudDensity(layer, weather, Shape(), Detail(), (r + 2.7) * up);
+            EXPECT_NEAR(s.density, Density(layer, weather, {ground, 2.7}), 1e-9);
+            EXPECT_NEAR(s.height_fraction, 1.2 / 2.5, 1e-9);
+        }
+    }
+    // 300 km away the flat plane y = R + 2.7 km is ~7 km above the sphere, over the layer; the
+    // shell still holds cloud there.
+    const vec3 flat(300.0, r + 2.7, 0.0);
+    EXPECT_GT(CloudAltitude(layer, flat), 4.0);
+    EXPECT_EQ(SampleCloudDensity(layer, weather, Shape(), Detail(), flat).density, 0.0);
+}
+
+TEST(CloudDensity, TypeSetsHowHighCloudsReach) {
+    // Uniform full coverage: the highest altitude with density is the type's share of the layer.
+    const CloudLayerParameters layer = Layer();
+    for (const double type : {0.0, 0.5, 1.0}) {
+        const RepeatTexture2D weather = WeatherFor(1.0, WeatherMapSource::Kind::kUniform, type);
+        double highest = 0.0;
+        for (const Point& p : RandomPoints(20000, 1.5, 4.0, 9)) {
+            if (Density(layer, weather, p) > 0.0) highest = std::max(highest, p.altitude);
+        }
+        const double top = 1.5 + 2.5 * CloudTypeHeightFraction(type);
+        EXPECT_LE(highest, top);
+        EXPECT_GT(highest, 1.5 + 0.6 * (top - 1.5)) << "type " << type;
+    }
+    EXPECT_EQ(CloudTypeHeightFraction(1.0), 1.0);
+    EXPECT_LT(CloudTypeHeightFraction(0.0), CloudTypeHeightFraction(0.5));
+}
+
+TEST(CloudDensity, PrecipitationDarkensTheBaseOnly) {
+    for (int i = 0; i <= 10; ++i) {
+        const double f = i / 10.0;
+        EXPECT_EQ(CloudPrecipitationLightScale(0.0, f), 1.0);
+        EXPECT_NEAR(CloudPrecipitationLightScale(1.0, 1.0), 1.0, 1e-15);
+        EXPECT_GE(CloudPrecipitationLightScale(1.0, f), 1.0 - kCloudMaxPrecipitationDarkening);
+        EXPECT_LE(CloudPrecipitationLightScale(0.8, f), CloudPrecipitationLightScale(0.4, f));
+        if (i > 0) {
+            EXPECT_GT(CloudPrecipitationLightScale(0.8, f),
+                      CloudPrecipitationLightScale(0.8, f - 0.1));
+        }
+    }
+    // The weather map's precipitation reaches the sample.
+    const RepeatTexture2D weather = WeatherFor(0.8, WeatherMapSource::Kind::kUniform, 1.0, 0.6);
+    const CloudSample s = SampleCloudDensityAt(Layer(), weather, Shape(), Detail(), vec2(1.0, 2.0), 2.0);
+    EXPECT_NEAR(s.precipitation, 0.6, 1e-6);
+}
+
+}  // namespace
+}  // namespace zenith::sky::ref
