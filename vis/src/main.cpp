@@ -26,13 +26,14 @@ namespace {
 namespace fs = std::filesystem;
 using namespace zenith;
 
-glm::ivec2 ParseSize(const std::string& text) {
+glm::ivec2 ParseSize(const std::string& text, const char* option = "--size", int min = 64) {
     int w = 0, h = 0;
     char x = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 64 || h < 64 ||
-        w > 8192 || h > 8192) {
-        throw std::invalid_argument(fmt::format(
-            "--size = '{}' is not a size (expected WxH with 64..8192 pixels per axis)", text));
+    if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < min ||
+        h < min || w > 8192 || h > 8192) {
+        throw std::invalid_argument(fmt::format("{} = '{}' is not a size (expected WxH with "
+                                                "{}..8192 per axis)",
+                                                option, text, min));
     }
     return {w, h};
 }
@@ -183,8 +184,8 @@ int main(int argc, char** argv) {
         }
         CheckPng(out);
         if (*transmittance_cmd) {
+            const auto display = Display(out);  // first: fail before the GL work
             const vis::Luts luts = vis::ComputeLuts(scene);
-            const auto display = Display(out);
             vis::ShowChart(vis::MakeTransmittanceCharts(luts, transmittance), size, out);
         } else if (*lut_cmd) {
             const vis::LutKind kind = vis::ParseLutKind(lut_name);
@@ -193,16 +194,16 @@ int main(int argc, char** argv) {
                 throw std::invalid_argument(fmt::format(
                     "--scale = '{}' is not a scale (expected linear or log)", scale));
             }
-            const glm::ivec2 samples = ParseSize(samples_text);
+            const glm::ivec2 samples = ParseSize(samples_text, "--samples", 2);
+            const auto display = Display(out);
             const vis::Luts luts = vis::ComputeLuts(scene);
             const vis::Slice s = vis::MakeSlice(luts, kind, channel, slice, samples.x, samples.y);
-            const auto display = Display(out);
             vis::ShowChart(vis::MakeSliceChart(s, scale == "log"), size, out);
         } else if (*overview_cmd) {
             const sky::Atmosphere atmosphere = sky::LoadAtmosphere(scene.preset);
+            const auto display = Display(out);
             vtkSmartPointer<vtkPolyData> path;
             if (!flight.empty()) path = vis::FlightPath(flight, step_s);
-            const auto display = Display(out);
             vis::ShowScene(vis::MakeOverview(atmosphere, scene, path), size, out);
         }
         if (!out.empty()) fmt::print("{}\n", out);

@@ -34,6 +34,7 @@
 #include <vtkPNGWriter.h>
 #include <vtkPen.h>
 #include <vtkPlot.h>
+#include <vtkPlotLine.h>
 #include <vtkPlotPoints.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -214,7 +215,9 @@ std::vector<vtkTable*> ChartTables(vtkChartMatrix* charts, int column, bool refe
     if (chart == nullptr) return tables;
     for (vtkIdType i = 0; i < chart->GetNumberOfPlots(); ++i) {
         vtkPlot* plot = chart->GetPlot(i);
-        const bool is_reference = vtkPlotPoints::SafeDownCast(plot) != nullptr;
+        // vtkPlotLine derives from vtkPlotPoints: the reference is the points that are no line.
+        const bool is_reference = vtkPlotPoints::SafeDownCast(plot) != nullptr &&
+                                  vtkPlotLine::SafeDownCast(plot) == nullptr;
         if (is_reference != reference) continue;
         vtkTable* table = plot->GetInput();
         if (tables.empty() || tables.back() != table) tables.push_back(table);
