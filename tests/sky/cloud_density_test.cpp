@@ -75,8 +75,7 @@ std::vector<Point> RandomPoints(int n, double altitude_lo, double altitude_hi, u
     return points;
 }
 
-double Density(const CloudLayerParameters& layer, const RepeatTexture2D& weather,
-               const Point& p) {
+double Density(const CloudLayerParameters& layer, const RepeatTexture2D& weather, const Point& p) {
     return SampleCloudDensityAt(layer, weather, Shape(), Detail(), p.ground, p.altitude).density;
 }
 
@@ -91,14 +90,17 @@ TEST(CloudDensity, CoverageZeroIsExactlyTheClearSky) {
     // And clouds do appear with coverage, on the same points.
     const RepeatTexture2D weather = WeatherFor(0.6, WeatherMapSource::Kind::kUniform);
     int cloudy = 0;
-    for (const Point& p : RandomPoints(20000, 1.5, 4.0, 1)) cloudy += Density(Layer(), weather, p) > 0.0;
+    for (const Point& p : RandomPoints(20000, 1.5, 4.0, 1))
+        cloudy += Density(Layer(), weather, p) > 0.0;
     EXPECT_GT(cloudy, 500);
 }
 
 TEST(CloudDensity, NothingBelowTheBaseOrAboveTheTop) {
     const RepeatTexture2D weather = WeatherFor(1.0, WeatherMapSource::Kind::kUniform, 1.0);
-    for (const Point& p : RandomPoints(5000, -1.0, 1.5, 2)) ASSERT_EQ(Density(Layer(), weather, p), 0.0);
-    for (const Point& p : RandomPoints(5000, 4.0, 20.0, 3)) ASSERT_EQ(Density(Layer(), weather, p), 0.0);
+    for (const Point& p : RandomPoints(5000, -1.0, 1.5, 2))
+        ASSERT_EQ(Density(Layer(), weather, p), 0.0);
+    for (const Point& p : RandomPoints(5000, 4.0, 20.0, 3))
+        ASSERT_EQ(Density(Layer(), weather, p), 0.0);
     double largest = 0.0;
     for (const Point& p : RandomPoints(5000, 1.5, 4.0, 4)) {
         const double d = Density(Layer(), weather, p);
@@ -122,7 +124,8 @@ TEST(CloudDensity, HeightSignalIsTheParabolaOfEquation51) {
             const double x = a + h * i / 100.0;
             EXPECT_NEAR(CloudHeightSignal(x, a, h), (x - a) * (x - a - h) * -4.0 / (h * h), 1e-14);
             EXPECT_LE(CloudHeightSignal(x, a, h), 1.0);
-            EXPECT_NEAR(CloudHeightSignal(x, a, h), CloudHeightSignal(2.0 * a + h - x, a, h), 1e-14);
+            EXPECT_NEAR(CloudHeightSignal(x, a, h), CloudHeightSignal(2.0 * a + h - x, a, h),
+                        1e-14);
         }
     }
     EXPECT_EQ(CloudHeightSignal(1.0, 1.0, 0.0), 0.0);
@@ -201,7 +204,8 @@ TEST(CloudDensity, DomeProjectionKeepsTheShellAtConstantAltitude) {
             EXPECT_NEAR(glm::length(ground), arc, 1e-9 * (1.0 + arc));
             EXPECT_NEAR(glm::length(CloudGroundCoordinates(layer, (r + 9.0) * up) - ground), 0.0,
                         1e-9 * (1.0 + arc));
-            const CloudSample s = SampleCloudDensity(layer, weather, Shape(), Detail(), (r + 2.7) * up);
+            const CloudSample s =
+                SampleCloudDensity(layer, weather, Shape(), Detail(), (r + 2.7) * up);
             EXPECT_NEAR(s.density, Density(layer, weather, {ground, 2.7}), 1e-9);
             EXPECT_NEAR(s.height_fraction, 1.2 / 2.5, 1e-9);
         }
@@ -244,7 +248,8 @@ TEST(CloudDensity, PrecipitationDarkensTheBaseOnly) {
     }
     // The weather map's precipitation reaches the sample.
     const RepeatTexture2D weather = WeatherFor(0.8, WeatherMapSource::Kind::kUniform, 1.0, 0.6);
-    const CloudSample s = SampleCloudDensityAt(Layer(), weather, Shape(), Detail(), vec2(1.0, 2.0), 2.0);
+    const CloudSample s =
+        SampleCloudDensityAt(Layer(), weather, Shape(), Detail(), vec2(1.0, 2.0), 2.0);
     EXPECT_NEAR(s.precipitation, 0.6, 1e-6);
 }
 

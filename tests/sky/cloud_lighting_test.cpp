@@ -34,18 +34,21 @@ TEST(CloudPhase, HenyeyGreensteinAndDualLobeIntegrateToOne) {
                     1.0, 1e-6)
             << "g = " << g;
         // Its mean cosine is g.
-        EXPECT_NEAR(IntegrateSphere([&](double nu) { return nu * CloudHenyeyGreensteinPhase(g, nu); }),
-                    g, 1e-6);
+        EXPECT_NEAR(
+            IntegrateSphere([&](double nu) { return nu * CloudHenyeyGreensteinPhase(g, nu); }), g,
+            1e-6);
     }
     for (const double w : {0.0, 0.3, 0.5, 1.0}) {
-        EXPECT_NEAR(IntegrateSphere([&](double nu) { return CloudDualLobePhase(0.8, -0.5, w, nu); }),
-                    1.0, 1e-6);
+        EXPECT_NEAR(
+            IntegrateSphere([&](double nu) { return CloudDualLobePhase(0.8, -0.5, w, nu); }), 1.0,
+            1e-6);
         EXPECT_NEAR(
             IntegrateSphere([&](double nu) { return nu * CloudDualLobePhase(0.8, -0.5, w, nu); }),
             (1.0 - w) * 0.8 + w * -0.5, 1e-6);
     }
     // Silver lining: forward scattering dominates, and the back lobe lifts the back side.
-    EXPECT_GT(CloudDualLobePhase(0.8, -0.5, 0.2, 1.0), 10.0 * CloudDualLobePhase(0.8, -0.5, 0.2, 0.0));
+    EXPECT_GT(CloudDualLobePhase(0.8, -0.5, 0.2, 1.0),
+              10.0 * CloudDualLobePhase(0.8, -0.5, 0.2, 0.0));
     EXPECT_GT(CloudDualLobePhase(0.8, -0.5, 0.2, -1.0), CloudHenyeyGreensteinPhase(0.8, -1.0));
 }
 
@@ -99,15 +102,16 @@ TEST(CloudOctaves, ScatteredPowerAlongADeepSunRayNeverExceedsTheIncident) {
     for (const double a : {0.25, 0.5, 0.9}) {
         for (const double b : {0.25, 0.5, 1.0}) {
             for (const int count : {1, 2, 3, 6}) {
-                const CloudScatteringParameters p = Scattering(a, b, 0.5, count, 1.0, 0.0, 0.0, 0.0);
+                const CloudScatteringParameters p =
+                    Scattering(a, b, 0.5, count, 1.0, 0.0, 0.0, 0.0);
                 const double sigma = 50.0;  // 1/km
                 vec3 power(0.0);
                 double transmittance = 1.0;
                 // Until the slowest octave, extinguished by sigma b^(N-1), has spent its light.
                 const double ds = 0.0005, length = 40.0 / (sigma * std::pow(b, count - 1));
                 for (double s = 0.0; s < length; s += ds) {
-                    const double source =
-                        sigma * 4.0 * kPi * CloudOctaveSunScattering(p, sigma * (s + 0.5 * ds), 1.0);
+                    const double source = sigma * 4.0 * kPi *
+                                          CloudOctaveSunScattering(p, sigma * (s + 0.5 * ds), 1.0);
                     CloudIntegrateStep(vec3(source), 0.0, ds, power, transmittance);
                 }
                 double expected = 0.0;
@@ -124,10 +128,12 @@ TEST(CloudOctaves, HigherOctavesReachDeeperAndSpreadWider) {
     const CloudScatteringParameters one = Scattering(0.5, 0.5, 0.5, 1);
     const CloudScatteringParameters three = Scattering(0.5, 0.5, 0.5, 3);
     // Deep inside, the octaves bring light that single scattering cannot (F16 Fig. 40).
-    EXPECT_GT(CloudOctaveSunScattering(three, 20.0, 0.0), 1e3 * CloudOctaveSunScattering(one, 20.0, 0.0));
+    EXPECT_GT(CloudOctaveSunScattering(three, 20.0, 0.0),
+              1e3 * CloudOctaveSunScattering(one, 20.0, 0.0));
     // Phase of octave n has g c^n: flatter, still normalised (the sum at τ = 0 integrates to the
     // normalised octave weights).
-    const double total = IntegrateSphere([&](double nu) { return CloudOctaveSunScattering(three, 0.0, nu); });
+    const double total =
+        IntegrateSphere([&](double nu) { return CloudOctaveSunScattering(three, 0.0, nu); });
     EXPECT_NEAR(total, (1.0 + 0.5 + 0.25) / 3.0, 1e-6);
 }
 
@@ -250,11 +256,12 @@ TEST(CloudIntegration, AnalyticConvergesWithTwentySamplesWhereTheNaiveSumDoesNot
     std::sort(analytic_errors.begin(), analytic_errors.end());
     const double analytic_error = std::abs(analytic_sum / reference_sum - 1.0);
     const double naive_error = std::abs(naive_sum / reference_sum - 1.0);
-    std::printf("20 samples vs 1000 over %d rays: analytic %+.1f%% (median ray %.1f%%, worst "
-                "%.1f%%), naive %+.1f%%\n",
-                rays, 100.0 * (analytic_sum / reference_sum - 1.0),
-                100.0 * analytic_errors[analytic_errors.size() / 2], 100.0 * worst_analytic,
-                100.0 * (naive_sum / reference_sum - 1.0));
+    std::printf(
+        "20 samples vs 1000 over %d rays: analytic %+.1f%% (median ray %.1f%%, worst "
+        "%.1f%%), naive %+.1f%%\n",
+        rays, 100.0 * (analytic_sum / reference_sum - 1.0),
+        100.0 * analytic_errors[analytic_errors.size() / 2], 100.0 * worst_analytic,
+        100.0 * (naive_sum / reference_sum - 1.0));
     EXPECT_LT(analytic_error, 0.05);
     EXPECT_LT(analytic_errors[analytic_errors.size() / 2], 0.05);
     EXPECT_GT(naive_error, 0.3);

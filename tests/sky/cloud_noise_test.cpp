@@ -3,6 +3,7 @@
 // value ranges and statistics of real noise with frequencies that increase across the channels,
 // a divergence-free curl field, and a cache that round-trips, survives corruption and is fast.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -10,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <unistd.h>
 
 #include "zenith/sky/clouds/noise.h"
 
@@ -141,9 +141,10 @@ TEST(CloudNoiseVolumes, StatisticsAreThoseOfRealNoiseWithRisingFrequency) {
             const std::size_t n = v->texels.size() / static_cast<std::size_t>(v->channels);
             for (std::size_t i = 0; i < n; ++i) {
                 const double x = v->texels[i * static_cast<std::size_t>(v->channels) +
-                                           static_cast<std::size_t>(c)] / 255.0;
+                                           static_cast<std::size_t>(c)] /
+                                 255.0;
                 sum += x, sum2 += x * x;
-                low += x < 0.1, high += x > 0.9;
+                low += x<0.1, high += x> 0.9;
             }
             const double mean = sum / static_cast<double>(n);
             const double sd = std::sqrt(std::max(sum2 / static_cast<double>(n) - mean * mean, 0.0));
@@ -226,9 +227,10 @@ TEST(CloudNoiseCache, GeneratesOnceThenLoadsAndTimesBoth) {
     EXPECT_TRUE(second.from_cache) << second.cache_problem;
     EXPECT_TRUE(second.noise == first.noise);
     EXPECT_TRUE(first.noise == FullNoise());  // the build tree's cache, from another run
-    std::printf("cloud noise (shape 128x32x128, detail 32^3, curl 128^2, %d threads): "
-                "generated + cached in %.3f s, loaded from cache in %.4f s\n",
-                settings.threads, first.seconds, second.seconds);
+    std::printf(
+        "cloud noise (shape 128x32x128, detail 32^3, curl 128^2, %d threads): "
+        "generated + cached in %.3f s, loaded from cache in %.4f s\n",
+        settings.threads, first.seconds, second.seconds);
     EXPECT_LT(second.seconds, first.seconds);
     // Only the cache file is left: no temporary from the atomic write.
     int files = 0;
@@ -268,7 +270,10 @@ TEST(CloudNoiseCache, CorruptTruncatedOrForeignFilesAreRegenerated) {
     expect_regenerated("checksum");
     std::filesystem::resize_file(file, std::filesystem::file_size(file) - 10);
     expect_regenerated("truncated");
-    { std::ofstream(file, std::ios::binary) << "not a cache at all, but long enough to read a header from it"; }
+    {
+        std::ofstream(file, std::ios::binary)
+            << "not a cache at all, but long enough to read a header from it";
+    }
     expect_regenerated("not a noise cache");
     // The same file name for other settings cannot happen; reading it with other settings fails.
     CloudNoiseSettings other = settings;

@@ -89,8 +89,8 @@ GLuint Texture3D(const clouds::NoiseVolume& v) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage3D(texture, 0, 0, 0, 0, v.size.x, v.size.y, v.size.z,
                         v.channels == 4 ? GL_RGBA : GL_RGB, GL_UNSIGNED_BYTE, v.texels.data());
-    for (const GLenum wrap : {GLenum{GL_TEXTURE_WRAP_S}, GLenum{GL_TEXTURE_WRAP_T},
-                              GLenum{GL_TEXTURE_WRAP_R}}) {
+    for (const GLenum wrap :
+         {GLenum{GL_TEXTURE_WRAP_S}, GLenum{GL_TEXTURE_WRAP_T}, GLenum{GL_TEXTURE_WRAP_R}}) {
         glTextureParameteri(texture, wrap, GL_REPEAT);
     }
     glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
@@ -100,13 +100,10 @@ GLuint Texture3D(const clouds::NoiseVolume& v) {
 
 TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
     const auto context = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa);
-    const std::string source = "#version 450 core\n" +
-                               std::string(gl::EmbeddedShaderFile("common/definitions.glsl")) +
-                               "\n" +
-                               std::string(gl::EmbeddedShaderFile("clouds/definitions.glsl")) +
-                               "\n" +
-                               std::string(gl::EmbeddedShaderFile("clouds/functions.glsl")) +
-                               kPass;
+    const std::string source =
+        "#version 450 core\n" + std::string(gl::EmbeddedShaderFile("common/definitions.glsl")) +
+        "\n" + std::string(gl::EmbeddedShaderFile("clouds/definitions.glsl")) + "\n" +
+        std::string(gl::EmbeddedShaderFile("clouds/functions.glsl")) + kPass;
     const gl::Program program = gl::Program::Compute(source, "cloud_parity.comp");
 
     const clouds::CloudNoise noise =
@@ -137,23 +134,23 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
     const ref::CloudLayerParameters layer = Layer();
     const ref::CloudScatteringParameters scattering = Scattering();
     const GLuint name = program.name();
-    const char* layer_fields[] = {"bottom_radius", "base_altitude", "top_altitude",
-                                  "weather_period", "shape_period", "shape_period_y",
-                                  "detail_period", "erosion_strength", "wind_offset_x",
-                                  "wind_offset_z"};
-    const double layer_values[] = {layer.bottom_radius, layer.base_altitude, layer.top_altitude,
-                                   layer.weather_period, layer.shape_period, layer.shape_period_y,
-                                   layer.detail_period, layer.erosion_strength,
-                                   layer.wind_offset_x, layer.wind_offset_z};
+    const char* layer_fields[] = {
+        "bottom_radius",  "base_altitude", "top_altitude",     "weather_period", "shape_period",
+        "shape_period_y", "detail_period", "erosion_strength", "wind_offset_x",  "wind_offset_z"};
+    const double layer_values[] = {
+        layer.bottom_radius, layer.base_altitude,  layer.top_altitude,  layer.weather_period,
+        layer.shape_period,  layer.shape_period_y, layer.detail_period, layer.erosion_strength,
+        layer.wind_offset_x, layer.wind_offset_z};
     for (int i = 0; i < 10; ++i) {
-        SetUniform(name, std::string("layer.") + layer_fields[i], static_cast<float>(layer_values[i]));
+        SetUniform(name, std::string("layer.") + layer_fields[i],
+                   static_cast<float>(layer_values[i]));
     }
     const char* scattering_fields[] = {"forward_g", "backward_g", "lobe_weight", "albedo",
-                                       "octave_a", "octave_b", "octave_c", "octave_count"};
-    const double scattering_values[] = {scattering.forward_g, scattering.backward_g,
+                                       "octave_a",  "octave_b",   "octave_c",    "octave_count"};
+    const double scattering_values[] = {scattering.forward_g,   scattering.backward_g,
                                         scattering.lobe_weight, scattering.albedo,
-                                        scattering.octave_a, scattering.octave_b,
-                                        scattering.octave_c, scattering.octave_count};
+                                        scattering.octave_a,    scattering.octave_b,
+                                        scattering.octave_c,    scattering.octave_count};
     for (int i = 0; i < 8; ++i) {
         SetUniform(name, std::string("scattering.") + scattering_fields[i],
                    static_cast<float>(scattering_values[i]));
@@ -201,8 +198,7 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
         EXPECT_NEAR(r.z, octaves, kRelativeTolerance * octaves + 1e-9) << "point " << i;
         glm::dvec3 luminance(0.0);
         double transmittance = 1.0;
-        ref::CloudIntegrateStep(glm::dvec3(p.w * 3.0), p.w * 40.0, 0.05, luminance,
-                                transmittance);
+        ref::CloudIntegrateStep(glm::dvec3(p.w * 3.0), p.w * 40.0, 0.05, luminance, transmittance);
         EXPECT_NEAR(r.w, luminance.x, kRelativeTolerance * luminance.x + 1e-7) << "point " << i;
     }
     std::printf("cloud density GPU vs CPU: %d of %d points cloudy, largest difference %.2g\n",

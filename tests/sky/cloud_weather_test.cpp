@@ -46,8 +46,10 @@ void ExpectMentions(const std::string& message, std::initializer_list<const char
 // One layer of JSON with `field` replaced.
 std::string LayerJson(const std::string& extra = "", const std::string& coverage = "0.4") {
     return R"({"name": "t", "layers": [{"base_altitude_m": 1500, "top_altitude_m": 4000,
-        "coverage": )" + coverage + R"(, "cloud_type": "cumulus", "precipitation": 0,
-        "map_period_m": 60000, "map": {"procedural": "uniform"})" + extra + "}]}";
+        "coverage": )" +
+           coverage + R"(, "cloud_type": "cumulus", "precipitation": 0,
+        "map_period_m": 60000, "map": {"procedural": "uniform"})" +
+           extra + "}]}";
 }
 
 TEST(CloudWeatherPresets, EveryPresetLoadsAndValidates) {
@@ -148,7 +150,8 @@ TEST(CloudWeatherMaps, ProceduralMapsAreDeterministicInRangeAndTile) {
             }
             coverage /= n * n;
             // The map's mean coverage is the layer's (cells add full-cover cores on top).
-            EXPECT_NEAR(coverage, layer.coverage, layer.map.kind == WeatherMapSource::Kind::kCells ? 0.3 : 0.12);
+            EXPECT_NEAR(coverage, layer.coverage,
+                        layer.map.kind == WeatherMapSource::Kind::kCells ? 0.3 : 0.12);
             // Tiling: the seam costs no more than any other column or row.
             EXPECT_LE(wrap / (2.0 * n), 1.3 * interior / (2.0 * n * (n - 1)) + 1e-6);
         }

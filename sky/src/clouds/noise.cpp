@@ -58,22 +58,38 @@ double Fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 // Perlin 2002: the 12 cube-edge gradients (the 16 hash values repeat four of them).
 double Gradient(std::uint32_t h, const glm::dvec3& d) {
     switch (h & 15U) {
-        case 0: return d.x + d.y;
-        case 1: return -d.x + d.y;
-        case 2: return d.x - d.y;
-        case 3: return -d.x - d.y;
-        case 4: return d.x + d.z;
-        case 5: return -d.x + d.z;
-        case 6: return d.x - d.z;
-        case 7: return -d.x - d.z;
-        case 8: return d.y + d.z;
-        case 9: return -d.y + d.z;
-        case 10: return d.y - d.z;
-        case 11: return -d.y - d.z;
-        case 12: return d.x + d.y;
-        case 13: return -d.y + d.z;
-        case 14: return -d.x + d.y;
-        default: return -d.y - d.z;
+        case 0:
+            return d.x + d.y;
+        case 1:
+            return -d.x + d.y;
+        case 2:
+            return d.x - d.y;
+        case 3:
+            return -d.x - d.y;
+        case 4:
+            return d.x + d.z;
+        case 5:
+            return -d.x + d.z;
+        case 6:
+            return d.x - d.z;
+        case 7:
+            return -d.x - d.z;
+        case 8:
+            return d.y + d.z;
+        case 9:
+            return -d.y + d.z;
+        case 10:
+            return d.y - d.z;
+        case 11:
+            return -d.y - d.z;
+        case 12:
+            return d.x + d.y;
+        case 13:
+            return -d.y + d.z;
+        case 14:
+            return -d.x + d.y;
+        default:
+            return -d.y - d.z;
     }
 }
 
@@ -88,8 +104,8 @@ glm::ivec3 CellsFor(int cells_x, const glm::ivec3& size, const char* what) {
         if (product % size.x != 0 || product / size.x < 1) {
             throw std::invalid_argument(
                 std::string(what) + " noise of size " + std::to_string(size.x) + "x" +
-                std::to_string(size.y) + "x" + std::to_string(size.z) + ": axis " +
-                "xyz"[a] + " cannot hold a whole number of its " + std::to_string(cells_x) +
+                std::to_string(size.y) + "x" + std::to_string(size.z) + ": axis " + "xyz"[a] +
+                " cannot hold a whole number of its " + std::to_string(cells_x) +
                 " cells along x; expected every axis to be a multiple of x / " +
                 std::to_string(cells_x) + " (e.g. 128x32x128)");
         }
@@ -101,10 +117,10 @@ glm::ivec3 CellsFor(int cells_x, const glm::ivec3& size, const char* what) {
 void CheckSize(const glm::ivec3& size, int minimum, const char* what) {
     if (!(size.x >= minimum && size.y >= 1 && size.z >= 1 && size.x <= 4096 && size.y <= 4096 &&
           size.z <= 4096)) {
-        throw std::invalid_argument(std::string(what) + " noise size " + std::to_string(size.x) +
-                                    "x" + std::to_string(size.y) + "x" + std::to_string(size.z) +
-                                    ": expected each axis in [1, 4096] and x >= " +
-                                    std::to_string(minimum));
+        throw std::invalid_argument(
+            std::string(what) + " noise size " + std::to_string(size.x) + "x" +
+            std::to_string(size.y) + "x" + std::to_string(size.z) +
+            ": expected each axis in [1, 4096] and x >= " + std::to_string(minimum));
     }
 }
 
@@ -146,7 +162,8 @@ double PerlinFbm(const glm::dvec3& u, const glm::ivec3& cells, int octaves, std:
     double sum = 0.0, amplitude = 1.0, total = 0.0;
     glm::ivec3 period = cells;
     for (int o = 0; o < octaves; ++o) {
-        sum += amplitude * TileablePerlin(u * glm::dvec3(period), period, Salted(seed, 100U + static_cast<std::uint32_t>(o)));
+        sum += amplitude * TileablePerlin(u * glm::dvec3(period), period,
+                                          Salted(seed, 100U + static_cast<std::uint32_t>(o)));
         total += amplitude;
         amplitude *= 0.5;
         period *= 2;
@@ -161,8 +178,8 @@ double WorleyFbm(const glm::dvec3& u, const glm::ivec3& cells, std::uint32_t see
     double sum = 0.0;
     glm::ivec3 octave_cells = cells;
     for (int o = 0; o < 3; ++o) {
-        const double f1 =
-            TileableWorley(u * glm::dvec3(octave_cells), octave_cells, Salted(seed, 200U + static_cast<std::uint32_t>(o)));
+        const double f1 = TileableWorley(u * glm::dvec3(octave_cells), octave_cells,
+                                         Salted(seed, 200U + static_cast<std::uint32_t>(o)));
         sum += kWeights[static_cast<std::size_t>(o)] * (1.0 - std::min(f1, 1.0));
         octave_cells *= 2;
     }
@@ -305,7 +322,8 @@ NoiseVolume GenerateShapeNoise(std::uint32_t seed, glm::ivec3 size, int threads)
                                                        Salted(seed, 4)};
     return Fill(size, 4, threads, [&](const glm::dvec3& u, std::uint8_t* out) {
         std::array<double, 3> worley;
-        for (std::size_t k = 0; k < 3; ++k) worley[k] = WorleyFbm(u, worley_cells[k], worley_seeds[k]);
+        for (std::size_t k = 0; k < 3; ++k)
+            worley[k] = WorleyFbm(u, worley_cells[k], worley_seeds[k]);
         // The FBM keeps mostly within +-0.5: 0.5 + fbm spans [0, 1].
         const double perlin =
             std::clamp(0.5 + PerlinFbm(u, perlin_cells, 3, perlin_seed), 0.0, 1.0);
@@ -439,8 +457,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
 }
 
 std::optional<CloudNoise> ReadNoiseCache(const std::filesystem::path& file,
-                                         const CloudNoiseSettings& settings,
-                                         std::string* problem) {
+                                         const CloudNoiseSettings& settings, std::string* problem) {
     const auto fail = [&](const std::string& why) -> std::optional<CloudNoise> {
         if (problem != nullptr) *problem = "noise cache " + Quoted(file) + ": " + why;
         return std::nullopt;
@@ -496,8 +513,7 @@ CloudNoiseLoad LoadOrGenerateCloudNoise(const CloudNoiseSettings& settings,
             load.cache_problem += (load.cache_problem.empty() ? "" : "; ") + std::string(e.what());
         }
     }
-    load.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    load.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return load;
 }
 

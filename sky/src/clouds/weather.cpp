@@ -112,7 +112,8 @@ void Check(const Weather& weather, const Checker& check) {
                            " (layers are listed bottom to top and do not overlap)");
         }
         const auto unit_interval = [&](double v, const char* key, const char* member) {
-            if (!(v >= 0.0 && v <= 1.0)) check.Fail(i, l.name, key, member, unit(v), "0 <= value <= 1");
+            if (!(v >= 0.0 && v <= 1.0))
+                check.Fail(i, l.name, key, member, unit(v), "0 <= value <= 1");
         };
         unit_interval(l.coverage, "coverage", "coverage");
         unit_interval(l.cloud_type, "cloud_type", "cloud_type");
@@ -124,10 +125,10 @@ void Check(const Weather& weather, const Checker& check) {
                            " m/s (twice the strongest jet stream)");
         }
         if (!std::isfinite(l.wind_from)) {
-            check.Fail(i, l.name, "wind_from_deg", "wind_from",
-                       FormatNumber(file ? l.wind_from / kDeg : l.wind_from) +
-                           (file ? " deg" : " rad"),
-                       "a finite direction");
+            check.Fail(
+                i, l.name, "wind_from_deg", "wind_from",
+                FormatNumber(file ? l.wind_from / kDeg : l.wind_from) + (file ? " deg" : " rad"),
+                "a finite direction");
         }
         if (!(l.map_period >= kMinMapPeriod && l.map_period <= kMaxMapPeriod)) {
             check.Fail(i, l.name, "map_period_m", "map_period", metres(l.map_period),
@@ -222,10 +223,9 @@ class Reader {
 };
 
 constexpr const char* kTopKeys[] = {"name", "description", "layers"};
-constexpr const char* kLayerKeys[] = {"name",           "base_altitude_m", "top_altitude_m",
-                                      "coverage",       "cloud_type",      "precipitation",
-                                      "wind_speed_m_s", "wind_from_deg",   "map_period_m",
-                                      "map"};
+constexpr const char* kLayerKeys[] = {
+    "name",          "base_altitude_m", "top_altitude_m", "coverage",     "cloud_type",
+    "precipitation", "wind_speed_m_s",  "wind_from_deg",  "map_period_m", "map"};
 constexpr const char* kProceduralKeys[] = {"procedural", "seed", "cells_per_tile", "variation",
                                            "size"};
 constexpr const char* kFileKeys[] = {"file"};
@@ -242,8 +242,8 @@ WeatherMapSource ReadMap(const Reader& read, const Json& map, const std::string&
         return source;
     }
     read.RejectUnknownKeys(map, prefix + ".", kProceduralKeys);
-    const std::string kind = read.String(read.Required(map, prefix + ".", "procedural"),
-                                         prefix + ".procedural");
+    const std::string kind =
+        read.String(read.Required(map, prefix + ".", "procedural"), prefix + ".procedural");
     if (kind == "uniform") {
         source.kind = WeatherMapSource::Kind::kUniform;
     } else if (kind == "patches") {
@@ -252,8 +252,9 @@ WeatherMapSource ReadMap(const Reader& read, const Json& map, const std::string&
         source.kind = WeatherMapSource::Kind::kCells;
     } else {
         read.Fail(prefix + ".procedural",
-                  Quote(kind) + " is not a procedural map; expected uniform, patches or cells "
-                                "(or give \"file\" instead)");
+                  Quote(kind) +
+                      " is not a procedural map; expected uniform, patches or cells "
+                      "(or give \"file\" instead)");
     }
     const int seed = read.Integer(map, prefix + ".", "seed", 1);
     source.seed = static_cast<std::uint32_t>(seed);
@@ -298,7 +299,8 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
         }
         throw WeatherError(source + ": JSON syntax: " + what);
     }
-    if (!root.is_object()) read.Fail("(top level)", "expected an object, got " + Reader::Describe(root));
+    if (!root.is_object())
+        read.Fail("(top level)", "expected an object, got " + Reader::Describe(root));
     read.RejectUnknownKeys(root, "", kTopKeys);
 
     Weather weather;
@@ -311,7 +313,8 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
         weather.description = read.String(*it, "description");
     }
     const Json& layers = read.Required(root, "", "layers");
-    if (!layers.is_array()) read.Fail("layers", "expected an array, got " + Reader::Describe(layers));
+    if (!layers.is_array())
+        read.Fail("layers", "expected an array, got " + Reader::Describe(layers));
     const std::filesystem::path base_directory = std::filesystem::path(source).parent_path();
     for (std::size_t i = 0; i < layers.size(); ++i) {
         const std::string prefix = "layers[" + std::to_string(i) + "].";
@@ -319,7 +322,8 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
         if (!l.is_object()) read.Fail(prefix, "expected an object, got " + Reader::Describe(l));
         read.RejectUnknownKeys(l, prefix, kLayerKeys);
         CloudLayer layer;
-        if (const auto it = l.find("name"); it != l.end()) layer.name = read.String(*it, prefix + "name");
+        if (const auto it = l.find("name"); it != l.end())
+            layer.name = read.String(*it, prefix + "name");
         layer.base_altitude = read.Number(l, prefix, "base_altitude_m");
         layer.top_altitude = read.Number(l, prefix, "top_altitude_m");
         layer.coverage = read.Number(l, prefix, "coverage");
@@ -346,8 +350,8 @@ Weather LoadWeather(std::string_view name_or_path) {
     const bool is_path =
         text.find('/') != std::string::npos || (text.size() > 5 && text.ends_with(".json"));
     if (text.empty()) throw WeatherError("LoadWeather: empty weather name");
-    const std::filesystem::path path = is_path ? std::filesystem::path(text)
-                                               : WeatherDirectory() / (text + ".json");
+    const std::filesystem::path path =
+        is_path ? std::filesystem::path(text) : WeatherDirectory() / (text + ".json");
     std::ifstream file(path, std::ios::binary);
     if (!file) {
         std::string message = "cannot open weather file " + Quote(path.string()) + ": " +
@@ -407,8 +411,8 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer) {
                                          0.5 * TileablePerlin(2.0 * p, fine, seed + 1U);
                     // Multiplicative, so a layer with coverage 0 stays exactly clear.
                     coverage = layer.coverage * (1.0 + 2.0 * source.variation * patch);
-                    const double tall = TileablePerlin(p + glm::dvec3(0.5, 0.5, 0.0), cells,
-                                                       seed + 2U);
+                    const double tall =
+                        TileablePerlin(p + glm::dvec3(0.5, 0.5, 0.0), cells, seed + 2U);
                     height = 0.7 + 0.6 * tall;
                     precipitation = layer.precipitation * std::clamp(coverage, 0.0, 1.0);
                     break;
@@ -416,7 +420,8 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer) {
                 case WeatherMapSource::Kind::kCells: {
                     // Isolated cells (Worley F1): full cover, full height and the rain in their
                     // cores; cumulus-type cloud at the layer's reduced coverage between them.
-                    const double f1 = TileableWorley(glm::dvec3(u.x * n, u.y * n, 0.5), cells, seed);
+                    const double f1 =
+                        TileableWorley(glm::dvec3(u.x * n, u.y * n, 0.5), cells, seed);
                     const double core = 1.0 - std::clamp(f1 / 0.6, 0.0, 1.0);
                     const double w = core * core * (3.0 - 2.0 * core);
                     coverage = layer.coverage > 0.0
@@ -424,15 +429,16 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer) {
                                          w * (1.0 - layer.coverage * (1.0 - source.variation))
                                    : 0.0;
                     precipitation = layer.precipitation * w;
-                    type = layer.cloud_type + (std::min(layer.cloud_type, 0.5) - layer.cloud_type) * (1.0 - w);
+                    type = layer.cloud_type +
+                           (std::min(layer.cloud_type, 0.5) - layer.cloud_type) * (1.0 - w);
                     height = 0.5 + 0.5 * w;
                     break;
                 }
                 case WeatherMapSource::Kind::kFile:
                     break;
             }
-            map.at(x, y) = glm::vec4(glm::clamp(
-                glm::dvec4(coverage, precipitation, type, height), glm::dvec4(0.0), glm::dvec4(1.0)));
+            map.at(x, y) = glm::vec4(glm::clamp(glm::dvec4(coverage, precipitation, type, height),
+                                                glm::dvec4(0.0), glm::dvec4(1.0)));
         }
     }
     return map;
@@ -448,16 +454,15 @@ namespace {
 
 void CheckMapSize(const std::filesystem::path& path, long long width, long long height) {
     const std::string expected = "a square image whose side is a power of two in [" +
-                                 std::to_string(kMinMapSize) + ", " +
-                                 std::to_string(kMaxMapSize) + "] pixels (e.g. 256x256)";
+                                 std::to_string(kMinMapSize) + ", " + std::to_string(kMaxMapSize) +
+                                 "] pixels (e.g. 256x256)";
     const std::string size = std::to_string(width) + "x" + std::to_string(height) + " pixels";
     if (width != height) FailMap(path, "not square: " + size, expected);
     if (!IsPowerOfTwo(width)) FailMap(path, "side not a power of two: " + size, expected);
     if (width < kMinMapSize || width > kMaxMapSize) FailMap(path, "size " + size, expected);
 }
 
-const char* kChannelNames[] = {"R (coverage)", "G (precipitation)", "B (cloud type)",
-                               "A (height)"};
+const char* kChannelNames[] = {"R (coverage)", "G (precipitation)", "B (cloud type)", "A (height)"};
 
 void CheckValues(const std::filesystem::path& path, const WeatherMap& map) {
     for (int y = 0; y < map.size; ++y) {
@@ -465,11 +470,12 @@ void CheckValues(const std::filesystem::path& path, const WeatherMap& map) {
             for (int c = 0; c < 4; ++c) {
                 const float v = map.at(x, y)[c];
                 if (!(v >= 0.0f && v <= 1.0f)) {
-                    FailMap(path,
-                            std::string(std::isfinite(v) ? "value out of range" : "non-finite value") +
-                                ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                ") channel " + kChannelNames[c] + " = " + FormatNumber(v),
-                            "every channel finite and in [0, 1]");
+                    FailMap(
+                        path,
+                        std::string(std::isfinite(v) ? "value out of range" : "non-finite value") +
+                            ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                            ") channel " + kChannelNames[c] + " = " + FormatNumber(v),
+                        "every channel finite and in [0, 1]");
                 }
             }
         }
@@ -479,7 +485,9 @@ void CheckValues(const std::filesystem::path& path, const WeatherMap& map) {
 WeatherMap ReadPngMap(const std::filesystem::path& path) {
     // The PNG header (signature, IHDR) says the channels before libpng converts them.
     std::ifstream in(path, std::ios::binary);
-    if (!in) FailMap(path, "cannot open (" + std::generic_category().message(errno) + ")", "a readable PNG");
+    if (!in)
+        FailMap(path, "cannot open (" + std::generic_category().message(errno) + ")",
+                "a readable PNG");
     std::array<unsigned char, 26> head{};
     in.read(reinterpret_cast<char*>(head.data()), head.size());
     static constexpr unsigned char kSignature[8] = {137, 'P', 'N', 'G', '\r', '\n', 26, '\n'};
@@ -508,7 +516,8 @@ WeatherMap ReadPngMap(const std::filesystem::path& path) {
         case 6:
             FailMap(path, "4 channels (RGBA)", expected_channels);
         default:
-            FailMap(path, "unknown PNG colour type " + std::to_string(colour_type), expected_channels);
+            FailMap(path, "unknown PNG colour type " + std::to_string(colour_type),
+                    expected_channels);
     }
     if (bit_depth != 8) {
         // libpng's simplified reader takes 16-bit data as linear and re-encodes it as sRGB.
@@ -523,7 +532,8 @@ WeatherMap ReadPngMap(const std::filesystem::path& path) {
     }
     WeatherMap map;
     map.size = image.width;
-    map.texels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+    map.texels.resize(static_cast<std::size_t>(image.width) *
+                      static_cast<std::size_t>(image.height));
     for (std::size_t i = 0; i < map.texels.size(); ++i) {
         map.texels[i] = glm::vec4(image.rgb[3 * i] / 255.0f, image.rgb[3 * i + 1] / 255.0f,
                                   image.rgb[3 * i + 2] / 255.0f, 1.0f);
@@ -539,7 +549,8 @@ WeatherMap ReadExrMap(const std::filesystem::path& path) {
         const Imath::Box2i window = file.header().dataWindow();
         width = static_cast<long long>(window.max.x) - window.min.x + 1;
         height = static_cast<long long>(window.max.y) - window.min.y + 1;
-        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end();
+             ++it) {
             channels.emplace_back(it.name());
         }
     } catch (const std::exception& e) {

@@ -38,11 +38,11 @@ struct WeatherMapSource {
         kFile,     // an image: see LoadWeatherMapImage
     };
     Kind kind = Kind::kUniform;
-    std::uint32_t seed = 1;     // procedural maps
-    int cells_per_tile = 8;     // procedural: features across one tile, >= 1 (keeps it tiling)
-    double variation = 0.5;     // procedural: amplitude of the coverage variation, [0, 1]
-    int size = 256;             // procedural: texels per side, a power of two in [16, 4096]
-    std::filesystem::path file; // kFile: absolute, or relative to the weather file's directory
+    std::uint32_t seed = 1;      // procedural maps
+    int cells_per_tile = 8;      // procedural: features across one tile, >= 1 (keeps it tiling)
+    double variation = 0.5;      // procedural: amplitude of the coverage variation, [0, 1]
+    int size = 256;              // procedural: texels per side, a power of two in [16, 4096]
+    std::filesystem::path file;  // kFile: absolute, or relative to the weather file's directory
     bool operator==(const WeatherMapSource&) const = default;
 };
 
