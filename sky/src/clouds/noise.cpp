@@ -248,7 +248,13 @@ CloudNoise EmptyNoise(const CloudNoiseSettings& s) {
     return noise;
 }
 
-std::string Quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
+// Built by appending: "'" + std::string + "'" trips GCC 12's false -Wrestrict (bug 105329).
+std::string Quoted(const std::filesystem::path& path) {
+    std::string quoted(1, '\'');
+    quoted.append(path.string());
+    quoted.push_back('\'');
+    return quoted;
+}
 
 void WriteAll(int fd, const void* data, std::size_t size, const std::filesystem::path& path) {
     const auto* bytes = static_cast<const char*>(data);
