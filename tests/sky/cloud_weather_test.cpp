@@ -73,7 +73,8 @@ TEST(CloudWeatherPresets, EveryPresetLoadsAndValidates) {
     const Weather broken = LoadWeather("broken");
     ASSERT_EQ(broken.layers.size(), 2u);  // several layers at different altitudes
     EXPECT_LE(broken.layers[0].top_altitude, broken.layers[1].base_altitude);
-    const CloudLayer& cu = LoadWeather("scattered_cumulus").layers[0];
+    const Weather scattered = LoadWeather("scattered_cumulus");
+    const CloudLayer& cu = scattered.layers[0];
     EXPECT_EQ(cu.wind_speed, 8.0);
     EXPECT_NEAR(cu.wind_from, 1.5 * std::numbers::pi, 1e-15);
 }
