@@ -20,8 +20,11 @@
 #include <system_error>
 #include <vector>
 
+#include "data_files.h"
 namespace zenith::sky {
 namespace {
+
+using data_files::Quote;
 
 using Json = nlohmann::json;
 
@@ -283,25 +286,6 @@ void Check(const Atmosphere& a, const Checker& check) {
 
 // --- reading --------------------------------------------------------------------------------
 
-// Built by appending: "'" + std::string + "'" trips GCC 12's false -Wrestrict (bug 105329).
-std::string Quote(std::string_view text) {
-    std::string quoted(1, '\'');
-    quoted.append(text);
-    quoted.push_back('\'');
-    return quoted;
-}
-
-// 1-based line and column of a byte offset, as editors count them.
-std::string LineColumn(std::string_view text, std::size_t byte) {
-    byte = std::min(byte, text.size());
-    const std::string_view before = text.substr(0, byte);
-    const std::size_t line =
-        1 + static_cast<std::size_t>(std::count(before.begin(), before.end(), '\n'));
-    const std::size_t line_start = before.rfind('\n');
-    const std::size_t column = line_start == std::string_view::npos ? byte + 1 : byte - line_start;
-    return std::to_string(line) + ":" + std::to_string(column);
-}
-
 std::string TypeName(const Json& value) {
     std::string text = value.dump();
     if (text.size() > 40) text = text.substr(0, 37) + "...";
@@ -424,12 +408,8 @@ class DocumentBuilder final : public nlohmann::json_sax<Json> {
     bool parse_error(std::size_t position, const std::string& /*last_token*/,
                      const Json::exception& error) override {
         // position is 1-based: the character that stopped the parser (the end of a bad token).
-        std::string what = error.what();
-        if (const std::size_t at = what.find("] "); at != std::string::npos) {
-            what = what.substr(at + 2);
-        }
-        throw AtmosphereError(source_ + ":" + LineColumn(text_, position == 0 ? 0 : position - 1) +
-                              ": JSON syntax: " + what);
+        throw AtmosphereError(
+            data_files::JsonSyntaxMessage(source_, text_, position, error.what()));
     }
 
   private:
@@ -554,39 +534,13 @@ Atmosphere ParseAtmosphereJson(std::string_view json_text, std::string_view sour
 }
 
 Atmosphere LoadAtmosphere(std::string_view name_or_path) {
-    const std::string text(name_or_path);
-    const bool is_path =
-        text.find('/') != std::string::npos || (text.size() > 5 && text.ends_with(".json"));
-    std::filesystem::path path;
-    if (is_path) {
-        path = text;
-    } else {
-        if (text.empty()) throw AtmosphereError("LoadAtmosphere: empty preset name");
-        path = PresetDirectory() / (text + ".json");
+    data_files::NamedFile file;
+    std::string error;
+    if (!data_files::ReadNamedJsonFile(name_or_path, PresetDirectory(), "atmosphere",
+                                       "set by $ZENITH_DATA_DIR/presets", file, error)) {
+        throw AtmosphereError(error);
     }
-    std::ifstream file(path, std::ios::binary);
-    if (!file) {
-        std::string message = "cannot open atmosphere file " + Quote(path.string()) + ": " +
-                              std::generic_category().message(errno);
-        if (!is_path) {
-            std::vector<std::string> stems;
-            std::error_code error;
-            for (const auto& entry :
-                 std::filesystem::directory_iterator(PresetDirectory(), error)) {
-                if (entry.path().extension() == ".json") stems.push_back(entry.path().stem());
-            }
-            std::sort(stems.begin(), stems.end());
-            std::string names;
-            for (const std::string& stem : stems) names += (names.empty() ? "" : ", ") + stem;
-            message += "; expected a preset name (" + (names.empty() ? "none found" : names) +
-                       " in " + PresetDirectory().string() +
-                       ", set by $ZENITH_DATA_DIR/presets) or a path to a .json file";
-        }
-        throw AtmosphereError(message);
-    }
-    std::ostringstream contents;
-    contents << file.rdbuf();
-    return ParseAtmosphereJson(contents.str(), path.string());
+    return ParseAtmosphereJson(file.text, file.path.string());
 }
 
 // --- writing --------------------------------------------------------------------------------

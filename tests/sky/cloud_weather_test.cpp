@@ -128,6 +128,12 @@ TEST(CloudWeatherPresets, BadFieldsAreNamedWithValueAndRange) {
                    {"map.size = 300", "power of two"});
 }
 
+TEST(CloudWeatherPresets, JsonSyntaxErrorsGiveFileLineAndColumn) {
+    // The same file:line:column as atmosphere presets (sky/src/data_files.h).
+    ExpectMentions(ErrorOf([] { ParseWeatherJson("{\n  \"name\": \"x\",\n  oops\n}", "w.json"); }),
+                   {"w.json:3:", "JSON syntax"});
+}
+
 TEST(CloudWeatherMaps, ProceduralMapsAreDeterministicInRangeAndTile) {
     for (const char* name : {"scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus"}) {
         for (const CloudLayer& layer : LoadWeather(name).layers) {

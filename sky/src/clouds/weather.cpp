@@ -20,10 +20,13 @@
 
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/clouds/noise.h"
+#include "data_files.h"
 #include "zenith/sky/image_io.h"
 
 namespace zenith::sky::clouds {
 namespace {
+
+using data_files::Quote;
 
 using Json = nlohmann::json;
 
@@ -45,14 +48,6 @@ constexpr std::array<NamedType, 5> kCloudTypes = {{{"stratus", 0.0},
                                                    {"cumulus", 0.5},
                                                    {"congestus", 0.75},
                                                    {"cumulonimbus", 1.0}}};
-
-// Built by appending: "'" + std::string + "'" trips GCC 12's false -Wrestrict (bug 105329).
-std::string Quote(std::string_view text) {
-    std::string quoted(1, '\'');
-    quoted.append(text);
-    quoted.push_back('\'');
-    return quoted;
-}
 
 std::string FormatNumber(double x) {
     if (std::isnan(x)) return "nan";
@@ -293,11 +288,7 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
     try {
         root = Json::parse(json_text);
     } catch (const Json::parse_error& e) {
-        std::string what = e.what();
-        if (const std::size_t at = what.find("] "); at != std::string::npos) {
-            what = what.substr(at + 2);
-        }
-        throw WeatherError(source + ": JSON syntax: " + what);
+        throw WeatherError(data_files::JsonSyntaxMessage(source, json_text, e.byte, e.what()));
     }
     if (!root.is_object())
         read.Fail("(top level)", "expected an object, got " + Reader::Describe(root));
@@ -346,34 +337,13 @@ std::filesystem::path WeatherDirectory() {
 }
 
 Weather LoadWeather(std::string_view name_or_path) {
-    const std::string text(name_or_path);
-    const bool is_path =
-        text.find('/') != std::string::npos || (text.size() > 5 && text.ends_with(".json"));
-    if (text.empty()) throw WeatherError("LoadWeather: empty weather name");
-    const std::filesystem::path path =
-        is_path ? std::filesystem::path(text) : WeatherDirectory() / (text + ".json");
-    std::ifstream file(path, std::ios::binary);
-    if (!file) {
-        std::string message = "cannot open weather file " + Quote(path.string()) + ": " +
-                              std::generic_category().message(errno);
-        if (!is_path) {
-            std::vector<std::string> stems;
-            std::error_code error;
-            for (const auto& entry :
-                 std::filesystem::directory_iterator(WeatherDirectory(), error)) {
-                if (entry.path().extension() == ".json") stems.push_back(entry.path().stem());
-            }
-            std::sort(stems.begin(), stems.end());
-            std::string names;
-            for (const std::string& stem : stems) names += (names.empty() ? "" : ", ") + stem;
-            message += "; expected a weather preset (" + (names.empty() ? "none found" : names) +
-                       " in " + WeatherDirectory().string() + ") or a path to a .json file";
-        }
-        throw WeatherError(message);
+    data_files::NamedFile file;
+    std::string error;
+    if (!data_files::ReadNamedJsonFile(name_or_path, WeatherDirectory(), "weather", "", file,
+                                       error)) {
+        throw WeatherError(error);
     }
-    std::ostringstream contents;
-    contents << file.rdbuf();
-    return ParseWeatherJson(contents.str(), path.string());
+    return ParseWeatherJson(file.text, file.path.string());
 }
 
 // --- maps -------------------------------------------------------------------------------------
