@@ -1,33 +1,18 @@
 #include "zenith/sky/reference/atmosphere_reference.h"
 
 #include "reference/atmosphere_functions.h"
+#include "reference/lut_texture.h"
 
 #include "shader_parameters.h"
 
 namespace zenith::sky::reference {
 namespace {
 
+using ref::FromImage;
 using ref::Texture2D;
+using ref::ToImage;
 
 constexpr double kKm = 1000.0;
-
-LutImage ToImage(const Texture2D& texture) {
-    LutImage image(texture.width(), texture.height());
-    for (int y = 0; y < texture.height(); ++y) {
-        for (int x = 0; x < texture.width(); ++x) image.at(x, y) = glm::vec4(texture.at(x, y));
-    }
-    return image;
-}
-
-// A LUT texture holding exactly the float values the GPU would store, so CPU sampling of it
-// matches GPU sampling.
-Texture2D FromImage(const LutImage& image, bool wrap_u = false) {
-    Texture2D texture(image.size.x, image.size.y, wrap_u);
-    for (int y = 0; y < image.size.y; ++y) {
-        for (int x = 0; x < image.size.x; ++x) texture.at(x, y) = glm::dvec4(image.at(x, y));
-    }
-    return texture;
-}
 
 glm::dvec2 TexelCentre(int x, int y, glm::ivec2 size) {
     return {(x + 0.5) / size.x, (y + 0.5) / size.y};
