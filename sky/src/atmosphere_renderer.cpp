@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "gl/atmosphere_uniforms.h"
 #include "gl/shader_library.h"
 #include "reference/atmosphere_functions.h"
+#include "reference/lut_texture.h"
 #include "shader_parameters.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/gl/shader.h"
@@ -30,13 +32,20 @@ enum Pass : std::size_t {
     kRenderRayMarchPass,   // the composite ray marching every pixel (space views)
     kRenderDepthPass,      // the same two over the host's depth buffer (aerial perspective)
     kRenderRayMarchDepthPass,
+    kDiskPass,       // the Sun and the Moon, added over their disks only
+    kDiskDepthPass,  // the same, behind the host's geometry
     kPassCount
 };
+
+// Timer queries: one per pass, and a second for the disk pass, which may draw twice a frame.
+constexpr std::size_t kSecondDiskQuery = kPassCount;
+constexpr std::size_t kQueryCount = kPassCount + 1;
 
 constexpr std::array<std::string_view, kPassCount> kPassFiles = {
     "atmosphere/transmittance.comp",      "atmosphere/multiple_scattering.comp",
     "atmosphere/irradiance.comp",         "atmosphere/sky_view.comp",
     "atmosphere/aerial_perspective.comp", "atmosphere/render.frag",
+    "atmosphere/render.frag",             "atmosphere/render.frag",
     "atmosphere/render.frag",             "atmosphere/render.frag",
     "atmosphere/render.frag",
 };
@@ -73,10 +82,15 @@ LutImage ReadTexture(GLuint texture, glm::ivec3 size) {
 
 GLuint Groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
 
-// Adds each point source to the pixel its direction falls in, as luminance E / (pixel solid
-// angle), so the image integrates to the source's illuminance whatever the resolution.
+// Adds each point source to the pixel its direction falls in, as luminance T E / (pixel solid
+// angle), so the image integrates to the source's illuminance seen through the atmosphere
+// (transmittance T to space, 0 below the horizon) whatever the resolution.
 void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm::ivec2 size,
-                 std::vector<glm::vec4>& image) {
+                 const ref::AtmosphereParameters& atmosphere,
+                 const ref::TransmittanceTexture& transmittance, std::vector<glm::vec4>& image) {
+    const glm::dvec3 camera_km = camera.position / kKm;
+    const double altitude_km = glm::length(camera_km) - atmosphere.bottom_radius;
+    const glm::ivec2 transmittance_size(transmittance.width(), transmittance.height());
     const glm::dmat3 view_from_world = glm::transpose(camera.world_from_view);
     const double tan_y = std::tan(0.5 * camera.vertical_fov);
     const double tan_x = tan_y * camera.aspect;
@@ -89,6 +103,10 @@ void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm
         const double x = v.x / -v.z, y = v.y / -v.z;
         const double px = (x / tan_x + 1.0) * 0.5 * size.x, py = (y / tan_y + 1.0) * 0.5 * size.y;
         if (!(px >= 0.0 && py >= 0.0 && px < size.x && py < size.y)) continue;
+        const glm::dvec3 t = ref::TransmittanceToSpace(atmosphere, transmittance,
+                                                      transmittance_size, camera_km, altitude_km,
+                                                      point.direction);
+        if (t == glm::dvec3(0.0)) continue;
         const int ix = static_cast<int>(px), iy = static_cast<int>(py);
         // The solid angle of the whole pixel (taken at its centre), the measure a reader of the
         // image integrates with, so luminance x solid angle returns exactly E.
@@ -97,8 +115,44 @@ void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm
         const double solid_angle = dx * dy / std::pow(1.0 + cx * cx + cy * cy, 1.5);
         glm::vec4& texel = image[static_cast<std::size_t>(iy) * static_cast<std::size_t>(size.x) +
                                  static_cast<std::size_t>(ix)];
-        texel += glm::vec4(glm::vec3(point.illuminance / solid_angle), 0.0f);
+        texel += glm::vec4(glm::vec3(t * point.illuminance / solid_angle), 0.0f);
     }
+}
+
+// The pixel box (x, y, width, height) that holds a disk of angular radius `radius` around
+// `direction`, with a pixel to spare; nullopt when none of it is in view. In the tangent plane a
+// disk at angle theta off the axis reaches at most tan(theta + radius) - tan(theta) from its
+// centre (the radial stretch exceeds the tangential one).
+std::optional<glm::ivec4> DiskBox(const glm::dvec3& direction, double radius, const Camera& camera,
+                                  glm::ivec2 size) {
+    const glm::dvec3 v = glm::transpose(camera.world_from_view) * glm::normalize(direction);
+    const double theta = std::acos(std::clamp(-v.z, -1.0, 1.0));
+    if (theta - radius >= 0.5 * ref::kPi) return std::nullopt;  // behind the camera
+    const glm::ivec4 whole(0, 0, size.x, size.y);
+    if (theta + radius >= 1.5) return whole;  // near the image plane: the box is unbounded
+    const double tan_y = std::tan(0.5 * camera.vertical_fov);
+    const double tan_x = tan_y * camera.aspect;
+    const double x = v.x / -v.z, y = v.y / -v.z;
+    const double reach = std::tan(theta + radius) - std::tan(theta);
+    const double px = (x / tan_x + 1.0) * 0.5 * size.x, py = (y / tan_y + 1.0) * 0.5 * size.y;
+    const double rx = reach / tan_x * 0.5 * size.x + 1.0, ry = reach / tan_y * 0.5 * size.y + 1.0;
+    const int x0 = static_cast<int>(std::max(0.0, std::floor(px - rx)));
+    const int y0 = static_cast<int>(std::max(0.0, std::floor(py - ry)));
+    const int x1 = static_cast<int>(std::min<double>(size.x, std::ceil(px + rx)));
+    const int y1 = static_cast<int>(std::min<double>(size.y, std::ceil(py + ry)));
+    if (x1 <= x0 || y1 <= y0) return std::nullopt;
+    return glm::ivec4(x0, y0, x1 - x0, y1 - y0);
+}
+
+bool Overlap(const glm::ivec4& a, const glm::ivec4& b) {
+    return a.x < b.x + b.z && b.x < a.x + a.z && a.y < b.y + b.w && b.y < a.y + a.w;
+}
+
+glm::ivec4 Union(const glm::ivec4& a, const glm::ivec4& b) {
+    const glm::ivec2 lo = glm::min(glm::ivec2(a), glm::ivec2(b));
+    const glm::ivec2 hi = glm::max(glm::ivec2(a) + glm::ivec2(a.z, a.w),
+                                   glm::ivec2(b) + glm::ivec2(b.z, b.w));
+    return {lo, hi - lo};
 }
 
 }  // namespace
@@ -112,9 +166,10 @@ struct AtmosphereRenderer::Impl {
            aerial_perspective = 0, frame = 0, stars = 0;
     GLuint framebuffer = 0, vertex_array = 0;  // the composite draws a triangle into `frame`
     std::vector<glm::vec4> star_pixels;
+    ref::TransmittanceTexture transmittance_cpu;  // for the stars' extinction
     glm::ivec2 frame_size{0, 0};
-    std::array<GLuint, kPassCount> queries{};
-    std::array<bool, kPassCount> query_used{};
+    std::array<GLuint, kQueryCount> queries{};
+    std::array<bool, kQueryCount> query_used{};
 
     static std::array<gl::Program, kPassCount> BuildPrograms() {
         return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
@@ -123,14 +178,18 @@ struct AtmosphereRenderer::Impl {
                 // Two programs from one source: llvmpipe runs both sides of a branch under a
                 // mask, so a per-frame choice made in the shader cost every pixel the 32-step
                 // ray march; chosen here it costs nothing.
-                gl::FullscreenProgram(kPassFiles[5],
-                                      "#define ZENITH_RAY_MARCH 0\n#define ZENITH_SCENE_DEPTH 0\n"),
-                gl::FullscreenProgram(kPassFiles[6],
-                                      "#define ZENITH_RAY_MARCH 1\n#define ZENITH_SCENE_DEPTH 0\n"),
-                gl::FullscreenProgram(kPassFiles[7],
-                                      "#define ZENITH_RAY_MARCH 0\n#define ZENITH_SCENE_DEPTH 1\n"),
-                gl::FullscreenProgram(kPassFiles[8],
-                                      "#define ZENITH_RAY_MARCH 1\n#define ZENITH_SCENE_DEPTH 1\n")};
+                Composite(kPassFiles[5], 0, 0, 0), Composite(kPassFiles[6], 1, 0, 0),
+                Composite(kPassFiles[7], 0, 1, 0), Composite(kPassFiles[8], 1, 1, 0),
+                Composite(kPassFiles[9], 0, 0, 1), Composite(kPassFiles[10], 0, 1, 1)};
+    }
+
+    static gl::Program Composite(std::string_view file, int ray_march, int scene_depth,
+                                 int disks) {
+        return gl::FullscreenProgram(file, "#define ZENITH_RAY_MARCH " + std::to_string(ray_march) +
+                                               "\n#define ZENITH_SCENE_DEPTH " +
+                                               std::to_string(scene_depth) +
+                                               "\n#define ZENITH_DISKS " +
+                                               std::to_string(disks) + "\n");
     }
 
     Impl(const Atmosphere& a, const LutSettings& s)
@@ -212,31 +271,52 @@ struct AtmosphereRenderer::Impl {
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
 
-    // The composite: a full-screen triangle into `target` (our frame's FBO or the host's).
-    void Draw(Pass pass, GLuint target, glm::ivec4 viewport, GLuint scene_depth = 0) {
+    // The composite: a full-screen triangle into `target` (our frame's FBO or the host's). The
+    // sky pass replaces the sky (blending premultiplied over the host's geometry when there is
+    // scene depth); a disk pass adds the Sun and the Moon inside `scissor` (viewport pixels).
+    void Draw(Pass pass, std::size_t query, GLuint target, glm::ivec4 viewport,
+              GLuint scene_depth = 0, std::optional<glm::ivec4> scissor = std::nullopt) {
         GLint host_framebuffer = 0;
         GLint host_viewport[4] = {0, 0, 0, 0};
+        GLint host_scissor[4] = {0, 0, 0, 0};
+        const GLboolean host_scissor_test = glIsEnabled(GL_SCISSOR_TEST);
         glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &host_framebuffer);
         glGetIntegerv(GL_VIEWPORT, host_viewport);
+        glGetIntegerv(GL_SCISSOR_BOX, host_scissor);
         BindInputs();
         programs[pass].Use();
         glBindFramebuffer(GL_FRAMEBUFFER, target);
         glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
         glDisable(GL_DEPTH_TEST);
-        if (scene_depth != 0) {
+        if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
+        if (pass == kDiskPass || pass == kDiskDepthPass) {
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+        } else if (scene_depth != 0) {
             // Premultiplied: the output is (L, T) over geometry and (sky, 0) elsewhere.
-            glBindTextureUnit(5, scene_depth);
             glEnable(GL_BLEND);
             glBlendFunc(GL_ONE, GL_SRC_ALPHA);
         } else {
             glDisable(GL_BLEND);
         }
+        if (scissor) {
+            glEnable(GL_SCISSOR_TEST);
+            glScissor(viewport.x + scissor->x, viewport.y + scissor->y, scissor->z, scissor->w);
+        } else {
+            glDisable(GL_SCISSOR_TEST);
+        }
         glBindVertexArray(vertex_array);
-        glBeginQuery(GL_TIME_ELAPSED, queries[pass]);
+        glBeginQuery(GL_TIME_ELAPSED, queries[query]);
         glDrawArrays(GL_TRIANGLES, 0, 3);
         glEndQuery(GL_TIME_ELAPSED);
-        query_used[pass] = true;
+        query_used[query] = true;
         glDisable(GL_BLEND);
+        if (host_scissor_test) {
+            glEnable(GL_SCISSOR_TEST);
+        } else {
+            glDisable(GL_SCISSOR_TEST);
+        }
+        glScissor(host_scissor[0], host_scissor[1], host_scissor[2], host_scissor[3]);
         glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(host_framebuffer));
         glViewport(host_viewport[0], host_viewport[1], host_viewport[2], host_viewport[3]);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -299,6 +379,8 @@ struct AtmosphereRenderer::Impl {
                  1);
         Dispatch(kIrradiancePass, irradiance, false, Groups(s.irradiance_size.x, 64),
                  static_cast<GLuint>(s.irradiance_size.y), 1);
+        transmittance_cpu =
+            ref::FromImage(ReadTexture(transmittance, glm::ivec3(s.transmittance_size, 1)));
     }
 };
 
@@ -376,7 +458,9 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         d.star_pixels.assign(static_cast<std::size_t>(options.size.x) *
                                  static_cast<std::size_t>(options.size.y),
                              glm::vec4(0.0f));
-        SplatPoints(points, camera, options.size, d.star_pixels);
+        SplatPoints(points, camera, options.size,
+                    MakeShaderParameters<ref::AtmosphereParameters>(d.atmosphere),
+                    d.transmittance_cpu, d.star_pixels);
         glTextureSubImage2D(d.stars, 0, 0, 0, options.size.x, options.size.y, GL_RGBA, GL_FLOAT,
                             d.star_pixels.data());
     }
@@ -393,9 +477,37 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     const Pass pass = options.scene_depth
                           ? (ray_march ? kRenderRayMarchDepthPass : kRenderDepthPass)
                           : (ray_march ? kRenderRayMarchPass : kRenderPass);
-    d.Draw(pass, to_host ? *options.target_framebuffer : d.framebuffer,
-           to_host ? options.target_viewport : glm::ivec4(0, 0, options.size.x, options.size.y),
-           options.scene_depth ? options.scene_depth->texture : 0);
+    const GLuint target = to_host ? *options.target_framebuffer : d.framebuffer;
+    const glm::ivec4 viewport =
+        to_host ? options.target_viewport : glm::ivec4(0, 0, options.size.x, options.size.y);
+    const GLuint depth = options.scene_depth ? options.scene_depth->texture : 0;
+    // LastPassTimes reports this frame's composite draws only.
+    std::fill(d.query_used.begin() + kRenderPass, d.query_used.end(), false);
+    d.Draw(pass, pass, target, viewport, depth);
+
+    // The Sun and the Moon, each over its own box (one box when they overlap, so an eclipse is
+    // not added twice).
+    std::vector<glm::ivec4> boxes;
+    const auto add_disk = [&](const glm::dvec3& direction, double radius) {
+        std::optional<glm::ivec4> box = DiskBox(direction, radius, camera, options.size);
+        if (!box) return;
+        for (glm::ivec4& other : boxes) {
+            if (Overlap(other, *box)) {
+                other = Union(other, *box);
+                return;
+            }
+        }
+        boxes.push_back(*box);
+    };
+    if (options.draw_sun_disk && sun_disk_resolved) {
+        add_disk(lights.sun_direction, d.atmosphere.sun_angular_radius);
+    }
+    if (options.moon.enabled) add_disk(options.moon.direction, options.moon.angular_radius);
+    const Pass disk_pass = options.scene_depth ? kDiskDepthPass : kDiskPass;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        d.Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, target, viewport, depth,
+               boxes[i]);
+    }
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {
@@ -437,16 +549,21 @@ std::size_t AtmosphereRenderer::LutMemoryBytes() const {
 
 PassTimes AtmosphereRenderer::LastPassTimes() const {
     const Impl& d = *impl_;
-    auto ms = [&](Pass pass) {
-        if (!d.query_used[pass]) return 0.0;
+    auto ms = [&](std::size_t query) {
+        if (!d.query_used[query]) return 0.0;
         GLuint64 ns = 0;
-        glGetQueryObjectui64v(d.queries[pass], GL_QUERY_RESULT, &ns);
+        glGetQueryObjectui64v(d.queries[query], GL_QUERY_RESULT, &ns);
         return static_cast<double>(ns) * 1e-6;
     };
-    return {ms(kTransmittancePass), ms(kMultipleScatteringPass), ms(kIrradiancePass),
-            ms(kSkyViewPass),       ms(kAerialPerspectivePass),
-            std::max({ms(kRenderPass), ms(kRenderRayMarchPass), ms(kRenderDepthPass),
-                      ms(kRenderRayMarchDepthPass)})};
+    // The composite: whichever sky program ran, plus its disk draws.
+    return {ms(kTransmittancePass),
+            ms(kMultipleScatteringPass),
+            ms(kIrradiancePass),
+            ms(kSkyViewPass),
+            ms(kAerialPerspectivePass),
+            ms(kRenderPass) + ms(kRenderRayMarchPass) + ms(kRenderDepthPass) +
+                ms(kRenderRayMarchDepthPass) + ms(kDiskPass) + ms(kDiskDepthPass) +
+                ms(kSecondDiskQuery)};
 }
 
 }  // namespace zenith::sky

@@ -231,6 +231,30 @@ TEST_F(AtmosphereGlTest, SunDiskAndStarsIntegrateToTheirIlluminance) {
     EXPECT_NEAR(star, 1.0, 1e-5);
 }
 
+TEST_F(AtmosphereGlTest, OffAxisSunDiskIsDrawnWhole) {
+    // The disks are drawn inside a scissor box computed on the CPU; off-axis in a wide field the
+    // perspective stretches a disk most, so a box too tight would clip it. A 2 deg Sun 50 deg off
+    // the axis of a 100 deg field, 8.7 pixels in radius: all of its light must be in the frame.
+    Atmosphere atmosphere;
+    atmosphere.sun_angular_radius = 2.0 * 0.017453292519943295;
+    AtmosphereRenderer gpu(atmosphere);
+    Camera camera = SpaceCameraLookingAt(glm::dvec3(0.0, 0.3, 1.0), 100.0 * 0.017453292519943295);
+    const glm::dvec3 diagonal = glm::normalize(camera.world_from_view[0] +
+                                               camera.world_from_view[1]);
+    const double off_axis = 50.0 * 0.017453292519943295;
+    Lights lights;
+    lights.sun_direction = glm::normalize(-camera.world_from_view[2] * std::cos(off_axis) +
+                                          diagonal * std::sin(off_axis));
+    RenderOptions options;
+    options.size = {512, 512};
+    gpu.UpdateFrameLuts(camera, lights);
+    gpu.Render(camera, lights, options);
+    const double sun_y = Y(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
+    const double ratio = FrameIlluminance(gpu.ReadFrame(), camera) / sun_y;
+    std::printf("off-axis sun disk: integrated / true illuminance %.4f\n", ratio);
+    EXPECT_NEAR(ratio, 1.0, 0.01);
+}
+
 TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {
     // A half Moon with the Sun 90 deg to its right in the image: the lit half is the right one.
     AtmosphereRenderer gpu(Atmosphere{});

@@ -263,6 +263,30 @@ vec3 GetTransmittanceToSun(IN(AtmosphereParameters) atmosphere,
                                                    mu_s) * visible;
 }
 
+// Transmittance from a camera (km, planet-centred; `camera_altitude` exact) to space along
+// `direction`, 0 when the ground is in the way: what the atmosphere does to the light of the Sun,
+// the Moon and the stars on their way in. From space, the chord's transmittance (1 if it misses).
+vec3 TransmittanceToSpace(IN(AtmosphereParameters) atmosphere,
+                          IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                          vec3 camera, Number camera_altitude, vec3 direction) {
+    Number r = length(camera);
+    Number mu = dot(camera, direction) / r;
+    if (RaySphereDistance(r, mu, camera_altitude, atmosphere.bottom_radius) >= 0.0) {
+        return vec3(0.0);
+    }
+    Number shell = atmosphere.top_radius - atmosphere.bottom_radius;
+    if (camera_altitude <= shell) {
+        return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
+                                                       transmittance_size, r, mu);
+    }
+    Number t_top = RaySphereDistance(r, mu, camera_altitude - shell, atmosphere.top_radius);
+    if (t_top < 0.0) return vec3(1.0);
+    vec3 entry = camera + direction * t_top;
+    return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
+                                                   transmittance_size, atmosphere.top_radius,
+                                                   dot(entry, direction) / length(entry));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Multiple-scattering LUT (H20 §5.5): v = h / (R_t - R) as in the paper, but u = 0.5 + 0.5 sign(mu_s)
 // sqrt(|mu_s|) instead of 0.5 + 0.5 mu_s: Psi_ms falls steeply through twilight, and with the

@@ -1,6 +1,6 @@
 // Final sky image: the Sky-View LUT inside the atmosphere (ZENITH_RAY_MARCH 0), or per-pixel ray
-// marching above it (ZENITH_RAY_MARCH 1; the host picks the program), then the Sun, the Moon and
-// the stars. Writes linear
+// marching above it (ZENITH_RAY_MARCH 1; the host picks the program), with the stars; then, as a
+// second additive pass over each disk (ZENITH_DISKS 1), the Sun and the Moon. Writes linear
 // luminance, cd/m^2. A fragment pass over a full-screen triangle: it can draw into a host's
 // framebuffer, and llvmpipe's fragment path is several times faster than compute image stores.
 layout(location = 0) out vec4 out_luminance;
@@ -21,28 +21,6 @@ vec3 SunLimbDarkening(float center_to_edge) {
     return factor / disk_mean;
 }
 
-// Transmittance from the camera to space along `direction`, 0 when the ground is in the way:
-// what the atmosphere does to the light of the Sun, the Moon and the stars on their way in.
-vec3 TransmittanceToSpace(vec3 direction) {
-    float r = length(camera_km);
-    float mu = dot(camera_km, direction) / r;
-    if (RaySphereDistance(r, mu, camera_altitude_km, atmosphere.bottom_radius) >= 0.0) {
-        return vec3(0.0);
-    }
-    float shell = atmosphere.top_radius - atmosphere.bottom_radius;
-    if (camera_altitude_km <= shell) {
-        return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
-                                                       transmittance_size, r, mu);
-    }
-    // From space: the transmittance of the chord, seen from its entry point (1 if it misses).
-    float t_top = RaySphereDistance(r, mu, camera_altitude_km - shell, atmosphere.top_radius);
-    if (t_top < 0.0) return vec3(1.0);
-    vec3 entry = camera_km + direction * t_top;
-    return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
-                                                   transmittance_size, atmosphere.top_radius,
-                                                   dot(entry, direction) / length(entry));
-}
-
 // Luminance of the Moon's disk along `direction`: a Lambertian sphere lit by the Sun, so the lit
 // side faces the Sun whatever the phase (Hillaire 2016 §4.2 leaves this to the artist).
 vec3 MoonLuminance(vec3 direction) {
@@ -59,20 +37,17 @@ vec3 MoonLuminance(vec3 direction) {
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(viewport_x, viewport_y);
     vec3 direction = CameraDirection(vec2(pixel), vec2(output_size));
-
-#if ZENITH_RAY_MARCH
-    vec3 luminance = IntegrateScatteredLuminance(
-                         atmosphere, transmittance_texture, transmittance_size,
-                         multiple_scattering_texture, multiple_scattering_size,
-                         irradiance_texture, irradiance_size, lights, camera_km,
-                         camera_altitude_km, direction, 0.0, 1e9, ray_march_steps,
-                         true).luminance;
-#else
-    vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_size, sky_view_up,
-                                          sky_view_x, horizon_zenith, direction);
+#if ZENITH_SCENE_DEPTH
+    float depth = texelFetch(scene_depth_texture, pixel, 0).r;
 #endif
 
-    // What lies beyond the atmosphere, composited after the LUT (H20 §5.3).
+#if ZENITH_DISKS
+    // The Sun and the Moon, drawn additively over the sky in a second pass scissored to their
+    // disks: llvmpipe runs a shader's branches whether taken or not, so this code in the sky pass
+    // cost every pixel 12 ms at 720p.
+  #if ZENITH_SCENE_DEPTH
+    if (depth < 1.0) discard;  // behind the host's geometry
+  #endif
     vec3 beyond = vec3(0.0);
     float cos_sun = dot(direction, lights.light[0].direction);
     if (draw_sun_disk != 0 && cos_sun > cos_sun_radius) {
@@ -82,14 +57,30 @@ void main() {
                   SunLimbDarkening(angle / atmosphere.sun_angular_radius);
     }
     if (moon_enabled != 0) beyond += MoonLuminance(direction);
-    if (stars_enabled != 0) beyond += texelFetch(star_texture, pixel, 0).rgb;
-    if (any(greaterThan(beyond, vec3(0.0)))) luminance += beyond * TransmittanceToSpace(direction);
+    out_luminance = vec4(beyond * TransmittanceToSpace(atmosphere, transmittance_texture,
+                                                       transmittance_size, camera_km,
+                                                       camera_altitude_km, direction),
+                         0.0);
+#else
+  #if ZENITH_RAY_MARCH
+    vec3 luminance = IntegrateScatteredLuminance(
+                         atmosphere, transmittance_texture, transmittance_size,
+                         multiple_scattering_texture, multiple_scattering_size,
+                         irradiance_texture, irradiance_size, lights, camera_km,
+                         camera_altitude_km, direction, 0.0, 1e9, ray_march_steps,
+                         true).luminance;
+  #else
+    vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_size, sky_view_up,
+                                          sky_view_x, horizon_zenith, direction);
+  #endif
+    // Stars (and a Sun narrower than a pixel): luminance already attenuated on the CPU by the
+    // same TransmittanceToSpace.
+    if (stars_enabled != 0) luminance += texelFetch(star_texture, pixel, 0).rgb;
 
-#if ZENITH_SCENE_DEPTH
+  #if ZENITH_SCENE_DEPTH
     // The host's geometry: where its depth is nearer than the far plane, the output is the
     // aerial perspective in front of it, premultiplied for blending (ONE, SRC_ALPHA):
     // framebuffer = in-scattered + transmittance * the host's colour (H20 §5.4).
-    float depth = texelFetch(scene_depth_texture, pixel, 0).r;
     if (depth < 1.0) {
         float z_ndc = 2.0 * depth - 1.0;
         float eye_depth = 2.0 * scene_near_m * scene_far_m /
@@ -103,7 +94,8 @@ void main() {
         return;
     }
     out_luminance = vec4(luminance, 0.0);
-#else
+  #else
     out_luminance = vec4(luminance, 1.0);
+  #endif
 #endif
 }
