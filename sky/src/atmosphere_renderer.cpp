@@ -271,9 +271,10 @@ struct AtmosphereRenderer::Impl {
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
 
-    // The composite: a full-screen triangle into `target` (our frame's FBO or the host's). The
-    // sky pass replaces the sky (blending premultiplied over the host's geometry when there is
-    // scene depth); a disk pass adds the Sun and the Moon inside `scissor` (viewport pixels).
+    // The composite: a full-screen triangle into `target` (our frame's FBO or the host's), timed
+    // by query `query`. The sky pass replaces the sky (blending premultiplied over the host's
+    // geometry when there is scene depth); a disk pass adds the Sun and the Moon inside
+    // `scissor` (viewport pixels).
     void Draw(Pass pass, std::size_t query, GLuint target, glm::ivec4 viewport,
               GLuint scene_depth = 0, std::optional<glm::ivec4> scissor = std::nullopt) {
         GLint host_framebuffer = 0;
