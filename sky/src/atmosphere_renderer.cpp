@@ -175,9 +175,9 @@ struct AtmosphereRenderer::Impl {
         return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
                 gl::ComputeProgram(kPassFiles[2]), gl::ComputeProgram(kPassFiles[3]),
                 gl::ComputeProgram(kPassFiles[4]),
-                // Two programs from one source: llvmpipe runs both sides of a branch under a
+                // Six programs from one source: llvmpipe runs both sides of a branch under a
                 // mask, so a per-frame choice made in the shader cost every pixel the 32-step
-                // ray march; chosen here it costs nothing.
+                // ray march (or the disks); chosen here it costs nothing.
                 Composite(kPassFiles[5], 0, 0, 0), Composite(kPassFiles[6], 1, 0, 0),
                 Composite(kPassFiles[7], 0, 1, 0), Composite(kPassFiles[8], 1, 1, 0),
                 Composite(kPassFiles[9], 0, 0, 1), Composite(kPassFiles[10], 0, 1, 1)};
