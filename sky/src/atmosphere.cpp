@@ -24,6 +24,7 @@
 namespace zenith::sky {
 namespace {
 
+using data_files::Describe;
 using data_files::Quote;
 
 using Json = nlohmann::json;
@@ -286,48 +287,19 @@ void Check(const Atmosphere& a, const Checker& check) {
 
 // --- reading --------------------------------------------------------------------------------
 
-std::string TypeName(const Json& value) {
-    std::string text = value.dump();
-    if (text.size() > 40) text = text.substr(0, 37) + "...";
-    return std::string(value.type_name()) + " " + text;
-}
-
-class Reader {
+class Reader : public data_files::JsonReader<AtmosphereError> {
   public:
     Reader(std::string source, const std::map<std::string, std::string>& number_text)
-        : source_(std::move(source)), number_text_(number_text) {}
-
-    [[noreturn]] void Fail(const std::string& path, const std::string& what) const {
-        throw AtmosphereError(source_ + ": " + path + ": " + what);
-    }
-
-    void RejectUnknownKeys(const Json& object, const std::string& prefix,
-                           std::span<const char* const> allowed) const {
-        for (const auto& [key, value] : object.items()) {
-            const bool known = std::any_of(allowed.begin(), allowed.end(),
-                                           [&](const char* k) { return key == k; });
-            if (!known) {
-                std::string list;
-                for (const char* k : allowed) list += std::string(list.empty() ? "" : ", ") + k;
-                Fail(prefix + key, "unknown key; expected one of: " + list);
-            }
-        }
-    }
-
-    const Json& Required(const Json& object, const std::string& prefix, const char* key) const {
-        const auto it = object.find(key);
-        if (it == object.end()) Fail(prefix + key, "missing (required)");
-        return *it;
-    }
+        : JsonReader(std::move(source)), number_text_(number_text) {}
 
     const Json& Group(const Json& root, const char* key) const {
         const Json& group = Required(root, "", key);
-        if (!group.is_object()) Fail(key, "expected an object, got " + TypeName(group));
+        if (!group.is_object()) Fail(key, "expected an object, got " + Describe(group));
         return group;
     }
 
     double Number(const Json& value, const std::string& path, Unit unit) const {
-        if (!value.is_number()) Fail(path, "expected a number, got " + TypeName(value));
+        if (!value.is_number()) Fail(path, "expected a number, got " + Describe(value));
         const auto text = number_text_.find(path);
         return text != number_text_.end() ? SiFromText(text->second, unit)
                                           : SiFromText(Shortest(value.get<double>()), unit);
@@ -344,7 +316,7 @@ class Reader {
         if (value.is_number()) return glm::dvec3(Number(value, path, field.unit));
         if (!value.is_array() || value.size() != 3) {
             Fail(path,
-                 "expected a number or an array of 3 numbers (R, G, B), got " + TypeName(value));
+                 "expected a number or an array of 3 numbers (R, G, B), got " + Describe(value));
         }
         glm::dvec3 rgb;
         for (int i = 0; i < 3; ++i) {
@@ -358,7 +330,6 @@ class Reader {
     static std::string Prefix(const FieldName& field) {
         return field.group[0] == '\0' ? std::string() : std::string(field.group) + ".";
     }
-    std::string source_;
     const std::map<std::string, std::string>& number_text_;
 };
 
@@ -482,7 +453,7 @@ Atmosphere ParseAtmosphereJson(std::string_view json_text, std::string_view sour
     const Document document = ParseStrict(json_text, source);
     const Json& root = document.root;
     const Reader read(source, document.number_text);
-    if (!root.is_object()) read.Fail("(top level)", "expected an object, got " + TypeName(root));
+    if (!root.is_object()) read.Fail("(top level)", "expected an object, got " + Describe(root));
     read.RejectUnknownKeys(root, "", kTopLevelKeys);
 
     Atmosphere a;
@@ -490,12 +461,12 @@ Atmosphere ParseAtmosphereJson(std::string_view json_text, std::string_view sour
     a.name = std::filesystem::path(source).stem().string();
     if (const auto it = root.find("name"); it != root.end()) {
         if (!it->is_string() || it->get<std::string>().empty()) {
-            read.Fail("name", "expected a non-empty string, got " + TypeName(*it));
+            read.Fail("name", "expected a non-empty string, got " + Describe(*it));
         }
         a.name = it->get<std::string>();
     }
     if (const auto it = root.find("description"); it != root.end() && !it->is_string()) {
-        read.Fail("description", "expected a string, got " + TypeName(*it));
+        read.Fail("description", "expected a string, got " + Describe(*it));
     }
     if (a.name.empty()) a.name = "atmosphere";
 

@@ -26,6 +26,7 @@
 namespace zenith::sky::clouds {
 namespace {
 
+using data_files::Describe;
 using data_files::Quote;
 
 using Json = nlohmann::json;
@@ -154,37 +155,9 @@ void Check(const Weather& weather, const Checker& check) {
 
 // --- reading ----------------------------------------------------------------------------------
 
-class Reader {
+class Reader : public data_files::JsonReader<WeatherError> {
   public:
-    explicit Reader(std::string source) : source_(std::move(source)) {}
-
-    [[noreturn]] void Fail(const std::string& path, const std::string& what) const {
-        throw WeatherError(source_ + ": " + path + ": " + what);
-    }
-
-    static std::string Describe(const Json& value) {
-        std::string text = value.dump();
-        if (text.size() > 40) text = text.substr(0, 37) + "...";
-        return std::string(value.type_name()) + " " + text;
-    }
-
-    void RejectUnknownKeys(const Json& object, const std::string& prefix,
-                           std::span<const char* const> allowed) const {
-        for (const auto& [key, value] : object.items()) {
-            if (std::none_of(allowed.begin(), allowed.end(),
-                             [&](const char* k) { return key == k; })) {
-                std::string list;
-                for (const char* k : allowed) list += std::string(list.empty() ? "" : ", ") + k;
-                Fail(prefix + key, "unknown key; expected one of: " + list);
-            }
-        }
-    }
-
-    const Json& Required(const Json& object, const std::string& prefix, const char* key) const {
-        const auto it = object.find(key);
-        if (it == object.end()) Fail(prefix + key, "missing (required)");
-        return *it;
-    }
+    using JsonReader::JsonReader;
 
     double Number(const Json& value, const std::string& path) const {
         if (!value.is_number()) Fail(path, "expected a number, got " + Describe(value));
@@ -212,9 +185,6 @@ class Reader {
         if (!value.is_string()) Fail(path, "expected a string, got " + Describe(value));
         return value.get<std::string>();
     }
-
-  private:
-    std::string source_;
 };
 
 constexpr const char* kTopKeys[] = {"name", "description", "layers"};
@@ -227,7 +197,7 @@ constexpr const char* kFileKeys[] = {"file"};
 
 WeatherMapSource ReadMap(const Reader& read, const Json& map, const std::string& prefix,
                          const std::filesystem::path& base_directory) {
-    if (!map.is_object()) read.Fail(prefix, "expected an object, got " + Reader::Describe(map));
+    if (!map.is_object()) read.Fail(prefix, "expected an object, got " + Describe(map));
     WeatherMapSource source;
     if (map.contains("file")) {
         read.RejectUnknownKeys(map, prefix + ".", kFileKeys);
@@ -291,7 +261,7 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
         throw WeatherError(data_files::JsonSyntaxMessage(source, json_text, e.byte, e.what()));
     }
     if (!root.is_object())
-        read.Fail("(top level)", "expected an object, got " + Reader::Describe(root));
+        read.Fail("(top level)", "expected an object, got " + Describe(root));
     read.RejectUnknownKeys(root, "", kTopKeys);
 
     Weather weather;
@@ -305,12 +275,12 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
     }
     const Json& layers = read.Required(root, "", "layers");
     if (!layers.is_array())
-        read.Fail("layers", "expected an array, got " + Reader::Describe(layers));
+        read.Fail("layers", "expected an array, got " + Describe(layers));
     const std::filesystem::path base_directory = std::filesystem::path(source).parent_path();
     for (std::size_t i = 0; i < layers.size(); ++i) {
         const std::string prefix = "layers[" + std::to_string(i) + "].";
         const Json& l = layers[i];
-        if (!l.is_object()) read.Fail(prefix, "expected an object, got " + Reader::Describe(l));
+        if (!l.is_object()) read.Fail(prefix, "expected an object, got " + Describe(l));
         read.RejectUnknownKeys(l, prefix, kLayerKeys);
         CloudLayer layer;
         if (const auto it = l.find("name"); it != l.end())
