@@ -8,6 +8,7 @@
 #include <random>
 
 #include "reference/cloud_functions.h"
+#include "cloud_test_support.h"
 
 namespace zenith::sky::ref {
 namespace {
@@ -15,20 +16,12 @@ namespace {
 using clouds::CloudLayer;
 using clouds::WeatherMapSource;
 
-const clouds::CloudNoise& Noise() {
-    static const clouds::CloudNoise noise =
-        clouds::LoadOrGenerateCloudNoise(
-            clouds::CloudNoiseSettings{},
-            std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache")
-            .noise;
-    return noise;
-}
 const Texture3D& Shape() {
-    static const Texture3D t = ToTexture(Noise().shape);
+    static const Texture3D t = ToTexture(clouds::test::CachedNoise().shape);
     return t;
 }
 const Texture3D& Detail() {
-    static const Texture3D t = ToTexture(Noise().detail);
+    static const Texture3D t = ToTexture(clouds::test::CachedNoise().detail);
     return t;
 }
 

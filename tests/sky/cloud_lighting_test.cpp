@@ -9,6 +9,7 @@
 #include <random>
 
 #include "reference/cloud_functions.h"
+#include "cloud_test_support.h"
 
 namespace zenith::sky::ref {
 namespace {
@@ -139,15 +140,6 @@ TEST(CloudOctaves, HigherOctavesReachDeeperAndSpreadWider) {
 
 // --- integration ------------------------------------------------------------------------------
 
-const clouds::CloudNoise& Noise() {
-    static const clouds::CloudNoise noise =
-        clouds::LoadOrGenerateCloudNoise(
-            clouds::CloudNoiseSettings{},
-            std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache")
-            .noise;
-    return noise;
-}
-
 struct Scene {
     CloudLayerParameters layer{};
     RepeatTexture2D weather;
@@ -172,8 +164,8 @@ struct Scene {
         weather_layer.map.size = 64;
         weather_layer.map.cells_per_tile = 4;
         weather = ToTexture(clouds::BuildWeatherMap(weather_layer));
-        shape = ToTexture(Noise().shape);
-        detail = ToTexture(Noise().detail);
+        shape = ToTexture(clouds::test::CachedNoise().shape);
+        detail = ToTexture(clouds::test::CachedNoise().detail);
         sun = glm::normalize(vec3(0.4, 0.8, 0.2));
     }
 

@@ -3,7 +3,6 @@
 // value ranges and statistics of real noise with frequencies that increase across the channels,
 // a divergence-free curl field, and a cache that round-trips, survives corruption and is fast.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -13,28 +12,10 @@
 #include <random>
 
 #include "zenith/sky/clouds/noise.h"
+#include "cloud_test_support.h"
 
 namespace zenith::sky::clouds {
 namespace {
-
-// The full-size noise of Table 4.1, through the cache in the build tree: ctest runs every test
-// in its own process, and only the first generates it.
-const CloudNoise& FullNoise() {
-    static const CloudNoise noise =
-        LoadOrGenerateCloudNoise(CloudNoiseSettings{},
-                                 std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache")
-            .noise;
-    return noise;
-}
-
-// A fresh directory under the build tree for one test.
-std::filesystem::path TempDir(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::path(ZENITH_BINARY_DIR) / "test-tmp" /
-                                      (name + "-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
 
 TEST(CloudNoisePrimitives, PerlinAndWorleyRepeatWithTheirPeriod) {
     std::mt19937 rng(3);
@@ -115,14 +96,14 @@ void ExpectTiles(const NoiseVolume& v, const char* name) {
 }
 
 TEST(CloudNoiseVolumes, OppositeFacesContinueSmoothly) {
-    const CloudNoise& noise = FullNoise();
+    const CloudNoise& noise = test::CachedNoise();
     ExpectTiles(noise.shape, "shape");
     ExpectTiles(noise.detail, "detail");
     ExpectTiles(noise.curl, "curl");
 }
 
 TEST(CloudNoiseVolumes, SizesAndChannelsAreThoseOfTable41) {
-    const CloudNoise& noise = FullNoise();
+    const CloudNoise& noise = test::CachedNoise();
     EXPECT_EQ(noise.shape.size, glm::ivec3(128, 32, 128));
     EXPECT_EQ(noise.shape.channels, 4);
     EXPECT_EQ(noise.detail.size, glm::ivec3(32, 32, 32));
@@ -132,7 +113,7 @@ TEST(CloudNoiseVolumes, SizesAndChannelsAreThoseOfTable41) {
 }
 
 TEST(CloudNoiseVolumes, StatisticsAreThoseOfRealNoiseWithRisingFrequency) {
-    const CloudNoise& noise = FullNoise();
+    const CloudNoise& noise = test::CachedNoise();
     for (const NoiseVolume* v : {&noise.shape, &noise.detail}) {
         double previous_roughness = 0.0;
         for (int c = 0; c < v->channels; ++c) {
@@ -164,7 +145,7 @@ TEST(CloudNoiseVolumes, StatisticsAreThoseOfRealNoiseWithRisingFrequency) {
 }
 
 TEST(CloudNoiseVolumes, CurlFieldIsDivergenceFree) {
-    const NoiseVolume& curl = FullNoise().curl;
+    const NoiseVolume& curl = test::CachedNoise().curl;
     const int n = curl.size.x;
     const auto v = [&](int x, int y, int c) {
         return 2.0 * curl.Value((x + n) % n, (y + n) % n, 0, c) - 1.0;
@@ -216,7 +197,7 @@ TEST(CloudNoiseGeneration, RejectsSizesThatCannotTile) {
 }
 
 TEST(CloudNoiseCache, GeneratesOnceThenLoadsAndTimesBoth) {
-    const std::filesystem::path dir = TempDir("noise-cache");
+    const std::filesystem::path dir = test::TempDir("noise-cache");
     const CloudNoiseSettings settings;
     const CloudNoiseLoad first = LoadOrGenerateCloudNoise(settings, dir);
     EXPECT_FALSE(first.from_cache);
@@ -226,7 +207,7 @@ TEST(CloudNoiseCache, GeneratesOnceThenLoadsAndTimesBoth) {
     const CloudNoiseLoad second = LoadOrGenerateCloudNoise(settings, dir);
     EXPECT_TRUE(second.from_cache) << second.cache_problem;
     EXPECT_TRUE(second.noise == first.noise);
-    EXPECT_TRUE(first.noise == FullNoise());  // the build tree's cache, from another run
+    EXPECT_TRUE(first.noise == test::CachedNoise());  // the build tree's cache, from another run
     std::printf(
         "cloud noise (shape 128x32x128, detail 32^3, curl 128^2, %d threads): "
         "generated + cached in %.3f s, loaded from cache in %.4f s\n",
@@ -240,7 +221,7 @@ TEST(CloudNoiseCache, GeneratesOnceThenLoadsAndTimesBoth) {
 }
 
 TEST(CloudNoiseCache, CorruptTruncatedOrForeignFilesAreRegenerated) {
-    const std::filesystem::path dir = TempDir("noise-corrupt");
+    const std::filesystem::path dir = test::TempDir("noise-corrupt");
     CloudNoiseSettings settings;
     settings.shape_size = {32, 8, 32};
     settings.detail_size = 16;

@@ -11,6 +11,7 @@
 
 #include "gl/shader_library.h"
 #include "reference/cloud_functions.h"
+#include "cloud_test_support.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/shader.h"
 
@@ -106,11 +107,7 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
         std::string(gl::EmbeddedShaderFile("clouds/functions.glsl")) + kPass;
     const gl::Program program = gl::Program::Compute(source, "cloud_parity.comp");
 
-    const clouds::CloudNoise noise =
-        clouds::LoadOrGenerateCloudNoise(
-            clouds::CloudNoiseSettings{},
-            std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache")
-            .noise;
+    const clouds::CloudNoise& noise = clouds::test::CachedNoise();
     clouds::CloudLayer weather_layer;
     weather_layer.coverage = 0.6;
     weather_layer.precipitation = 0.3;

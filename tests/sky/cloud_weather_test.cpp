@@ -3,7 +3,6 @@
 // maps are deterministic, tile, keep coverage 0 exactly clear, and images load from PNG and EXR.
 #include <gtest/gtest.h>
 #include <png.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -13,17 +12,10 @@
 
 #include "zenith/sky/clouds/weather.h"
 #include "zenith/sky/image_io.h"
+#include "cloud_test_support.h"
 
 namespace zenith::sky::clouds {
 namespace {
-
-std::filesystem::path TempDir(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::path(ZENITH_BINARY_DIR) / "test-tmp" /
-                                      (name + "-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
 
 // The message of the WeatherError `f` throws, or "" (and a failure) if it does not throw.
 template <class F>
@@ -203,7 +195,7 @@ void WritePngRaw(const std::filesystem::path& path, int width, int height, png_u
 }
 
 TEST(CloudWeatherImages, LoadsPngAndExr) {
-    const std::filesystem::path dir = TempDir("weather-images");
+    const std::filesystem::path dir = test::TempDir("weather-images");
     WritePngRaw(dir / "ok.png", 64, 64, PNG_FORMAT_RGB, 51);
     const WeatherMap png = LoadWeatherMapImage(dir / "ok.png");
     EXPECT_EQ(png.size, 64);
@@ -229,7 +221,7 @@ TEST(CloudWeatherImages, LoadsPngAndExr) {
 }
 
 TEST(CloudWeatherImages, BadImagesAreRefusedWithFileProblemAndExpectation) {
-    const std::filesystem::path dir = TempDir("weather-bad");
+    const std::filesystem::path dir = test::TempDir("weather-bad");
     const auto error = [&](const std::string& file) {
         return ErrorOf([&] { LoadWeatherMapImage(dir / file); });
     };
