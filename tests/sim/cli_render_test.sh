@@ -5,12 +5,7 @@ set -uo pipefail
 zenith=$1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-failures=0
-passes=0
-check() {
-    local what=$1; shift
-    if "$@"; then echo "ok   $what"; passes=$((passes + 1)); else echo "FAIL $what"; failures=$((failures + 1)); fi
-}
+source "$(dirname "$0")/check.sh"
 
 (cd "$work" && "$zenith" render --size 64x36 >/dev/null 2>&1)
 check "no options renders the built-in scene to zenith.png" test -s "$work/zenith.png"
@@ -34,5 +29,4 @@ err=$("$zenith" render --exposure bright --out "$work/e.png" 2>&1)
 check "bad exposure names --exposure" grep -q -- "--exposure" <<<"$err"
 check "no output for any failed run" bash -c "! ls '$work' | grep -qE '^(frame|p|s|n|e)\.|partial'"
 
-echo "$passes passed, $failures failed"
-exit $((failures > 0))
+report

@@ -5,12 +5,7 @@ set -uo pipefail
 zenith=$1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-failures=0
-passes=0
-check() {  # check "description" condition...
-    local what=$1; shift
-    if "$@"; then echo "ok   $what"; passes=$((passes + 1)); else echo "FAIL $what"; failures=$((failures + 1)); fi
-}
+source "$(dirname "$0")/check.sh"
 
 # Single instant, table and JSON.
 out=$("$zenith" ephemeris --utc 2024-04-08T18:18:00Z --lat 31.0 --lon -104.0 --height 1000 --stars 0)
@@ -41,5 +36,4 @@ check "bad line reported in place" grep -q '"line":2' <(sed -n 2p "$work/out.jso
 check "stderr summary names the line and key" grep -q "1 of 3 lines failed.*line 2.*height_m" "$work/err"
 check "no partial file left" test ! -e "$work/out.jsonl.partial"
 
-echo "$passes passed, $failures failed"
-exit $((failures > 0))
+report
