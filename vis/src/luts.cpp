@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "reference/atmosphere_functions.h"
+#include "reference/lut_texture.h"
 #include "shader_parameters.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/observer.h"
@@ -27,15 +28,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 ref::AtmosphereParameters Parameters(const Luts& luts) {
     return sky::MakeShaderParameters<ref::AtmosphereParameters>(luts.atmosphere);
-}
-
-// One depth slice (or the only one) of a LUT as the shared code's GL_LINEAR texture.
-ref::Texture2D AsTexture(const sky::LutImage& image, int z = 0, bool wrap_u = false) {
-    ref::Texture2D texture(image.size.x, image.size.y, wrap_u);
-    for (int y = 0; y < image.size.y; ++y) {
-        for (int x = 0; x < image.size.x; ++x) texture.at(x, y) = glm::dvec4(image.at(x, y, z));
-    }
-    return texture;
 }
 
 double TexelCentre(int i, int n) { return (i + 0.5) / n; }
@@ -206,20 +198,20 @@ glm::dvec3 SampleTransmittance(const Luts& luts, double altitude, double mu) {
     const ref::AtmosphereParameters p = Parameters(luts);
     const double r = p.bottom_radius + altitude / kKm;
     if (ref::RayIntersectsGround(p, r, mu)) return glm::dvec3(kNaN);
-    const ref::Texture2D texture = AsTexture(luts.transmittance);
+    const ref::Texture2D texture = ref::FromImage(luts.transmittance);
     return ref::GetTransmittanceToTopAtmosphereBoundary(p, texture,
                                                         glm::ivec2(luts.transmittance.size), r, mu);
 }
 
 glm::dvec3 SampleMultipleScattering(const Luts& luts, double altitude, double mu_s) {
     const ref::AtmosphereParameters p = Parameters(luts);
-    return ref::GetMultipleScattering(p, AsTexture(luts.multiple_scattering),
+    return ref::GetMultipleScattering(p, ref::FromImage(luts.multiple_scattering),
                                       glm::ivec2(luts.multiple_scattering.size),
                                       p.bottom_radius + altitude / kKm, mu_s);
 }
 
 glm::dvec3 SampleIrradiance(const Luts& luts, double mu_s) {
-    return ref::GetGroundSkyIrradiance(AsTexture(luts.irradiance),
+    return ref::GetGroundSkyIrradiance(ref::FromImage(luts.irradiance),
                                        glm::ivec2(luts.irradiance.size), mu_s);
 }
 
@@ -227,7 +219,7 @@ glm::dvec3 SampleSkyView(const Luts& luts, double view_zenith, double azimuth) {
     const glm::ivec2 size(luts.sky_view.size);
     const ref::vec2 uv = ref::GetSkyViewTextureUv(Parameters(luts), luts.camera_altitude / kKm,
                                                   view_zenith, azimuth, size);
-    return glm::dvec3(AsTexture(luts.sky_view, 0, true).Sample(uv));
+    return glm::dvec3(ref::FromImage(luts.sky_view, true).Sample(uv));
 }
 
 glm::dvec4 SampleAerialPerspectiveSlice(const Luts& luts, int z, double horizontal,
@@ -235,7 +227,7 @@ glm::dvec4 SampleAerialPerspectiveSlice(const Luts& luts, int z, double horizont
     const double t = std::tan(0.5 * luts.camera.vertical_fov);
     const double u = 0.5 + 0.5 * std::tan(horizontal) / (t * luts.camera.aspect);
     const double v = 0.5 + 0.5 * std::tan(vertical) / t;
-    return AsTexture(luts.aerial_perspective, z).Sample(ref::vec2(u, v));
+    return ref::FromImage(luts.aerial_perspective, false, z).Sample(ref::vec2(u, v));
 }
 
 // --- curves ----------------------------------------------------------------------------------
@@ -245,7 +237,7 @@ Curve TransmittanceVersusZenith(const Luts& luts, double altitude,
     Curve curve;
     curve.label = fmt::format("h = {:g} km", altitude / kKm);
     const ref::AtmosphereParameters p = Parameters(luts);
-    const ref::Texture2D texture = AsTexture(luts.transmittance);
+    const ref::Texture2D texture = ref::FromImage(luts.transmittance);
     const double r = p.bottom_radius + altitude / kKm;
     for (double angle : zenith_deg) {
         const double mu = std::cos(angle * kDeg);
@@ -262,7 +254,7 @@ Curve TransmittanceVersusAltitude(const Luts& luts, double zenith_deg,
     Curve curve;
     curve.label = fmt::format("zenith {:g} deg", zenith_deg);
     const ref::AtmosphereParameters p = Parameters(luts);
-    const ref::Texture2D texture = AsTexture(luts.transmittance);
+    const ref::Texture2D texture = ref::FromImage(luts.transmittance);
     const double mu = std::cos(zenith_deg * kDeg);
     for (double altitude : altitudes) {
         const double r = p.bottom_radius + altitude / kKm;
@@ -344,7 +336,7 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
             s.y_title = "altitude (km)";
             s.value_title = "T";
             grid(0.0, 180.0, 0.0, top / kKm);
-            const ref::Texture2D texture = AsTexture(luts.transmittance);
+            const ref::Texture2D texture = ref::FromImage(luts.transmittance);
             for (int j = 0; j < s.height; ++j) {
                 const double r = p.bottom_radius + s.y0 + j * s.dy;
                 for (int i = 0; i < s.width; ++i) {
@@ -365,7 +357,7 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
             s.y_title = "altitude (km)";
             s.value_title = "Psi_ms (per unit illuminance)";
             grid(0.0, 180.0, 0.0, top / kKm);
-            const ref::Texture2D texture = AsTexture(luts.multiple_scattering);
+            const ref::Texture2D texture = ref::FromImage(luts.multiple_scattering);
             for (int j = 0; j < s.height; ++j) {
                 const double r = p.bottom_radius + s.y0 + j * s.dy;
                 for (int i = 0; i < s.width; ++i) {
@@ -399,7 +391,7 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
             s.y_title = "view elevation (deg)";
             s.value_title = "luminance (cd/m^2)";
             grid(0.0, 360.0, -90.0, 90.0);
-            const ref::Texture2D texture = AsTexture(luts.sky_view, 0, true);
+            const ref::Texture2D texture = ref::FromImage(luts.sky_view, true);
             const double altitude_km = luts.camera_altitude / kKm;
             const glm::ivec2 size(luts.sky_view.size);
             for (int j = 0; j < s.height; ++j) {
@@ -428,7 +420,7 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
             const double half_v = 0.5 * luts.camera.vertical_fov;
             const double half_h = std::atan(std::tan(half_v) * luts.camera.aspect);
             grid(-half_h / kDeg, half_h / kDeg, -half_v / kDeg, half_v / kDeg);
-            const ref::Texture2D texture = AsTexture(luts.aerial_perspective, slice);
+            const ref::Texture2D texture = ref::FromImage(luts.aerial_perspective, false, slice);
             const double t = std::tan(half_v);
             for (int j = 0; j < s.height; ++j) {
                 const double v = 0.5 + 0.5 * std::tan((s.y0 + j * s.dy) * kDeg) / t;

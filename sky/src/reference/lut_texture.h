@@ -16,11 +16,12 @@ inline LutImage ToImage(const Texture2D& texture) {
     return image;
 }
 
-// wrap_u: GL_REPEAT along u (the Sky-View azimuth), else GL_CLAMP_TO_EDGE.
-inline Texture2D FromImage(const LutImage& image, bool wrap_u = false) {
+// Slice `z` of the image (0 for a 2D LUT). wrap_u: GL_REPEAT along u (the Sky-View azimuth),
+// else GL_CLAMP_TO_EDGE.
+inline Texture2D FromImage(const LutImage& image, bool wrap_u = false, int z = 0) {
     Texture2D texture(image.size.x, image.size.y, wrap_u);
     for (int y = 0; y < image.size.y; ++y) {
-        for (int x = 0; x < image.size.x; ++x) texture.at(x, y) = glm::dvec4(image.at(x, y));
+        for (int x = 0; x < image.size.x; ++x) texture.at(x, y) = glm::dvec4(image.at(x, y, z));
     }
     return texture;
 }
