@@ -283,6 +283,10 @@ int main(int argc, char** argv) {
     render->add_option("--fov", frame.fov_deg, "vertical field of view, degrees")
         ->capture_default_str();
     render->add_option("--size", size, "image size WxH")->capture_default_str();
+    render->add_option("--weather", frame.weather,
+                       "clouds: clear, scattered_cumulus, broken, overcast_stratus, "
+                       "cumulonimbus or a weather JSON file")
+        ->capture_default_str();
     render->add_option("--preset", frame.preset, "atmosphere: earth, mars, thick or a JSON file")
         ->capture_default_str();
     render->add_option("--exposure", exposure, "EV100 for PNG output, or auto")

@@ -46,11 +46,13 @@ void ValidateFrameRequest(const FrameRequest& r) {
     geo::Observer(r.lat_deg, r.lon_deg, r.height_m);
     geo::TimeFromIso8601(r.utc);
     r.lut_settings.Validate();
+    r.clouds.Validate();
 }
 
 FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     ValidateFrameRequest(request);
     const sky::Atmosphere atmosphere = sky::LoadAtmosphere(request.preset);
+    const sky::clouds::Weather weather = sky::clouds::LoadWeather(request.weather);
     const geo::Time time = geo::TimeFromIso8601(request.utc);
     const geo::Observer observer(request.lat_deg, request.lon_deg, request.height_m);
 
@@ -73,6 +75,7 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
 
     const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
     sky::AtmosphereRenderer renderer(atmosphere, request.lut_settings);
+    renderer.SetWeather(weather, request.clouds);
     renderer.UpdateFrameLuts(state.camera, state.lights);
     sky::RenderOptions options;
     options.size = request.size;

@@ -9,7 +9,9 @@
 #include <string>
 #include <string_view>
 
+#include "clouds/cloud_passes.h"
 #include "gl/atmosphere_uniforms.h"
+#include "gl/draw.h"
 #include "gl/shader_library.h"
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
@@ -170,6 +172,9 @@ struct AtmosphereRenderer::Impl {
     glm::ivec2 frame_size{0, 0};
     std::array<GLuint, kQueryCount> queries{};
     std::array<bool, kQueryCount> query_used{};
+    std::unique_ptr<CloudPasses> clouds;  // with weather that has layers
+    clouds::Weather weather;              // as last set (also when clear)
+    CloudSettings cloud_settings;
 
     static std::array<gl::Program, kPassCount> BuildPrograms() {
         return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
@@ -233,6 +238,7 @@ struct AtmosphereRenderer::Impl {
     }
 
     ~Impl() {
+        clouds.reset();
         glDeleteVertexArrays(1, &vertex_array);
         glDeleteFramebuffers(1, &framebuffer);
         glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
@@ -277,50 +283,16 @@ struct AtmosphereRenderer::Impl {
     // `scissor` (viewport pixels).
     void Draw(Pass pass, std::size_t query, GLuint target, glm::ivec4 viewport,
               GLuint scene_depth = 0, std::optional<glm::ivec4> scissor = std::nullopt) {
-        GLint host_framebuffer = 0;
-        GLint host_viewport[4] = {0, 0, 0, 0};
-        GLint host_scissor[4] = {0, 0, 0, 0};
-        const GLboolean host_scissor_test = glIsEnabled(GL_SCISSOR_TEST);
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &host_framebuffer);
-        glGetIntegerv(GL_VIEWPORT, host_viewport);
-        glGetIntegerv(GL_SCISSOR_BOX, host_scissor);
         BindInputs();
-        programs[pass].Use();
-        glBindFramebuffer(GL_FRAMEBUFFER, target);
-        glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
-        glDisable(GL_DEPTH_TEST);
         if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
-        if (pass == kDiskPass || pass == kDiskDepthPass) {
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
-        } else if (scene_depth != 0) {
-            // Premultiplied: the output is (L, T) over geometry and (sky, 0) elsewhere.
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_SRC_ALPHA);
-        } else {
-            glDisable(GL_BLEND);
-        }
-        if (scissor) {
-            glEnable(GL_SCISSOR_TEST);
-            glScissor(viewport.x + scissor->x, viewport.y + scissor->y, scissor->z, scissor->w);
-        } else {
-            glDisable(GL_SCISSOR_TEST);
-        }
-        glBindVertexArray(vertex_array);
-        glBeginQuery(GL_TIME_ELAPSED, queries[query]);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEndQuery(GL_TIME_ELAPSED);
+        // Over the host's geometry the sky pass is premultiplied: (L, T) over geometry and
+        // (sky, 0) elsewhere.
+        const gl::Blend blend = pass == kDiskPass || pass == kDiskDepthPass ? gl::Blend::kAdd
+                                : scene_depth != 0 ? gl::Blend::kPremultiplied
+                                                   : gl::Blend::kReplace;
+        gl::DrawFullscreen(programs[pass], vertex_array, target, viewport, blend, queries[query],
+                           scissor);
         query_used[query] = true;
-        glDisable(GL_BLEND);
-        if (host_scissor_test) {
-            glEnable(GL_SCISSOR_TEST);
-        } else {
-            glDisable(GL_SCISSOR_TEST);
-        }
-        glScissor(host_scissor[0], host_scissor[1], host_scissor[2], host_scissor[3]);
-        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(host_framebuffer));
-        glViewport(host_viewport[0], host_viewport[1], host_viewport[2], host_viewport[3]);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     }
 
     void UploadAtmosphere() {
@@ -401,6 +373,20 @@ void AtmosphereRenderer::SetAtmosphere(const Atmosphere& atmosphere) {
 }
 
 const Atmosphere& AtmosphereRenderer::atmosphere() const { return impl_->atmosphere; }
+
+void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudSettings& settings) {
+    clouds::Validate(weather);
+    settings.Validate();
+    Impl& d = *impl_;
+    // Built before the old passes go, so a bad map leaves the previous weather in place.
+    std::unique_ptr<CloudPasses> passes;
+    if (!weather.layers.empty()) passes = std::make_unique<CloudPasses>(weather, settings);
+    d.clouds = std::move(passes);
+    d.weather = weather;
+    d.cloud_settings = settings;
+}
+const clouds::Weather& AtmosphereRenderer::weather() const { return impl_->weather; }
+const CloudSettings& AtmosphereRenderer::cloud_settings() const { return impl_->cloud_settings; }
 const LutSettings& AtmosphereRenderer::settings() const { return impl_->settings; }
 
 void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lights) {
@@ -509,6 +495,11 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         d.Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, target, viewport, depth,
                boxes[i]);
     }
+    // The clouds last, over everything they hide: the sky, the disks and the stars.
+    if (d.clouds) {
+        d.BindInputs();
+        d.clouds->Render(d.atmosphere, camera, lights, options, target, viewport, depth);
+    }
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {
@@ -537,6 +528,18 @@ unsigned AtmosphereRenderer::aerial_perspective_texture() const {
     return impl_->aerial_perspective;
 }
 unsigned AtmosphereRenderer::frame_texture() const { return impl_->frame; }
+unsigned AtmosphereRenderer::cloud_shadow_texture() const {
+    return impl_->clouds ? impl_->clouds->shadow_map_texture() : 0;
+}
+
+LutImage AtmosphereRenderer::ReadClouds() const {
+    if (!impl_->clouds) throw std::logic_error("ReadClouds: the renderer has no weather");
+    return impl_->clouds->ReadClouds();
+}
+LutImage AtmosphereRenderer::ReadCloudShadowMap() const {
+    if (!impl_->clouds) throw std::logic_error("ReadCloudShadowMap: the renderer has no weather");
+    return impl_->clouds->ReadShadowMap();
+}
 
 std::size_t AtmosphereRenderer::LutMemoryBytes() const {
     const LutSettings& s = impl_->settings;
@@ -557,7 +560,7 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
         return static_cast<double>(ns) * 1e-6;
     };
     // The composite: whichever sky program ran, plus its disk draws.
-    return {ms(kTransmittancePass),
+    PassTimes times{ms(kTransmittancePass),
             ms(kMultipleScatteringPass),
             ms(kIrradiancePass),
             ms(kSkyViewPass),
@@ -565,6 +568,14 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
             ms(kRenderPass) + ms(kRenderRayMarchPass) + ms(kRenderDepthPass) +
                 ms(kRenderRayMarchDepthPass) + ms(kDiskPass) + ms(kDiskDepthPass) +
                 ms(kSecondDiskQuery)};
+    if (d.clouds) {
+        const std::array<double, 4> clouds = d.clouds->LastPassTimes();
+        times.cloud_shadow_map = clouds[0];
+        times.cloud_trace = clouds[1];
+        times.cloud_reconstruct = clouds[2];
+        times.cloud_composite = clouds[3];
+    }
+    return times;
 }
 
 }  // namespace zenith::sky

@@ -38,7 +38,7 @@ CloudLayerParameters Layer() {
     p.detail_period = 2.0;
     p.erosion_strength = 0.5;
     p.wind_offset_x = 0.0;
-    p.wind_offset_z = 0.0;
+    p.wind_offset_y = 0.0;
     return p;
 }
 
@@ -165,7 +165,7 @@ TEST(CloudDensity, TilesWithTheWeatherPeriodAlsoInWind) {
     const RepeatTexture2D weather = WeatherFor(0.6, WeatherMapSource::Kind::kPatches);
     CloudLayerParameters layer = Layer();
     layer.wind_offset_x = 3.7;
-    layer.wind_offset_z = -12.1;
+    layer.wind_offset_y = -12.1;
     int cloudy = 0;
     for (const Point& p : RandomPoints(5000, 1.5, 4.0, 7)) {
         const double d = Density(layer, weather, p);
@@ -190,8 +190,8 @@ TEST(CloudDensity, DomeProjectionKeepsTheShellAtConstantAltitude) {
     for (const double arc : {0.0, 0.001, 5.0, 100.0, 300.0, 1000.0}) {
         const double theta = arc / r;
         for (const double azimuth : {0.0, 1.0, 2.5}) {
-            const vec3 up(std::sin(theta) * std::cos(azimuth), std::cos(theta),
-                          std::sin(theta) * std::sin(azimuth));
+            const vec3 up(std::sin(theta) * std::cos(azimuth),
+                          std::sin(theta) * std::sin(azimuth), std::cos(theta));
             const vec2 ground = CloudGroundCoordinates(layer, (r + 2.7) * up);
             // Arc length along the ground, whatever the altitude of the point.
             EXPECT_NEAR(glm::length(ground), arc, 1e-9 * (1.0 + arc));

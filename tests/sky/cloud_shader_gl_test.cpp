@@ -59,7 +59,7 @@ ref::CloudLayerParameters Layer() {
     p.detail_period = 2.0;
     p.erosion_strength = 0.5;
     p.wind_offset_x = 1.25;
-    p.wind_offset_z = -3.5;
+    p.wind_offset_y = -3.5;
     return p;
 }
 
@@ -133,11 +133,11 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
     const GLuint name = program.name();
     const char* layer_fields[] = {
         "bottom_radius",  "base_altitude", "top_altitude",     "weather_period", "shape_period",
-        "shape_period_y", "detail_period", "erosion_strength", "wind_offset_x",  "wind_offset_z"};
+        "shape_period_y", "detail_period", "erosion_strength", "wind_offset_x",  "wind_offset_y"};
     const double layer_values[] = {
         layer.bottom_radius, layer.base_altitude,  layer.top_altitude,  layer.weather_period,
         layer.shape_period,  layer.shape_period_y, layer.detail_period, layer.erosion_strength,
-        layer.wind_offset_x, layer.wind_offset_z};
+        layer.wind_offset_x, layer.wind_offset_y};
     for (int i = 0; i < 10; ++i) {
         SetUniform(name, std::string("layer.") + layer_fields[i],
                    static_cast<float>(layer_values[i]));

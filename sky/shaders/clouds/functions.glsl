@@ -9,7 +9,10 @@
 //      (the remaps both of the above build on).
 //
 // Glossary (kilometres inside shaders, converted once from SI by the host):
-//   ground           horizontal position on the cloud shell: km along the planet's surface
+//   frame            planet-centred, km, +z through the weather map's origin (the renderer
+//                    rotates its camera frame into this one, so clouds stay put on the planet)
+//   ground           horizontal position on the cloud shell: km along the planet's surface,
+//                    x and y along the frame's x and y axes at the origin
 //   altitude         km above the sphere of radius bottom_radius
 //   height_fraction  position in the layer: 0 at base_altitude, 1 at top_altitude
 //   cloud_fraction   position in the local cloud: 0 at its base, 1 at its top
@@ -31,7 +34,7 @@ struct CloudLayerParameters {
     Number detail_period;     // km covered by one tile of the detail noise, every axis
     Number erosion_strength;  // [0, kCloudMaxErosion]: how much detail noise eats the edges
     Number wind_offset_x;     // km the clouds have moved along ground x (H16 §4.4.2)
-    Number wind_offset_z;     // km along ground z
+    Number wind_offset_y;     // km along ground y
     Number padding0;
     Number padding1;
 };
@@ -53,15 +56,15 @@ Number CloudRemap(Number x, Number lo, Number hi, Number new_lo, Number new_hi) 
 // ---------------------------------------------------------------------------------------------
 // Dome projection (H16 §5.3): the layer is a spherical shell around the planet's centre.
 
-// Ground coordinates of a planet-centred position: azimuthal equidistant about the frame's +y
+// Ground coordinates of a planet-centred position: azimuthal equidistant about the frame's +z
 // axis, i.e. arc length along the sphere of bottom_radius. Every radial column gets one weather
 // texel and one noise column, so clouds stand upright on the curved ground and bend over the
 // horizon; the tangential stretch, theta / sin(theta) - 1, stays under 0.1% within 500 km.
 vec2 CloudGroundCoordinates(IN(CloudLayerParameters) layer, vec3 position) {
-    Number s = length(vec2(position.x, position.z));
+    Number s = length(vec2(position.x, position.y));
     if (!(s > 0.0)) return vec2(0.0, 0.0);
-    Number theta = atan(s, position.y);
-    return vec2(position.x, position.z) * (layer.bottom_radius * theta / s);
+    Number theta = atan(s, position.z);
+    return vec2(position.x, position.y) * (layer.bottom_radius * theta / s);
 }
 
 Number CloudAltitude(IN(CloudLayerParameters) layer, vec3 position) {
@@ -81,7 +84,7 @@ struct CloudWeather {
 // The weather map moves with the wind as one offset (H16 §4.4.2); the noise moves with it, so
 // clouds drift whole instead of boiling.
 vec2 CloudWindShiftedGround(IN(CloudLayerParameters) layer, vec2 ground) {
-    return vec2(ground.x + layer.wind_offset_x, ground.y + layer.wind_offset_z);
+    return vec2(ground.x + layer.wind_offset_x, ground.y + layer.wind_offset_y);
 }
 
 CloudWeather CloudWeatherAt(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,

@@ -22,10 +22,16 @@ std::string_view EmbeddedShaderFile(std::string_view name) {
     throw GlError("shader file '" + std::string(name) + "' is not embedded in the library");
 }
 
-std::string ComposeShader(std::string_view pass_file, std::string_view defines) {
+std::string ComposeShader(std::string_view pass_file, std::string_view defines,
+                          std::span<const std::string_view> extra_parts) {
     std::string source = "#version 450 core\n" + std::string(defines);
     int index = 1;
     for (std::string_view part : kPrelude) {
+        source += "#line 1 " + std::to_string(index++) + "\n";
+        source += EmbeddedShaderFile(part);
+        source += "\n";
+    }
+    for (std::string_view part : extra_parts) {
         source += "#line 1 " + std::to_string(index++) + "\n";
         source += EmbeddedShaderFile(part);
         source += "\n";
@@ -38,10 +44,14 @@ std::string ComposeShader(std::string_view pass_file, std::string_view defines) 
 namespace {
 
 // Rethrows a shader error with the legend of the #line source numbers.
-[[noreturn]] void RethrowWithLegend(const ShaderError& e, std::string_view pass_file) {
+[[noreturn]] void RethrowWithLegend(const ShaderError& e, std::string_view pass_file,
+                                   std::span<const std::string_view> extra_parts) {
     std::string legend = "\nsource numbers in the log: ";
     int index = 1;
     for (std::string_view part : kPrelude) {
+        legend += std::to_string(index++) + " = " + std::string(part) + ", ";
+    }
+    for (std::string_view part : extra_parts) {
         legend += std::to_string(index++) + " = " + std::string(part) + ", ";
     }
     legend += std::to_string(index) + " = " + std::string(pass_file);
@@ -50,21 +60,23 @@ namespace {
 
 }  // namespace
 
-Program FullscreenProgram(std::string_view fragment_file, std::string_view defines) {
+Program FullscreenProgram(std::string_view fragment_file, std::string_view defines,
+                          std::span<const std::string_view> extra_parts) {
     const std::string vertex =
         "#version 450 core\n" + std::string(EmbeddedShaderFile("common/fullscreen.vert"));
     try {
-        return Program::Graphics(vertex, ComposeShader(fragment_file, defines), fragment_file);
+        return Program::Graphics(vertex, ComposeShader(fragment_file, defines, extra_parts),
+                                 fragment_file);
     } catch (const ShaderError& e) {
-        RethrowWithLegend(e, fragment_file);
+        RethrowWithLegend(e, fragment_file, extra_parts);
     }
 }
 
-Program ComputeProgram(std::string_view pass_file) {
+Program ComputeProgram(std::string_view pass_file, std::span<const std::string_view> extra_parts) {
     try {
-        return Program::Compute(ComposeShader(pass_file), pass_file);
+        return Program::Compute(ComposeShader(pass_file, {}, extra_parts), pass_file);
     } catch (const ShaderError& e) {
-        RethrowWithLegend(e, pass_file);
+        RethrowWithLegend(e, pass_file, extra_parts);
     }
 }
 

@@ -1,6 +1,7 @@
 // Compute programs assembled from the shader files embedded in the library (sky/shaders).
 #pragma once
 
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -14,10 +15,14 @@ std::string_view EmbeddedShaderFile(std::string_view name);
 // "#version 450 core", the shared definitions and atmosphere functions, the pass interface, then
 // `pass_file`. Each part starts with "#line 1 N"; a compile error's "N:line" is translated back to
 // the file name in the thrown ShaderError.
-// `defines` (e.g. "#define X 1\n") go right after the #version line.
-std::string ComposeShader(std::string_view pass_file, std::string_view defines = {});
-Program ComputeProgram(std::string_view pass_file);
+// `defines` (e.g. "#define X 1\n") go right after the #version line; `extra_parts` (e.g. the
+// cloud files) follow the prelude, before the pass file.
+std::string ComposeShader(std::string_view pass_file, std::string_view defines = {},
+                          std::span<const std::string_view> extra_parts = {});
+Program ComputeProgram(std::string_view pass_file,
+                       std::span<const std::string_view> extra_parts = {});
 // The same prelude for a fragment pass; the vertex shader is common/fullscreen.vert.
-Program FullscreenProgram(std::string_view fragment_file, std::string_view defines = {});
+Program FullscreenProgram(std::string_view fragment_file, std::string_view defines = {},
+                          std::span<const std::string_view> extra_parts = {});
 
 }  // namespace zenith::sky::gl

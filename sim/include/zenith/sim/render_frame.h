@@ -10,6 +10,7 @@
 
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
+#include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/image_io.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
@@ -32,6 +33,17 @@ struct FrameRequest {
     double star_magnitude_limit = 6.5;
     bool force_ray_march = false;
     sky::LutSettings lut_settings;
+    // Clouds: a built-in weather preset (clear, scattered_cumulus, broken, overcast_stratus,
+    // cumulonimbus) or a weather JSON file. A single frame has no history to reproject, so every
+    // pixel is traced (block 1).
+    std::string weather = "clear";
+    sky::CloudSettings clouds = SingleFrameCloudSettings();
+
+    static sky::CloudSettings SingleFrameCloudSettings() {
+        sky::CloudSettings s;
+        s.block = 1;
+        return s;
+    }
 };
 
 // Throws std::invalid_argument naming the parameter, value and allowed range for anything out of

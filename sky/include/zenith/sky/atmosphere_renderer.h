@@ -3,6 +3,7 @@
 // host's context through gl::LoadGlFunctions). All GL objects are owned and freed here.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -10,6 +11,8 @@
 #include <glm/glm.hpp>
 
 #include "zenith/sky/atmosphere.h"
+#include "zenith/sky/clouds/noise.h"
+#include "zenith/sky/clouds/weather.h"
 #include "zenith/sky/lut.h"
 
 namespace zenith::sky {
@@ -22,6 +25,64 @@ struct SceneDepth {
     unsigned texture = 0;
     double near_m = 0.5;
     double far_m = 100000.0;
+};
+
+// The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
+// units; the defaults are what `zenith render --weather` uses.
+struct CloudSettings {
+    // Material (F16 §5.4.1, §5.7, §5.8)
+    double extinction = 0.04;    // 1/m at density 1: a mean free path of 25 m in a dense core
+    double albedo = 1.0;         // water droplets scatter nearly all they remove (F16 §5.2)
+    double forward_g = 0.8;      // dual-lobe Henyey-Greenstein (F16 Eq. 18): silver lining...
+    double backward_g = -0.3;    // ...and the back-lit side
+    double lobe_weight = 0.3;    // share of the backward lobe
+    double octave_a = 0.5;       // multiple-scattering octaves (F16 §5.8); a <= b is enforced
+    double octave_b = 0.5;
+    double octave_c = 0.5;
+    int octaves = 3;             // 1..8
+    double ambient_scale = 1.0;  // F16 §5.5.1: scale of the sky's ambient light
+    double ambient_bottom = 0.4; // share of the ambient left at a layer's base
+    // Shape: world size of one tile of each noise (H16 §4.3: the shape volume is 4x wider than
+    // tall, so it covers shape_period x shape_period / 4 x shape_period)
+    double shape_period = 14000.0;  // m
+    double detail_period = 1800.0;  // m
+    double erosion = 0.45;          // [0, 0.9]: how much the detail noise eats the edges
+    // March (H16 §5.2, §6.2; F16 §5.5.2)
+    double min_step = 120.0;        // m: the step of a short crossing
+    int max_steps = 64;             // primary steps per layer crossing at most
+    int shadow_steps = 5;           // samples toward each light
+    double shadow_first_step = 80.0;  // m; each next is shadow_growth times longer
+    double shadow_growth = 2.0;
+    double min_transmittance = 0.01;  // early exit
+    double max_distance = 250000.0;   // m marched in one layer at most, from where a ray enters
+    int aerial_perspective_steps = 8; // atmosphere between the camera and the clouds
+    // Reconstruction (H16 §6.1): each frame traces one pixel of every block x block (a Bayer
+    // order over block^2 frames) and reprojects the rest from the previous frames. 1 traces
+    // every pixel every frame (the reference, and single still frames).
+    int block = 4;
+    double history_weight = 0.5;  // share of the reprojected history kept when a pixel is traced
+    // The ground shadow map: sun transmittance through all layers over a square around the
+    // camera's ground point
+    int shadow_map_size = 256;
+    double shadow_map_extent = 60000.0;  // m, side of the square
+    int shadow_map_steps = 24;           // per layer
+    // Noise volumes: generated on first use and cached
+    clouds::CloudNoiseSettings noise;
+    std::filesystem::path noise_cache_directory = clouds::DefaultNoiseCacheDirectory();
+
+    // Throws std::invalid_argument naming the field, its value and the allowed range.
+    void Validate() const;
+};
+
+// Per frame: where the weather is.
+struct CloudView {
+    double time = 0.0;  // s since the weather's epoch: how far the wind has carried the layers
+    // Rotation from the renderer's planet-centred frame to the weather's (+z through the
+    // weather map's origin; x east and y north there). Identity puts the map's origin under the
+    // camera; a host that moves keeps it fixed on the planet (WeatherFrame in sky_state.h) so
+    // the clouds stay where they are as it flies.
+    glm::dmat3 weather_from_world{1.0};
+    bool reset_history = false;  // a cut: do not reproject earlier frames
 };
 
 struct RenderOptions {
@@ -39,6 +100,7 @@ struct RenderOptions {
     std::optional<unsigned> target_framebuffer;
     glm::ivec4 target_viewport{0, 0, 0, 0};
     std::optional<SceneDepth> scene_depth;  // with a host framebuffer only
+    CloudView clouds;  // used when the renderer has weather (SetWeather)
 };
 
 // GPU time of each pass in milliseconds, measured with GL timer queries.
@@ -49,6 +111,10 @@ struct PassTimes {
     double sky_view = 0.0;
     double aerial_perspective = 0.0;
     double render = 0.0;
+    double cloud_shadow_map = 0.0;  // 0 without weather
+    double cloud_trace = 0.0;
+    double cloud_reconstruct = 0.0;
+    double cloud_composite = 0.0;
 };
 
 class AtmosphereRenderer {
@@ -63,6 +129,13 @@ public:
     const Atmosphere& atmosphere() const;
     const LutSettings& settings() const;
 
+    // Clouds from now on (an empty Weather: none). Builds the weather maps and loads the noise
+    // (generated and cached on first use); throws clouds::WeatherError for a bad weather or map
+    // and std::invalid_argument for bad settings. Resets the reprojection history.
+    void SetWeather(const clouds::Weather& weather, const CloudSettings& settings = {});
+    const clouds::Weather& weather() const;
+    const CloudSettings& cloud_settings() const;
+
     // The per-frame LUTs (Sky-View, aerial perspective) for this camera and these lights.
     void UpdateFrameLuts(const Camera& camera, const Lights& lights);
     // Renders the frame into the renderer's RGBA32F colour texture (after UpdateFrameLuts for
@@ -76,11 +149,19 @@ public:
     LutImage ReadSkyView() const;
     LutImage ReadAerialPerspective() const;
     LutImage ReadFrame() const;  // row 0 = bottom of the image (GL convention)
+    // The last frame's clouds: rgb luminance in front of the sky (aerial perspective applied),
+    // a their transmittance, so frame = rgb + a * sky. Frame-sized; throws without weather.
+    LutImage ReadClouds() const;
+    // Sun transmittance through every layer at the ground, shadow_map_size^2 texels over
+    // shadow_map_extent around the camera's ground point: texel (i, j) at east/north offsets
+    // ((i + 0.5) / size - 0.5) extent, in the renderer's frame. Throws without weather.
+    LutImage ReadCloudShadowMap() const;
 
     // GL texture names, for hosts that sample them (aerial perspective on their geometry).
     unsigned transmittance_texture() const;
     unsigned aerial_perspective_texture() const;
     unsigned frame_texture() const;
+    unsigned cloud_shadow_texture() const;  // 0 without weather
 
     // Bytes of GPU memory held by the LUTs (not the frame).
     std::size_t LutMemoryBytes() const;

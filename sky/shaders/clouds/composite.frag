@@ -1,0 +1,23 @@
+// The clouds over the sky (and the Sun, the Moon and the stars): blended premultiplied
+// (ONE, SRC_ALPHA), framebuffer = L + T * what is behind. Over the host's geometry
+// (ZENITH_SCENE_DEPTH) only the clouds nearer than it are drawn.
+layout(location = 0) out vec4 out_luminance;
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(viewport_x, viewport_y);
+    vec4 cloud = texelFetch(cloud_history, pixel, 0);
+#if ZENITH_SCENE_DEPTH
+    float depth = texelFetch(scene_depth_texture, pixel, 0).r;
+    if (depth < 1.0) {
+        float z_ndc = 2.0 * depth - 1.0;
+        float eye_depth = 2.0 * scene_near_m * scene_far_m /
+                          (scene_far_m + scene_near_m - z_ndc * (scene_far_m - scene_near_m));
+        vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
+        float distance_km = eye_depth * length(vec3(ndc.x * tan_half_fov * aspect,
+                                                    ndc.y * tan_half_fov, 1.0)) / 1000.0;
+        float cloud_depth = texelFetch(cloud_history_depth, pixel, 0).r;
+        if (!(cloud_depth > 0.0 && cloud_depth < distance_km)) cloud = vec4(0.0, 0.0, 0.0, 1.0);
+    }
+#endif
+    out_luminance = cloud;
+}

@@ -1,0 +1,197 @@
+// Ray marching the cloud layers (H16 §5.1-5.3, §5.5 and §6.2; F16 §5.5-5.9), shared by the GL
+// passes and the CPU reference. Comes after atmosphere/functions.glsl and clouds/functions.glsl.
+//
+// A caller marches one layer at a time, front to back (CloudLayerInterval orders them), into one
+// CloudMarchState, then applies the aerial perspective once at the transmittance-weighted mean
+// depth of what it hit (F16 Eq. 21). Positions and directions here are in the cloud frame
+// (functions.glsl: planet-centred, km, +z through the weather map's origin); the atmosphere
+// only needs radii and cosines, which the rotation from the camera's frame keeps.
+//
+// llvmpipe runs both sides of an `if` under a mask whether any lane takes it or not, but leaves a
+// loop as soon as no lane goes on: the costly lighting of a sample is therefore a loop that runs
+// once where there is cloud and not at all where a whole SIMD group sees clear air.
+
+// std140-compatible like CloudLayerParameters: Numbers only, a multiple of four.
+struct CloudMarchParameters {
+    Number extinction;         // 1/km at density 1 (sigma_t of the cloud material)
+    Number min_step;           // km: the primary step of a short crossing
+    Number max_steps;          // primary steps per layer crossing at most (H16 §5.2: 64-128)
+    Number shadow_steps;       // samples toward each light (F16 §5.5.2: 4; more is smoother)
+    Number shadow_first_step;  // km, the first step toward the light...
+    Number shadow_growth;      // ...and the factor each next one grows by
+    Number ambient_scale;      // F16 §5.5.1's scale of the sky's ambient light, 1 = as estimated
+    Number ambient_bottom;     // share of the ambient left at the layer's base (F16 §5.5.1)
+    Number min_transmittance;  // the march stops below this (H16 §6.2 early exit)
+    Number max_distance;       // km marched in one layer at most (from where the ray enters it)
+    Number padding0;
+    Number padding1;
+};
+
+// What the march has gathered so far, front to back.
+struct CloudMarchState {
+    vec3 luminance;             // cd/m^2 scattered toward the camera by the clouds
+    Number transmittance;       // of the clouds alone, camera to the end of the march
+    Number depth_weight;        // F16 Eq. 21: sum of T(x_n) over samples inside cloud...
+    Number weighted_depth;      // ...and of T(x_n) t_n (km)
+};
+
+CloudMarchState CloudMarchStart() {
+    CloudMarchState s;
+    s.luminance = vec3(0.0);
+    s.transmittance = 1.0;
+    s.depth_weight = 0.0;
+    s.weighted_depth = 0.0;
+    return s;
+}
+
+// The transmittance-weighted mean depth (km) of the clouds hit (F16 Eq. 21), -1 if none.
+Number CloudMeanDepth(IN(CloudMarchState) s) {
+    return s.depth_weight > 0.0 ? s.weighted_depth / s.depth_weight : -1.0;
+}
+
+// The part [x, y] (km) of a ray within a layer's shell (H16 §5.1-5.3), from radius r with zenith
+// cosine mu at `altitude` above bottom_radius (exact); y < x when the ray misses the layer or
+// meets the ground first. Below the layer the march starts at the base; inside, at the camera;
+// above (up to orbit), at the top; each ends where the ray leaves the shell or meets the ground,
+// or max_distance past its start. A ray from above that grazes the base sphere without meeting
+// the ground re-enters the layer beyond; that second part (only ever seen at the horizon from
+// above the layer) is not marched.
+vec2 CloudLayerInterval(IN(CloudLayerParameters) layer, Number r, Number mu, Number altitude,
+                        Number max_distance) {
+    Number base_radius = layer.bottom_radius + layer.base_altitude;
+    Number top_radius = layer.bottom_radius + layer.top_altitude;
+    Number t_ground = RaySphereDistance(r, mu, altitude, layer.bottom_radius);
+    Number t_base = RaySphereDistance(r, mu, altitude - layer.base_altitude, base_radius);
+    Number t_top = RaySphereDistance(r, mu, altitude - layer.top_altitude, top_radius);
+    vec2 interval = vec2(0.0, -1.0);
+    if (altitude < layer.base_altitude) {
+        interval = vec2(t_base, t_top);  // both exits: the camera is inside both spheres
+    } else if (altitude <= layer.top_altitude) {
+        interval = vec2(0.0, t_base >= 0.0 ? t_base : t_top);
+    } else if (t_top >= 0.0) {
+        // Above: t_top is the entry; the exit is the base sphere, or the top sphere's far root.
+        Number b = r * mu;
+        Number far_root = -b + SafeSqrt(b * b - (altitude - layer.top_altitude) * (r + top_radius));
+        interval = vec2(t_top, t_base >= 0.0 ? t_base : far_root);
+    }
+    if (t_ground >= 0.0) interval.y = min(interval.y, t_ground);
+    interval.y = min(interval.y, interval.x + max_distance);
+    return interval;
+}
+
+// Optical depth (extinction times distance, unitless) from p toward a light: F16 §5.5.2's short
+// march with steps growing by shadow_growth, each sampled at its middle. It covers
+// shadow_first_step (g^n - 1) / (g - 1) km, so clouds shade themselves and their neighbours.
+Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
+                               IN(CloudNoiseTexture) shape_noise,
+                               IN(CloudNoiseTexture) detail_noise,
+                               IN(CloudMarchParameters) march, vec3 p, vec3 light_direction) {
+    Number optical_depth = 0.0;
+    Number t = 0.0;
+    Number step_length = march.shadow_first_step;
+    for (int i = 0; i < int(march.shadow_steps); ++i) {
+        vec3 q = p + light_direction * (t + 0.5 * step_length);
+        optical_depth += SampleCloudDensity(layer, weather_map, shape_noise, detail_noise, q)
+                             .density *
+                         march.extinction * step_length;
+        t += step_length;
+        step_length *= march.shadow_growth;
+    }
+    return optical_depth;
+}
+
+// Luminance scattered per km (sigma_s L_i, cd/m^2/km) at a cloud sample p of density `s` seen
+// along `view`: for each light, its illuminance at the top of the atmosphere, the atmosphere's
+// transmittance from p toward it (which colours sunsets), the clouds' own shadow and the
+// multiple-scattering octaves (F16 §5.8), darkened at the base of raining clouds (H16 §4.4.1);
+// plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an isotropic
+// radiance, weighted by the layer's height gradient (F16 §5.5.1).
+vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
+                       IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                       IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                       IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
+                       IN(CloudNoiseTexture) shape_noise, IN(CloudNoiseTexture) detail_noise,
+                       IN(CloudScatteringParameters) scattering,
+                       IN(CloudMarchParameters) march, IN(LightSet) lights, int light_count,
+                       IN(CloudSample) s, vec3 p, vec3 view) {
+    Number r = length(p);
+    vec3 direct = vec3(0.0);
+    vec3 ambient = vec3(0.0);
+    for (int l = 0; l < light_count; ++l) {
+        vec3 direction = lights.light[l].direction;
+        Number mu_l = dot(p, direction) / r;
+        vec3 atmosphere_transmittance = GetTransmittanceToSun(
+            atmosphere, transmittance_texture, transmittance_size, r, mu_l);
+        Number optical_depth = CloudShadowOpticalDepth(layer, weather_map, shape_noise,
+                                                       detail_noise, march, p, direction);
+        direct += lights.light[l].illuminance * atmosphere_transmittance *
+                  CloudOctaveSunScattering(scattering, optical_depth, dot(view, direction));
+        ambient += lights.light[l].illuminance *
+                   GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) / kPi;
+    }
+    Number sigma_s = scattering.albedo * s.density * march.extinction;
+    return sigma_s * (direct * CloudPrecipitationLightScale(s.precipitation, s.cloud_fraction) +
+                      ambient * march.ambient_scale *
+                          CloudAmbientGradient(s.height_fraction, march.ambient_bottom));
+}
+
+// Marches [interval.x, interval.y] of the ray origin + t view through one layer with
+// min(max_steps, ceil(length / min_step)) equal steps, each sampled at `jitter` in [0, 1) of
+// its length (the caller varies it per frame and pixel), integrating with F16's energy-
+// conserving step (App. C) into `state`. Stops once the transmittance is below
+// min_transmittance (that last light is dropped).
+void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
+                     IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                     IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                     IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
+                     IN(CloudNoiseTexture) shape_noise, IN(CloudNoiseTexture) detail_noise,
+                     IN(CloudScatteringParameters) scattering, IN(CloudMarchParameters) march,
+                     IN(LightSet) lights, int light_count, vec3 origin, vec3 view,
+                     vec2 interval, Number jitter, INOUT(CloudMarchState) state) {
+    Number length_km = interval.y - interval.x;
+    if (!(length_km > 0.0)) return;
+    int steps = int(clamp(ceil(length_km / march.min_step), 1.0, max(march.max_steps, 1.0)));
+    Number dt = length_km / Number(steps);
+    for (int i = 0; i < steps; ++i) {
+        if (state.transmittance < march.min_transmittance) break;
+        Number t = interval.x + (Number(i) + jitter) * dt;
+        vec3 p = origin + view * t;
+        CloudSample s = SampleCloudDensity(layer, weather_map, shape_noise, detail_noise, p);
+        for (int lit = 0; lit < (s.density > 0.0 ? 1 : 0); ++lit) {
+            vec3 source = CloudSampleSource(
+                atmosphere, transmittance_texture, transmittance_size, irradiance_texture,
+                irradiance_size, layer, weather_map, shape_noise, detail_noise, scattering, march,
+                lights, light_count, s, p, view);
+            state.depth_weight += state.transmittance;
+            state.weighted_depth += state.transmittance * t;
+            CloudIntegrateStep(source, s.density * march.extinction, dt, state.luminance,
+                               state.transmittance);
+        }
+    }
+}
+
+// The clouds as seen through the atmosphere between them and the camera (F16 §5.9.1): the
+// in-scattering L_ap and transmittance T_ap of the segment from the camera to the mean depth,
+// ray marched with `steps` steps (the aerial-perspective LUT ends at its range, and clouds lie
+// far beyond it), applied once: L = T_ap L_cloud + (1 - T_cloud) L_ap, which replaces the
+// share of the sky's in-scattering in front of the clouds that they hide. The caller composites
+// (L, T_cloud) over the sky as L + T_cloud sky. `camera`, `view` and `lights` are in the
+// atmosphere's frame.
+vec4 CloudApplyAerialPerspective(IN(AtmosphereParameters) atmosphere,
+                                 IN(TransmittanceTexture) transmittance_texture,
+                                 ivec2 transmittance_size,
+                                 IN(MultipleScatteringTexture) multiple_scattering_texture,
+                                 ivec2 multiple_scattering_size,
+                                 IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                                 IN(LightSet) lights, vec3 camera, Number camera_altitude,
+                                 vec3 view, IN(CloudMarchState) state, int steps) {
+    Number depth = CloudMeanDepth(state);
+    if (!(depth > 0.0)) return vec4(state.luminance, state.transmittance);
+    ScatteringResult segment = IntegrateScatteredLuminance(
+        atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
+        multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
+        camera_altitude, view, 0.0, depth, steps, false);
+    return vec4(segment.transmittance * state.luminance +
+                    (1.0 - state.transmittance) * segment.luminance,
+                state.transmittance);
+}

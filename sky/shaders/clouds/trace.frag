@@ -1,0 +1,13 @@
+// The cloud trace (H16 §6.1): one cell per block x block pixels, each marching the ray through
+// the pixel of its block chosen for this frame (trace_offset). With block 1 every pixel is
+// traced. Writes (L, T) of the clouds with aerial perspective applied, and their mean depth.
+layout(location = 0) out vec4 out_cloud;
+layout(location = 1) out vec4 out_depth;
+
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy) * block + trace_offset;
+    vec3 view = CameraDirection(vec2(pixel), vec2(output_size));
+    float depth;
+    out_cloud = TraceClouds(view, CloudJitter(pixel), depth);
+    out_depth = vec4(depth, 0.0, 0.0, 0.0);
+}

@@ -1,0 +1,102 @@
+// SI weather and CloudSettings -> the shaders' kilometre structs (clouds/functions.glsl and
+// clouds/march.glsl), for either side of the shared code: the double CPU mirror or the float
+// std140 GL mirror, like shader_parameters.h for the atmosphere.
+#pragma once
+
+#include <vector>
+
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/clouds/weather.h"
+
+namespace zenith::sky {
+
+// Layer `layer` after `time` seconds of wind, on a planet of bottom_radius metres.
+template <typename Parameters>
+Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, const CloudSettings& s,
+                                    double bottom_radius, double time) {
+    using Scalar = decltype(Parameters{}.bottom_radius);
+    constexpr double kKm = 1000.0;
+    // The map is sampled at ground + offset: to carry the clouds downwind by d, offset = -d.
+    const glm::dvec2 drift = clouds::WindDisplacement(layer, time);
+    Parameters p{};
+    p.bottom_radius = Scalar(bottom_radius / kKm);
+    p.base_altitude = Scalar(layer.base_altitude / kKm);
+    p.top_altitude = Scalar(layer.top_altitude / kKm);
+    p.weather_period = Scalar(layer.map_period / kKm);
+    p.shape_period = Scalar(s.shape_period / kKm);
+    p.shape_period_y = Scalar(s.shape_period / kKm * s.noise.shape_size.y / s.noise.shape_size.x);
+    p.detail_period = Scalar(s.detail_period / kKm);
+    p.erosion_strength = Scalar(s.erosion);
+    p.wind_offset_x = Scalar(-drift.x / kKm);
+    p.wind_offset_y = Scalar(-drift.y / kKm);
+    return p;
+}
+
+template <typename Parameters>
+Parameters MakeCloudScatteringParameters(const CloudSettings& s) {
+    using Scalar = decltype(Parameters{}.albedo);
+    Parameters p{};
+    p.forward_g = Scalar(s.forward_g);
+    p.backward_g = Scalar(s.backward_g);
+    p.lobe_weight = Scalar(s.lobe_weight);
+    p.albedo = Scalar(s.albedo);
+    p.octave_a = Scalar(s.octave_a);
+    p.octave_b = Scalar(s.octave_b);
+    p.octave_c = Scalar(s.octave_c);
+    p.octave_count = Scalar(s.octaves);
+    return p;
+}
+
+template <typename Parameters>
+Parameters MakeCloudMarchParameters(const CloudSettings& s) {
+    using Scalar = decltype(Parameters{}.extinction);
+    constexpr double kKm = 1000.0;
+    Parameters p{};
+    p.extinction = Scalar(s.extinction * kKm);
+    p.min_step = Scalar(s.min_step / kKm);
+    p.max_steps = Scalar(s.max_steps);
+    p.shadow_steps = Scalar(s.shadow_steps);
+    p.shadow_first_step = Scalar(s.shadow_first_step / kKm);
+    p.shadow_growth = Scalar(s.shadow_growth);
+    p.ambient_scale = Scalar(s.ambient_scale);
+    p.ambient_bottom = Scalar(s.ambient_bottom);
+    p.min_transmittance = Scalar(s.min_transmittance);
+    p.max_distance = Scalar(s.max_distance / kKm);
+    return p;
+}
+
+// The order in which a ray from a camera at `camera_altitude` (m) meets the layers (indices
+// into weather.layers, bottom to top and not overlapping): the camera's layer and those below it,
+// downward, then those above, upward. A ray going down meets the first kind in that order and
+// can only rise into the second after its lowest point; a ray going up meets only the second.
+std::vector<int> CloudLayerOrder(const clouds::Weather& weather, double camera_altitude);
+
+// Which lights light the clouds (each costs a shadow march per sample): the Sun unless it is
+// more than 10 deg below the camera's horizon (the highest clouds see it to about -5 deg, and its
+// twilight then is far below moonlight); the Moon when it is up in the Lights and either the Sun
+// is dropped or the Moon gives at least 1e-3 of the Sun's illuminance. Returns 0-2 lights in a
+// LightSet (count = how many), directions rotated into the weather frame.
+template <typename LightSet>
+LightSet MakeCloudLightSet(const Lights& lights, const glm::dvec3& up,
+                           const glm::dmat3& weather_from_world) {
+    using Vec3 = decltype(LightSet{}.light[0].direction);
+    const glm::dvec3 sun = glm::normalize(lights.sun_direction);
+    const bool sun_counts = glm::dot(sun, glm::normalize(up)) > -0.17364817766693033;  // sin 10 deg
+    const bool moon_counts =
+        lights.moon_enabled &&
+        (!sun_counts || glm::length(lights.moon_illuminance) >=
+                            1e-3 * glm::length(lights.sun_illuminance));
+    LightSet l{};
+    int count = 0;
+    const auto add = [&](const glm::dvec3& direction, const glm::dvec3& illuminance) {
+        l.light[count].direction = Vec3(weather_from_world * glm::normalize(direction));
+        l.light[count].illuminance = Vec3(illuminance);
+        ++count;
+    };
+    if (sun_counts) add(sun, lights.sun_illuminance);
+    if (moon_counts) add(lights.moon_direction, lights.moon_illuminance);
+    l.count = count;
+    return l;
+}
+
+}  // namespace zenith::sky

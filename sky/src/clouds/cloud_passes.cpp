@@ -1,0 +1,323 @@
+#include "clouds/cloud_passes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "clouds/cloud_parameters.h"
+#include "gl/cloud_uniforms.h"
+#include "gl/draw.h"
+#include "gl/shader_library.h"
+#include "zenith/sky/gl/error.h"
+
+namespace zenith::sky {
+namespace {
+
+constexpr double kKm = 1000.0;
+enum Query : std::size_t { kShadowQuery, kTraceQuery, kReconstructQuery, kCompositeQuery };
+
+// The cloud files follow the atmosphere prelude in every cloud pass.
+constexpr std::array<std::string_view, 4> kCloudParts = {
+    "clouds/definitions.glsl", "clouds/functions.glsl", "clouds/march.glsl",
+    "clouds/interface.glsl"};
+
+GLuint CreateTexture(GLenum target) {
+    GLuint texture = 0;
+    glCreateTextures(target, 1, &texture);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    return texture;
+}
+
+void SetWrap(GLuint texture, GLenum wrap, bool three_d) {
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+    if (three_d) glTextureParameteri(texture, GL_TEXTURE_WRAP_R, static_cast<GLint>(wrap));
+}
+
+// A noise volume as 8-bit UNORM texels, tiling (GL_REPEAT) on every axis.
+GLuint UploadNoise(const clouds::NoiseVolume& volume) {
+    const GLuint texture = CreateTexture(GL_TEXTURE_3D);
+    SetWrap(texture, GL_REPEAT, true);
+    glTextureStorage3D(texture, 1, GL_RGBA8, volume.size.x, volume.size.y, volume.size.z);
+    const GLenum format = volume.channels == 4 ? GL_RGBA : volume.channels == 3 ? GL_RGB : GL_RG;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage3D(texture, 0, 0, 0, 0, volume.size.x, volume.size.y, volume.size.z, format,
+                        GL_UNSIGNED_BYTE, volume.texels.data());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    return texture;
+}
+
+GLuint UploadWeatherMap(const clouds::WeatherMap& map) {
+    const GLuint texture = CreateTexture(GL_TEXTURE_2D);
+    SetWrap(texture, GL_REPEAT, false);
+    glTextureStorage2D(texture, 1, GL_RGBA32F, map.size, map.size);
+    glTextureSubImage2D(texture, 0, 0, 0, map.size, map.size, GL_RGBA, GL_FLOAT,
+                        map.texels.data());
+    return texture;
+}
+
+GLuint CreateTarget(glm::ivec2 size, GLenum format) {
+    const GLuint texture = CreateTexture(GL_TEXTURE_2D);
+    SetWrap(texture, GL_CLAMP_TO_EDGE, false);
+    glTextureStorage2D(texture, 1, format, size.x, size.y);
+    return texture;
+}
+
+GLuint CreateFramebuffer(GLuint color, GLuint depth) {
+    GLuint framebuffer = 0;
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, color, 0);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, depth, 0);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(framebuffer, 2, buffers);
+    if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw gl::GlError("the cloud render targets are not a complete framebuffer");
+    }
+    return framebuffer;
+}
+
+void DeleteTextures(std::initializer_list<GLuint*> textures) {
+    for (GLuint* t : textures) {
+        if (*t != 0) glDeleteTextures(1, t);
+        *t = 0;
+    }
+}
+
+void DeleteFramebuffers(std::initializer_list<GLuint*> framebuffers) {
+    for (GLuint* f : framebuffers) {
+        if (*f != 0) glDeleteFramebuffers(1, f);
+        *f = 0;
+    }
+}
+
+// The ordered-dither (Bayer) index of (x, y) in an n x n matrix, n a power of two:
+// M_2n(x, y) = 4 M_n(x mod n, y mod n) + M_2(x / n, y / n), M_2 = [0 2; 3 1]. Consecutive
+// indices fall in different quadrants, so successive frames spread over the cell.
+int BayerIndex(int x, int y, int n) {
+    if (n == 1) return 0;
+    const int h = n / 2;
+    constexpr int kM2[2][2] = {{0, 2}, {3, 1}};  // [y][x]
+    return 4 * BayerIndex(x % h, y % h, h) + kM2[y / h][x / h];
+}
+
+// The pixel of a block x block cell traced in frame k: Bayer order for powers of two,
+// row-major otherwise.
+glm::ivec2 TraceOffset(int block, long long frame) {
+    const int k = static_cast<int>(frame % (block * block));
+    if ((block & (block - 1)) != 0) return {k % block, k / block};
+    for (int y = 0; y < block; ++y) {
+        for (int x = 0; x < block; ++x) {
+            if (BayerIndex(x, y, block) == k) return {x, y};
+        }
+    }
+    return {0, 0};
+}
+
+// The base-2 radical inverse (Van der Corput), in [0, 1).
+float VanDerCorput(unsigned long long n) {
+    double result = 0.0, f = 0.5;
+    for (; n != 0; n >>= 1, f *= 0.5) {
+        if ((n & 1ULL) != 0) result += f;
+    }
+    return static_cast<float>(result);
+}
+
+LutImage ReadTexture(GLuint texture, glm::ivec2 size) {
+    LutImage image(size.x, size.y, 1);
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.bytes()),
+                      image.texels.data());
+    return image;
+}
+
+}  // namespace
+
+CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings)
+    : weather_(weather),
+      settings_(settings),
+      trace_(gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts)),
+      reconstruct_(gl::FullscreenProgram("clouds/reconstruct.frag", {}, kCloudParts)),
+      composite_(gl::FullscreenProgram("clouds/composite.frag", "#define ZENITH_SCENE_DEPTH 0\n",
+                                       kCloudParts)),
+      composite_depth_(gl::FullscreenProgram("clouds/composite.frag",
+                                             "#define ZENITH_SCENE_DEPTH 1\n", kCloudParts)),
+      shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)) {
+    clouds::Validate(weather_);
+    settings_.Validate();
+    if (weather_.layers.size() > static_cast<std::size_t>(gl::kCloudMaxLayers)) {
+        throw std::invalid_argument("weather '" + weather_.name + "' has " +
+                                    std::to_string(weather_.layers.size()) +
+                                    " layers (the renderer draws at most " +
+                                    std::to_string(gl::kCloudMaxLayers) + ")");
+    }
+    for (const clouds::CloudLayer& layer : weather_.layers) {
+        weather_maps_.push_back(UploadWeatherMap(clouds::BuildWeatherMap(layer)));
+    }
+    const clouds::CloudNoiseLoad noise =
+        clouds::LoadOrGenerateCloudNoise(settings_.noise, settings_.noise_cache_directory);
+    shape_ = UploadNoise(noise.noise.shape);
+    detail_ = UploadNoise(noise.noise.detail);
+    glCreateBuffers(1, &uniforms_);
+    glNamedBufferStorage(uniforms_, sizeof(gl::CloudUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    shadow_map_ = CreateTarget(glm::ivec2(settings_.shadow_map_size), GL_RGBA32F);
+    glCreateVertexArrays(1, &vertex_array_);
+    glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries_.size()), queries_.data());
+}
+
+CloudPasses::~CloudPasses() {
+    glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
+    glDeleteVertexArrays(1, &vertex_array_);
+    DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1]});
+    DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &history_color_[0],
+                    &history_color_[1], &history_depth_[0], &history_depth_[1], &shadow_map_});
+    for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
+    glDeleteBuffers(1, &uniforms_);
+}
+
+void CloudPasses::Resize(glm::ivec2 size) {
+    DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1]});
+    DeleteTextures({&trace_color_, &trace_depth_, &history_color_[0], &history_color_[1],
+                    &history_depth_[0], &history_depth_[1]});
+    size_ = size;
+    const int block = settings_.block;
+    trace_size_ = (size + block - 1) / block;
+    trace_color_ = CreateTarget(trace_size_, GL_RGBA32F);
+    trace_depth_ = CreateTarget(trace_size_, GL_R32F);
+    trace_framebuffer_ = CreateFramebuffer(trace_color_, trace_depth_);
+    for (std::size_t i = 0; i < 2; ++i) {
+        history_color_[i] = CreateTarget(size, GL_RGBA32F);
+        history_depth_[i] = CreateTarget(size, GL_R32F);
+        history_framebuffer_[i] = CreateFramebuffer(history_color_[i], history_depth_[i]);
+    }
+    previous_.reset();
+}
+
+void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& camera,
+                                 const Lights& lights, const RenderOptions& options,
+                                 bool history_valid) {
+    gl::CloudUniforms u{};
+    const CloudView& view = options.clouds;
+    for (std::size_t i = 0; i < weather_.layers.size(); ++i) {
+        u.layers[i] = MakeCloudLayerParameters<gl::CloudLayerUniforms>(
+            weather_.layers[i], settings_, atmosphere.bottom_radius, view.time);
+    }
+    u.scattering = MakeCloudScatteringParameters<gl::CloudScatteringUniforms>(settings_);
+    u.march = MakeCloudMarchParameters<gl::CloudMarchUniforms>(settings_);
+    u.lights = MakeCloudLightSet<gl::LightUniforms>(lights, camera.position,
+                                                   view.weather_from_world);
+    for (int i = 0; i < 3; ++i) {
+        u.weather_from_frame[i] = glm::vec4(glm::vec3(view.weather_from_world[i]), 0.0f);
+    }
+    if (previous_) {
+        // This frame's vectors -> the weather frame -> the previous frame -> its view.
+        const glm::dmat3 previous_from_current =
+            glm::transpose(previous_->weather_from_world) * view.weather_from_world;
+        const glm::dmat3 previous_view =
+            glm::transpose(previous_->camera.world_from_view) * previous_from_current;
+        for (int i = 0; i < 3; ++i) {
+            u.previous_view_from_frame[i] = glm::vec4(glm::vec3(previous_view[i]), 0.0f);
+        }
+        u.previous_camera_km = glm::vec3(glm::transpose(previous_from_current) *
+                                         previous_->camera.position / kKm);
+        u.previous_tan_half_fov =
+            static_cast<float>(std::tan(0.5 * previous_->camera.vertical_fov));
+        u.previous_aspect = static_cast<float>(previous_->camera.aspect);
+    }
+    const int block = settings_.block;
+    u.trace_size = trace_size_;
+    u.trace_offset = TraceOffset(block, frame_index_);
+    u.block = block;
+    u.layer_count = static_cast<int>(weather_.layers.size());
+    u.light_count = u.lights.count;
+    u.history_valid = history_valid ? 1 : 0;
+    u.frame_jitter = VanDerCorput(static_cast<unsigned long long>(frame_index_ / (block * block)));
+    u.history_weight = static_cast<float>(settings_.history_weight);
+    u.aerial_perspective_steps = settings_.aerial_perspective_steps;
+    u.shadow_map_extent_km = static_cast<float>(settings_.shadow_map_extent / kKm);
+    u.shadow_map_size = settings_.shadow_map_size;
+    u.shadow_map_steps = settings_.shadow_map_steps;
+    const std::vector<int> order = CloudLayerOrder(
+        weather_, glm::length(camera.position) - atmosphere.bottom_radius);
+    for (std::size_t i = 0; i < order.size(); ++i) u.layer_order[static_cast<int>(i)] = order[i];
+    glNamedBufferSubData(uniforms_, 0, sizeof(u), &u);
+}
+
+void CloudPasses::BindTextures() const {
+    glBindBufferBase(GL_UNIFORM_BUFFER, 4, uniforms_);
+    glBindTextureUnit(7, shape_);
+    glBindTextureUnit(8, detail_);
+    for (GLuint i = 0; i < static_cast<GLuint>(gl::kCloudMaxLayers); ++i) {
+        // Unused units get a valid texture so every sampler is complete.
+        glBindTextureUnit(9 + i, weather_maps_.empty()      ? shape_
+                                 : i < weather_maps_.size() ? weather_maps_[i]
+                                                            : weather_maps_[0]);
+    }
+}
+
+void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
+                         const RenderOptions& options, GLuint target, glm::ivec4 viewport,
+                         GLuint scene_depth) {
+    if (options.size != size_) Resize(options.size);
+    const bool history_valid = previous_.has_value() && !options.clouds.reset_history;
+    UploadUniforms(atmosphere, camera, lights, options, history_valid);
+    BindTextures();
+    query_used_.fill(false);
+
+    shadow_pass_.Use();
+    glBindImageTexture(0, shadow_map_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBeginQuery(GL_TIME_ELAPSED, queries_[kShadowQuery]);
+    const GLuint groups = static_cast<GLuint>((settings_.shadow_map_size + 7) / 8);
+    glDispatchCompute(groups, groups, 1);
+    glEndQuery(GL_TIME_ELAPSED);
+    query_used_[kShadowQuery] = true;
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+
+    gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_,
+                       glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace, queries_[kTraceQuery]);
+    query_used_[kTraceQuery] = true;
+
+    const std::size_t previous = current_;
+    current_ = 1 - current_;
+    glBindTextureUnit(13, trace_color_);
+    glBindTextureUnit(14, trace_depth_);
+    glBindTextureUnit(15, history_color_[previous]);
+    glBindTextureUnit(16, history_depth_[previous]);
+    gl::DrawFullscreen(reconstruct_, vertex_array_,
+                       history_framebuffer_[current_],
+                       glm::ivec4(0, 0, size_), gl::Blend::kReplace, queries_[kReconstructQuery]);
+    query_used_[kReconstructQuery] = true;
+
+    glBindTextureUnit(15, history_color_[current_]);
+    glBindTextureUnit(16, history_depth_[current_]);
+    if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
+    gl::DrawFullscreen(scene_depth != 0 ? composite_depth_ : composite_, vertex_array_, target,
+                       viewport, gl::Blend::kPremultiplied, queries_[kCompositeQuery]);
+    query_used_[kCompositeQuery] = true;
+
+    previous_ = Previous{camera, options.clouds.weather_from_world};
+    ++frame_index_;
+}
+
+LutImage CloudPasses::ReadClouds() const {
+    if (size_.x == 0) throw gl::GlError("ReadClouds before any Render with weather");
+    return ReadTexture(history_color_[current_], size_);
+}
+
+LutImage CloudPasses::ReadShadowMap() const {
+    return ReadTexture(shadow_map_, glm::ivec2(settings_.shadow_map_size));
+}
+
+std::array<double, 4> CloudPasses::LastPassTimes() const {
+    std::array<double, 4> times{};
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        if (!query_used_[i]) continue;
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(queries_[i], GL_QUERY_RESULT, &ns);
+        times[i] = static_cast<double>(ns) * 1e-6;
+    }
+    return times;
+}
+
+}  // namespace zenith::sky

@@ -1,0 +1,74 @@
+// The GL side of the clouds (Högfeldt 2016 §5-6, Frostbite 2016 §5): noise and weather maps as
+// textures, the reduced-resolution trace, the temporal reconstruction, the composite over the
+// sky and the ground shadow map. Owned by AtmosphereRenderer, which binds the atmosphere's
+// uniform blocks (0-3) and LUTs (units 0-6) before each call; the clouds use block 4 and units
+// 7-16.
+#pragma once
+
+#include <glad/gl.h>
+
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/gl/shader.h"
+
+namespace zenith::sky {
+
+class CloudPasses {
+  public:
+    // Throws clouds::WeatherError for a bad weather or map file, std::invalid_argument for bad
+    // settings or more than 4 layers.
+    CloudPasses(const clouds::Weather& weather, const CloudSettings& settings);
+    ~CloudPasses();
+    CloudPasses(const CloudPasses&) = delete;
+    CloudPasses& operator=(const CloudPasses&) = delete;
+
+    const clouds::Weather& weather() const { return weather_; }
+    const CloudSettings& settings() const { return settings_; }
+
+    // Traces, reconstructs and composites the clouds over `target` (premultiplied; behind the
+    // host's geometry when scene_depth is not 0), and updates the shadow map.
+    void Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
+                const RenderOptions& options, GLuint target, glm::ivec4 viewport,
+                GLuint scene_depth);
+
+    LutImage ReadClouds() const;
+    LutImage ReadShadowMap() const;
+    GLuint shadow_map_texture() const { return shadow_map_; }
+
+    // GPU times (ms) of the last Render: shadow map, trace, reconstruct, composite.
+    std::array<double, 4> LastPassTimes() const;
+
+  private:
+    void Resize(glm::ivec2 size);
+    void UploadUniforms(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
+                        const RenderOptions& options, bool history_valid);
+    void BindTextures() const;
+
+    clouds::Weather weather_;
+    CloudSettings settings_;
+    gl::Program trace_, reconstruct_, composite_, composite_depth_, shadow_pass_;
+    GLuint uniforms_ = 0;
+    GLuint shape_ = 0, detail_ = 0;
+    std::vector<GLuint> weather_maps_;
+    GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
+    std::array<GLuint, 2> history_color_{}, history_depth_{}, history_framebuffer_{};
+    GLuint shadow_map_ = 0;
+    GLuint vertex_array_ = 0;
+    std::array<GLuint, 4> queries_{};
+    std::array<bool, 4> query_used_{};
+    glm::ivec2 size_{0, 0};
+    glm::ivec2 trace_size_{0, 0};
+    std::size_t current_ = 0;  // history set written by the last Render
+    long long frame_index_ = 0;
+    // The previous frame, for the reprojection.
+    struct Previous {
+        Camera camera;
+        glm::dmat3 weather_from_world{1.0};
+    };
+    std::optional<Previous> previous_;
+};
+
+}  // namespace zenith::sky

@@ -1,0 +1,97 @@
+// C++ mirror of the CloudBlock in sky/shaders/clouds/interface.glsl (std140), checked at
+// compile time like atmosphere_uniforms.h.
+#pragma once
+
+#include <cstddef>
+
+#include <glm/glm.hpp>
+
+#include "gl/atmosphere_uniforms.h"
+
+namespace zenith::sky::gl {
+
+struct CloudLayerUniforms {  // clouds/functions.glsl: struct CloudLayerParameters
+    float bottom_radius;
+    float base_altitude;
+    float top_altitude;
+    float weather_period;
+    float shape_period;
+    float shape_period_y;
+    float detail_period;
+    float erosion_strength;
+    float wind_offset_x;
+    float wind_offset_y;
+    float padding0;
+    float padding1;
+};
+static_assert(sizeof(CloudLayerUniforms) == 48);
+
+struct CloudScatteringUniforms {  // clouds/functions.glsl: struct CloudScatteringParameters
+    float forward_g;
+    float backward_g;
+    float lobe_weight;
+    float albedo;
+    float octave_a;
+    float octave_b;
+    float octave_c;
+    float octave_count;
+};
+static_assert(sizeof(CloudScatteringUniforms) == 32);
+
+struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
+    float extinction;
+    float min_step;
+    float max_steps;
+    float shadow_steps;
+    float shadow_first_step;
+    float shadow_growth;
+    float ambient_scale;
+    float ambient_bottom;
+    float min_transmittance;
+    float max_distance;
+    float padding0;
+    float padding1;
+};
+static_assert(sizeof(CloudMarchUniforms) == 48);
+
+inline constexpr int kCloudMaxLayers = 4;  // interface.glsl: kCloudMaxLayers
+
+struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
+    CloudLayerUniforms layers[kCloudMaxLayers];
+    CloudScatteringUniforms scattering;
+    CloudMarchUniforms march;
+    LightUniforms lights;
+    glm::vec4 weather_from_frame[3];
+    glm::vec4 previous_view_from_frame[3];
+    glm::vec3 previous_camera_km;
+    float previous_tan_half_fov;
+    glm::ivec2 trace_size;
+    glm::ivec2 trace_offset;
+    int block;
+    int layer_count;
+    int light_count;
+    int history_valid;
+    float frame_jitter;
+    float history_weight;
+    float previous_aspect;
+    int aerial_perspective_steps;
+    float shadow_map_extent_km;
+    int shadow_map_size;
+    int shadow_map_steps;
+    int padding0;
+    glm::ivec4 layer_order;
+};
+static_assert(offsetof(CloudUniforms, scattering) == 192);
+static_assert(offsetof(CloudUniforms, march) == 224);
+static_assert(offsetof(CloudUniforms, lights) == 272);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 352);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 400);
+static_assert(offsetof(CloudUniforms, previous_camera_km) == 448);
+static_assert(offsetof(CloudUniforms, trace_size) == 464);
+static_assert(offsetof(CloudUniforms, block) == 480);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 496);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 512);
+static_assert(offsetof(CloudUniforms, layer_order) == 528);
+static_assert(sizeof(CloudUniforms) == 544);
+
+}  // namespace zenith::sky::gl
