@@ -47,6 +47,8 @@ void ValidateFrameRequest(const FrameRequest& r) {
     geo::TimeFromIso8601(r.utc);
     r.lut_settings.Validate();
     r.clouds.Validate();
+    Require(r.cloud_passes >= 1 && r.cloud_passes <= 64, "cloud_passes",
+            fmt::format("{}", r.cloud_passes), "1..64");
 }
 
 FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
@@ -82,7 +84,8 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     options.force_ray_march = request.force_ray_march;
     options.moon = state.moon;
     options.stars = std::move(state.stars);
-    renderer.Render(state.camera, state.lights, options);
+    const int passes = weather.layers.empty() ? 1 : request.cloud_passes;
+    for (int i = 0; i < passes; ++i) renderer.Render(state.camera, state.lights, options);
     const sky::LutImage frame = renderer.ReadFrame();
 
     FrameResult result;

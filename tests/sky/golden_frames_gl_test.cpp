@@ -35,10 +35,15 @@ constexpr glm::ivec2 kSize{64, 36};
 struct Scene {
     const char* name;
     const char* utc;
-    double height_m;
+    double height_m;  // < 0: inside the weather's first layer, at its middle
     double pitch_deg;
-    bool toward_sun;  // heading: the Sun's azimuth, else north
+    bool toward_sun;  // heading: the Sun's azimuth (plus sun_offset_deg), else north
+    const char* weather = "clear";
+    double sun_offset_deg = 0.0;
 };
+
+constexpr double kInsideTheLayer = -1.0;
+constexpr const char* kCloudUtc = "2024-06-21T15:00:00Z";
 
 // Over Lake Geneva (46.45 N, 6.6 E) on 2024-06-21: noon, sunset and astronomical night.
 constexpr Scene kScenes[] = {
@@ -54,6 +59,20 @@ constexpr Scene kScenes[] = {
     {"1000km_noon", "2024-06-21T11:30:00Z", 1000000.0, -45.0, true},
     {"1000km_sunset", "2024-06-21T19:25:00Z", 1000000.0, -30.0, true},
     {"1000km_night", "2024-06-21T23:30:00Z", 1000000.0, -20.0, false},
+    // Each cloudy weather preset from the ground, inside its first layer and from above it, in
+    // the afternoon, looking 60 deg right of the Sun (lit sides and shadows both in view).
+    {"scattered_cumulus_ground", kCloudUtc, 2.0, 20.0, true, "scattered_cumulus", 60.0},
+    {"scattered_cumulus_inside", kCloudUtc, kInsideTheLayer, 0.0, true, "scattered_cumulus", 60.0},
+    {"scattered_cumulus_above", kCloudUtc, 12000.0, -25.0, true, "scattered_cumulus", 60.0},
+    {"broken_ground", kCloudUtc, 2.0, 20.0, true, "broken", 60.0},
+    {"broken_inside", kCloudUtc, kInsideTheLayer, 0.0, true, "broken", 60.0},
+    {"broken_above", kCloudUtc, 12000.0, -25.0, true, "broken", 60.0},
+    {"overcast_stratus_ground", kCloudUtc, 2.0, 20.0, true, "overcast_stratus", 60.0},
+    {"overcast_stratus_inside", kCloudUtc, kInsideTheLayer, 0.0, true, "overcast_stratus", 60.0},
+    {"overcast_stratus_above", kCloudUtc, 12000.0, -25.0, true, "overcast_stratus", 60.0},
+    {"cumulonimbus_ground", kCloudUtc, 2.0, 20.0, true, "cumulonimbus", 60.0},
+    {"cumulonimbus_inside", kCloudUtc, kInsideTheLayer, 0.0, true, "cumulonimbus", 60.0},
+    {"cumulonimbus_above", kCloudUtc, 14000.0, -25.0, true, "cumulonimbus", 60.0},
 };
 
 // gtest prints the parameter in test names and failures.
@@ -90,11 +109,23 @@ AtmosphereRenderer* GoldenFrames::renderer_ = nullptr;
 geo::StarCatalog* GoldenFrames::catalog_ = nullptr;
 
 Image Render(const Scene& scene, AtmosphereRenderer& renderer, const geo::StarCatalog* catalog) {
-    const geo::Observer observer(46.45, 6.6, scene.height_m);
+    // Clouds: every pixel traced (a golden is one frame, without history).
+    const clouds::Weather weather = clouds::LoadWeather(scene.weather);
+    CloudSettings cloud_settings;
+    cloud_settings.block = 1;
+    cloud_settings.shadow_map_size = 16;
+    cloud_settings.noise_cache_directory = fs::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    renderer.SetWeather(weather, cloud_settings);
+    const double height =
+        scene.height_m == kInsideTheLayer
+            ? 0.5 * (weather.layers[0].base_altitude + weather.layers[0].top_altitude)
+            : scene.height_m;
+    const geo::Observer observer(46.45, 6.6, height);
     const geo::Time time = geo::TimeFromIso8601(scene.utc);
     const geo::SkyEphemeris e = geo::Ephemeris(catalog).Compute(time, observer);
     const double heading =
-        scene.toward_sun ? e.sun.topocentric.horizontal.azimuth : 0.0;
+        scene.toward_sun ? e.sun.topocentric.horizontal.azimuth + glm::radians(scene.sun_offset_deg)
+                         : 0.0;
     SkyState state = MakeSkyState(e, observer, renderer.atmosphere(),
                                   {heading, glm::radians(scene.pitch_deg), 0.0},
                                   glm::radians(90.0), double(kSize.x) / kSize.y);

@@ -139,7 +139,8 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
 // min(max_steps, ceil(length / min_step)) equal steps, each sampled at `jitter` in [0, 1) of
 // its length (the caller varies it per frame and pixel), integrating with F16's energy-
 // conserving step (App. C) into `state`. Stops once the transmittance is below
-// min_transmittance (that last light is dropped).
+// min_transmittance and counts the rest as opaque (the light behind, at most that share, is
+// dropped: otherwise a Sun of 10^8 cd/m^2 would shine through a thunderstorm at 1 %).
 void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
                      IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
                      IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
@@ -168,6 +169,8 @@ void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
                                state.transmittance);
         }
     }
+    // Opaque from here on: no Sun disk shining through.
+    if (state.transmittance < march.min_transmittance) state.transmittance = 0.0;
 }
 
 // The clouds as seen through the atmosphere between them and the camera (F16 §5.9.1): the

@@ -35,9 +35,11 @@ struct FrameRequest {
     sky::LutSettings lut_settings;
     // Clouds: a built-in weather preset (clear, scattered_cumulus, broken, overcast_stratus,
     // cumulonimbus) or a weather JSON file. A single frame has no history to reproject, so every
-    // pixel is traced (block 1).
+    // pixel is traced (block 1), cloud_passes times with the jitter moved each time, averaged
+    // by the renderer's history (grain instead of banding from the equal steps).
     std::string weather = "clear";
     sky::CloudSettings clouds = SingleFrameCloudSettings();
+    int cloud_passes = 4;
 
     static sky::CloudSettings SingleFrameCloudSettings() {
         sky::CloudSettings s;
