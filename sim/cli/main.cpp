@@ -327,6 +327,10 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     replay_cmd->add_option("--start", replay_start, "flight seconds to start at");
     replay_cmd->add_option("--end", replay_end, "flight seconds to end at");
+    replay_cmd->add_option("--weather", replay.weather,
+                           "clouds: clear, scattered_cumulus, broken, overcast_stratus, "
+                           "cumulonimbus or a weather JSON file")
+        ->capture_default_str();
     replay_cmd->add_option("--preset", replay.preset, "atmosphere preset or JSON file")
         ->capture_default_str();
     replay_cmd->add_option("--shard", replay_shard,

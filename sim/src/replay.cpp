@@ -123,7 +123,12 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
 
     SkySystemSettings settings;
     settings.preset = r.preset;
+    settings.weather = r.weather;
+    settings.clouds.block = 1;
     auto sky = SkySystem::CreateHeadless(settings);
+    sky->SetWeatherOrigin(first.lat_deg, first.lon_deg);
+    sky->SetWeatherEpoch(geo::TimeFromUtc(CivilFromUnixSeconds(
+        trajectory.start_time_s() + r.time_offset_s)));
     sky->SetProjection(r.fov_deg * 0.017453292519943295, double(r.size.x) / r.size.y);
     const auto started = std::chrono::steady_clock::now();
     ReplayProgress& progress = result.progress;
@@ -174,7 +179,11 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
             const geo::Observer camera(lat, lon, h);
             sky->SetViewFromEnu(camera.enu_from_ecef() * ecef_from_view);
             sky->Update();
-            const sky::LutImage frame = sky->RenderOffscreen(r.size);
+            sky->ResetCloudHistory();
+            sky::LutImage frame = sky->RenderOffscreen(r.size);
+            for (int pass = 1; pass < r.cloud_passes && sky->has_clouds(); ++pass) {
+                frame = sky->RenderOffscreen(r.size);
+            }
             sky::Image image(r.size.x, r.size.y);
             for (int y = 0; y < r.size.y; ++y) {
                 for (int x = 0; x < r.size.x; ++x) image.at(x, y) = frame.at(x, r.size.y - 1 - y);

@@ -60,6 +60,10 @@ struct SkySystem::Impl {
     sky::SkyState state;
     SkyLighting lighting;
     std::optional<sky::SceneDepth> scene_depth;
+    // Clouds: the weather map's origin (lat, lon deg) and the simulation time its wind started.
+    std::optional<glm::dvec2> weather_origin;
+    std::optional<double> weather_epoch_jd;
+    sky::CloudView cloud_view;
 
     Impl(const SkySystemSettings& s, std::unique_ptr<sky::gl::HeadlessContext> c)
         : context(std::move(c)), settings(s), atmosphere(sky::LoadAtmosphere(s.preset)) {
@@ -70,6 +74,7 @@ struct SkySystem::Impl {
         }
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
         ground_irradiance = renderer->ReadGroundIrradiance();
+        renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
     }
 };
 
@@ -139,6 +144,23 @@ void SkySystem::SetAtmosphere(const sky::Atmosphere& atmosphere) {
     impl_->ground_irradiance = impl_->renderer->ReadGroundIrradiance();
 }
 
+void SkySystem::SetWeather(const sky::clouds::Weather& weather,
+                           const sky::CloudSettings& settings) {
+    impl_->renderer->SetWeather(weather, settings);
+    impl_->weather_epoch_jd.reset();
+}
+
+void SkySystem::SetWeatherOrigin(double lat_deg, double lon_deg) {
+    geo::Observer(lat_deg, lon_deg, 0.0);  // validates, naming the value
+    impl_->weather_origin = glm::dvec2(lat_deg, lon_deg);
+}
+
+void SkySystem::SetWeatherEpoch(const geo::Time& utc) { impl_->weather_epoch_jd = utc.jd_utc; }
+
+bool SkySystem::has_clouds() const { return !impl_->renderer->weather().layers.empty(); }
+
+void SkySystem::ResetCloudHistory() { impl_->cloud_view.reset_history = true; }
+
 void SkySystem::SetSceneDepth(unsigned depth_texture, double near_m, double far_m) {
     if (!(depth_texture != 0 && near_m > 0.0 && far_m > near_m)) {
         throw std::invalid_argument("SetSceneDepth: needs a texture and 0 < near_m < far_m");
@@ -172,6 +194,13 @@ void SkySystem::Update() {
                                 d.aspect);
     if (!d.attitude) d.state.camera.world_from_view = d.world_from_view;
     d.renderer->UpdateFrameLuts(d.state.camera, d.state.lights);
+    if (!d.weather_origin) {
+        d.weather_origin = glm::dvec2(d.observer.lat_deg(), d.observer.lon_deg());
+    }
+    if (!d.weather_epoch_jd) d.weather_epoch_jd = d.time.jd_utc;
+    d.cloud_view.time = (d.time.jd_utc - *d.weather_epoch_jd) * geo::kSecondsPerDay;
+    d.cloud_view.weather_from_world =
+        sky::WeatherFrame(d.observer, d.weather_origin->x, d.weather_origin->y);
 
     SkyLighting& l = d.lighting;
     const glm::dmat3 ecef_from_enu = d.observer.ecef_from_enu();
@@ -205,7 +234,9 @@ void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
     options.scene_depth = d.scene_depth;
     options.moon = d.state.moon;
     options.stars = d.state.stars;
+    options.clouds = d.cloud_view;
     d.renderer->Render(d.state.camera, d.state.lights, options);
+    d.cloud_view.reset_history = false;
 }
 
 sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
@@ -214,7 +245,9 @@ sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
     options.size = size;
     options.moon = d.state.moon;
     options.stars = d.state.stars;
+    options.clouds = d.cloud_view;
     d.renderer->Render(d.state.camera, d.state.lights, options);
+    d.cloud_view.reset_history = false;
     return d.renderer->ReadFrame();
 }
 
@@ -225,6 +258,9 @@ unsigned SkySystem::aerial_perspective_texture() const {
 }
 unsigned SkySystem::transmittance_texture() const {
     return impl_->renderer->transmittance_texture();
+}
+unsigned SkySystem::cloud_shadow_texture() const {
+    return impl_->renderer->cloud_shadow_texture();
 }
 
 }  // namespace zenith::sim

@@ -84,4 +84,10 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     return s;
 }
 
+glm::dmat3 WeatherFrame(const geo::Observer& observer, double origin_lat_deg,
+                        double origin_lon_deg) {
+    const glm::dmat3 origin = geo::Observer(origin_lat_deg, origin_lon_deg, 0.0).ecef_from_enu();
+    return glm::transpose(origin) * observer.ecef_from_enu();
+}
+
 }  // namespace zenith::sky

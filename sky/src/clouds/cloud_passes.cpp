@@ -260,6 +260,9 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
                          const RenderOptions& options, GLuint target, glm::ivec4 viewport,
                          GLuint scene_depth) {
     if (options.size != size_) Resize(options.size);
+    // A cut starts the jitter sequence over too, so the frame does not depend on what came
+    // before it (replayed frames match whether rendered in order, resumed or sharded).
+    if (options.clouds.reset_history) frame_index_ = 0;
     const bool history_valid = previous_.has_value() && !options.clouds.reset_history;
     UploadUniforms(atmosphere, camera, lights, options, history_valid);
     BindTextures();

@@ -46,6 +46,12 @@ struct ReplayRequest {
     std::optional<double> start_s;  // flight seconds after the first sample (default: start)
     std::optional<double> end_s;    // (default: the end)
     std::string preset = "earth";
+    // Clouds: weather preset or JSON file, anchored at the flight's first point and its wind
+    // started at the flight's start. Each frame is traced at full resolution in cloud_passes
+    // jittered passes of its own (no history from other frames), so a frame's pixels do not
+    // depend on which frames were rendered before it: resumed and sharded runs match a whole one.
+    std::string weather = "clear";
+    int cloud_passes = 2;
     Shard shard;
     std::filesystem::path video;  // MP4 to encode at the end (empty: none)
 };

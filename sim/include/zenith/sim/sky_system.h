@@ -25,6 +25,7 @@
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
+#include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/loader.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
@@ -41,6 +42,10 @@ struct SkySystemSettings {
     // Stars' apparent places are refreshed when simulation time moves by this much (the sky
     // turns 15"/s, a pixel of a 60 deg, 1280 px view is ~170").
     double star_refresh_s = 1.0;
+    // Clouds: a weather preset name or JSON file ("clear": none), and how they are drawn. The
+    // default traces one pixel in 16 per frame and reprojects the rest (a host's frame loop).
+    std::string weather = "clear";
+    sky::CloudSettings clouds;
 };
 
 enum class DayPhase { kDay, kCivilTwilight, kNauticalTwilight, kAstronomicalTwilight, kNight };
@@ -89,6 +94,19 @@ public:
     void SetViewFromEnu(const glm::dmat3& world_from_view);
     void SetProjection(double vertical_fov, double aspect);
     void SetAtmosphere(const sky::Atmosphere& atmosphere);
+    // Clouds from now on (an empty Weather: none). The weather map's origin stays where it is
+    // set (SetWeatherOrigin), else at the aircraft's position at the next Update; the wind
+    // carries the layers from the simulation time of that Update on. Throws
+    // sky::clouds::WeatherError or std::invalid_argument, keeping the previous weather.
+    void SetWeather(const sky::clouds::Weather& weather, const sky::CloudSettings& settings = {});
+    void SetWeatherOrigin(double lat_deg, double lon_deg);
+    // The simulation time at which the wind starts carrying the layers (default: the first
+    // Update after SetWeather).
+    void SetWeatherEpoch(const geo::Time& utc);
+    bool has_clouds() const;
+    // The next frame does not reproject earlier ones (after a cut or a jump in time or place),
+    // and its jitter sequence starts over, so it is the same whatever was drawn before.
+    void ResetCloudHistory();
     // The host's depth texture (0..1, standard perspective with these planes, metres) for the
     // next Render calls: its geometry gets aerial perspective, framebuffer = L + T * colour, and
     // the sky is drawn only where the depth is at the far plane. Clear with ClearSceneDepth().
@@ -109,6 +127,9 @@ public:
     // in-scattered luminance, a mean transmittance) and the transmittance LUT.
     unsigned aerial_perspective_texture() const;
     unsigned transmittance_texture() const;
+    // The clouds' shadow on the ground around the aircraft (sky::AtmosphereRenderer::
+    // ReadCloudShadowMap has the layout); 0 without clouds.
+    unsigned cloud_shadow_texture() const;
 
 private:
     struct Impl;

@@ -82,7 +82,9 @@ struct CloudView {
     // camera; a host that moves keeps it fixed on the planet (WeatherFrame in sky_state.h) so
     // the clouds stay where they are as it flies.
     glm::dmat3 weather_from_world{1.0};
-    bool reset_history = false;  // a cut: do not reproject earlier frames
+    // A cut: do not reproject earlier frames, and start the jitter sequence over (the frame is
+    // then the same whatever was drawn before it).
+    bool reset_history = false;
 };
 
 struct RenderOptions {

@@ -44,6 +44,13 @@ double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double 
 // The world_from_view rotation for an attitude, in the ENU-aligned frame described above.
 glm::dmat3 ViewFromAttitude(const Attitude& attitude);
 
+// The rotation from the renderer's frame at `observer` (its ENU axes) to the weather frame of
+// a weather map whose origin is at (origin_lat_deg, origin_lon_deg): ENU axes there, so the map's
+// x runs east and y north at its origin (CloudView::weather_from_world). A host that moves keeps
+// the origin fixed and its clouds stay on the ground below them.
+glm::dmat3 WeatherFrame(const geo::Observer& observer, double origin_lat_deg,
+                        double origin_lon_deg);
+
 // Builds the renderer's view of the sky from an ephemeris computed for `observer`. Sun and Moon
 // illuminances scale with their distances (solar_illuminance is for 1 au).
 SkyState MakeSkyState(const geo::SkyEphemeris& ephemeris, const geo::Observer& observer,
