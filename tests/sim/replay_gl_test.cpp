@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include "zenith/sky/image_io.h"
+
 namespace zenith::sim {
 namespace {
 
@@ -92,6 +94,37 @@ TEST(Replay, ShardsPartitionTheFrames) {
     for (std::size_t i = 0; i < in_flight; ++i) {
         EXPECT_TRUE(all.count(ReplayFrameName(i, "png"))) << "frame " << i << " missing";
     }
+}
+
+// With clouds a frame is rendered from its own passes only: a shard's frame (rendered after a
+// different frame than in the whole run) has the same pixels.
+TEST(Replay, CloudyShardsMatchAWholeRun) {
+    const auto request = [](const fs::path& dir) {
+        ReplayRequest r = SmallReplay(dir);
+        r.weather = "broken";
+        r.fps = 0.01;  // 5 frames
+        r.write_png = false;
+        r.write_exr = true;
+        return r;
+    };
+    std::atomic<bool> stop{false};
+    const fs::path whole = ScratchDir("cloudy_whole");
+    const fs::path shard = ScratchDir("cloudy_shard");
+    RunReplay(request(whole), stop);
+    ReplayRequest second = request(shard);
+    second.shard = {1, 2};
+    const ReplayResult result = RunReplay(second, stop);
+    ASSERT_GE(result.progress.rendered, 2u);
+    double cloudy = 0.0;
+    for (const std::string& name : Files(shard)) {
+        const sky::Image a = sky::ReadExr(shard / name), b = sky::ReadExr(whole / name);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+            ASSERT_EQ(a.pixels[i], b.pixels[i]) << name << " pixel " << i;
+        }
+        cloudy += 1.0;
+    }
+    EXPECT_EQ(cloudy, static_cast<double>(result.progress.rendered));
 }
 
 TEST(Replay, BadRequestsNameTheOption) {
