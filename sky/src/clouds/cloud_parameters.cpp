@@ -61,6 +61,8 @@ void CloudSettings::Validate() const {
             shadow_map_extent, "1 km .. 1000 km");
     Require(shadow_map_steps >= 1 && shadow_map_steps <= 256, "shadow_map_steps",
             shadow_map_steps, "1..256");
+    Require(shadow_map_interval >= 1 && shadow_map_interval <= 1000, "shadow_map_interval",
+            shadow_map_interval, "1..1000");
 }
 
 std::vector<int> CloudLayerOrder(const clouds::Weather& weather, double camera_altitude) {

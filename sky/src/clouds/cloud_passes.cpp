@@ -268,14 +268,16 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     BindTextures();
     query_used_.fill(false);
 
-    shadow_pass_.Use();
-    glBindImageTexture(0, shadow_map_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBeginQuery(GL_TIME_ELAPSED, queries_[kShadowQuery]);
-    const GLuint groups = static_cast<GLuint>((settings_.shadow_map_size + 7) / 8);
-    glDispatchCompute(groups, groups, 1);
-    glEndQuery(GL_TIME_ELAPSED);
-    query_used_[kShadowQuery] = true;
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    if (!history_valid || frame_index_ % settings_.shadow_map_interval == 0) {
+        shadow_pass_.Use();
+        glBindImageTexture(0, shadow_map_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBeginQuery(GL_TIME_ELAPSED, queries_[kShadowQuery]);
+        const GLuint groups = static_cast<GLuint>((settings_.shadow_map_size + 7) / 8);
+        glDispatchCompute(groups, groups, 1);
+        glEndQuery(GL_TIME_ELAPSED);
+        query_used_[kShadowQuery] = true;
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    }
 
     gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_,
                        glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace, queries_[kTraceQuery]);

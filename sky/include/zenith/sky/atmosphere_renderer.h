@@ -50,7 +50,7 @@ struct CloudSettings {
     // March (H16 §5.2, §6.2; F16 §5.5.2)
     double min_step = 120.0;        // m: the step of a short crossing
     int max_steps = 64;             // primary steps per layer crossing at most
-    int shadow_steps = 5;           // samples toward each light
+    int shadow_steps = 4;           // samples toward each light (F16 §5.5.2: four)
     double shadow_first_step = 80.0;  // m; each next is shadow_growth times longer
     double shadow_growth = 2.0;
     double min_transmittance = 0.01;  // early exit
@@ -63,9 +63,10 @@ struct CloudSettings {
     double history_weight = 0.5;  // share of the reprojected history kept when a pixel is traced
     // The ground shadow map: sun transmittance through all layers over a square around the
     // camera's ground point
-    int shadow_map_size = 256;
+    int shadow_map_size = 128;           // 470 m texels
     double shadow_map_extent = 60000.0;  // m, side of the square
-    int shadow_map_steps = 24;           // per layer
+    int shadow_map_steps = 16;           // per layer
+    int shadow_map_interval = 4;         // frames between updates (the Sun and wind are slow)
     // Noise volumes: generated on first use and cached
     clouds::CloudNoiseSettings noise;
     std::filesystem::path noise_cache_directory = clouds::DefaultNoiseCacheDirectory();

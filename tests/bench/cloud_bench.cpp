@@ -1,0 +1,149 @@
+// Clouds at 1280x720 on the headless GL context (llvmpipe here), scattered cumulus, looking at
+// the horizon from the ground, inside the layer and from 12 km: whole frames (frame LUTs, sky,
+// clouds; glFinish) with the reduced-resolution trace and reprojection (block 4) and with every
+// pixel traced each frame (block 1), beside the clear-sky frame as the baseline; and the
+// converged image against a full-resolution render with four times the steps.
+#include <benchmark/benchmark.h>
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/gl/context.h"
+
+namespace {
+
+using namespace zenith::sky;
+
+struct View {
+    const char* name;
+    double altitude;
+    double pitch;
+};
+constexpr View kViews[] = {{"ground", 2.0, 0.05}, {"inside", 2700.0, 0.0}, {"12km", 12000.0, -0.03}};
+
+struct Fixture {
+    std::unique_ptr<gl::HeadlessContext> context = gl::CreateHeadlessContextFromEnvironment();
+    Atmosphere earth;
+    clouds::Weather weather = clouds::LoadWeather("scattered_cumulus");
+    AtmosphereRenderer renderer{earth};
+    Lights lights;
+
+    Fixture() { lights.sun_direction = glm::normalize(glm::dvec3(0.6, 0.3, 0.5)); }
+
+    Camera CameraFor(const View& v) const {
+        Camera camera;
+        camera.position = glm::dvec3(0.0, 0.0, earth.bottom_radius + v.altitude);
+        const glm::dvec3 forward(std::cos(v.pitch), 0.0, std::sin(v.pitch));  // east
+        const glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 0, 1)));
+        camera.world_from_view = glm::dmat3(right, glm::cross(right, forward), -forward);
+        camera.vertical_fov = 1.0471975511965976;
+        camera.aspect = 16.0 / 9.0;
+        return camera;
+    }
+};
+
+Fixture& Shared() {
+    static Fixture fixture;
+    return fixture;
+}
+
+CloudSettings Settings(int block) {
+    CloudSettings s;
+    s.block = block;
+    return s;
+}
+
+RenderOptions Options() {
+    RenderOptions options;
+    options.size = {1280, 720};
+    return options;
+}
+
+void Frame(Fixture& f, const Camera& camera, const RenderOptions& options) {
+    f.renderer.UpdateFrameLuts(camera, f.lights);
+    f.renderer.Render(camera, f.lights, options);
+}
+
+// args: view, block (0: no clouds, the baseline)
+void BM_Frame720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    const View& view = kViews[state.range(0)];
+    const int block = static_cast<int>(state.range(1));
+    f.renderer.SetWeather(block == 0 ? clouds::Weather{} : f.weather, Settings(std::max(block, 1)));
+    const Camera camera = f.CameraFor(view);
+    const RenderOptions options = Options();
+    Frame(f, camera, options);  // first frame: noise upload, history
+    glFinish();
+    for (auto _ : state) {
+        Frame(f, camera, options);
+        glFinish();
+    }
+    const PassTimes t = f.renderer.LastPassTimes();
+    state.counters["sky_view_ms"] = t.sky_view;
+    state.counters["composite_ms"] = t.render;
+    state.counters["cloud_shadow_ms"] = t.cloud_shadow_map;
+    state.counters["cloud_trace_ms"] = t.cloud_trace;
+    state.counters["cloud_reconstruct_ms"] = t.cloud_reconstruct;
+    state.counters["cloud_composite_ms"] = t.cloud_composite;
+    state.SetLabel(std::string(view.name) + (block == 0 ? " clear" : " block " + std::to_string(block)));
+}
+BENCHMARK(BM_Frame720p)
+    ->ArgsProduct({{0, 1, 2}, {0, 4, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+double MeanLuminance(const LutImage& image) {
+    double sum = 0.0;
+    for (const glm::vec4& t : image.texels) sum += (t.r + t.g + t.b) / 3.0;
+    return sum / static_cast<double>(image.texels.size());
+}
+
+// The reduced-resolution clouds after 64 static frames against a full-resolution render with
+// 4x the steps and 8 jittered passes: mean luminance difference and mean per-pixel difference,
+// both relative to the reference's mean.
+void BM_ConvergedVsReference720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    const View& view = kViews[state.range(0)];
+    const Camera camera = f.CameraFor(view);
+    const RenderOptions options = Options();
+    double mean_difference = 0.0, pixel_difference = 0.0;
+    for (auto _ : state) {
+        CloudSettings high = Settings(1);
+        high.max_steps = 256;
+        high.min_step = 30.0;
+        high.shadow_steps = 8;
+        high.shadow_first_step = 40.0;
+        f.renderer.SetWeather(f.weather, high);
+        for (int i = 0; i < 8; ++i) Frame(f, camera, options);
+        const LutImage reference = f.renderer.ReadClouds();
+        f.renderer.SetWeather(f.weather, Settings(4));
+        for (int i = 0; i < 64; ++i) Frame(f, camera, options);
+        const LutImage converged = f.renderer.ReadClouds();
+        const double mean = MeanLuminance(reference);
+        mean_difference = MeanLuminance(converged) / mean - 1.0;
+        double sum = 0.0;
+        for (std::size_t i = 0; i < reference.texels.size(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                sum += std::abs(converged.texels[i][c] - reference.texels[i][c]) / 3.0;
+            }
+        }
+        pixel_difference = sum / static_cast<double>(reference.texels.size()) / mean;
+    }
+    state.counters["mean_luminance_diff_pct"] = 100.0 * mean_difference;
+    state.counters["per_pixel_diff_pct"] = 100.0 * pixel_difference;
+    state.SetLabel(view.name);
+}
+BENCHMARK(BM_ConvergedVsReference720p)
+    ->DenseRange(0, 2)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();
