@@ -1,5 +1,6 @@
 // The clouds' shadow on the ground (F16 §5.9): for each texel of a square of shadow_map_extent
-// around the camera's ground point, the transmittance toward the Sun through every layer,
+// around the camera's ground point, the transmittance toward the main light (the Sun; the Moon
+// at night, MakeCloudLightSet) through every layer,
 // marched with shadow_map_steps steps per layer (density only).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba32f) uniform writeonly image2D shadow_map;
@@ -7,6 +8,10 @@ layout(binding = 0, rgba32f) uniform writeonly image2D shadow_map;
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(texel, ivec2(shadow_map_size)))) return;
+    if (cloud_light_count == 0) {  // no light reaches the clouds: nothing to shadow
+        imageStore(shadow_map, texel, vec4(1.0));
+        return;
+    }
     // East/north offset (km) in the camera's tangent plane, mapped onto the sphere as arc
     // length from the camera's ground point (the renderer's +z axis).
     vec2 offset = ((vec2(texel) + 0.5) / float(shadow_map_size) - 0.5) * shadow_map_extent_km;

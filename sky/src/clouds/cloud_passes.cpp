@@ -144,8 +144,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
       composite_depth_(gl::FullscreenProgram("clouds/composite.frag",
                                              "#define ZENITH_SCENE_DEPTH 1\n", kCloudParts)),
       shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)) {
-    clouds::Validate(weather_);
-    settings_.Validate();
+    // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(gl::kCloudMaxLayers)) {
         throw std::invalid_argument("weather '" + weather_.name + "' has " +
                                     std::to_string(weather_.layers.size()) +
@@ -249,10 +248,8 @@ void CloudPasses::BindTextures() const {
     glBindTextureUnit(7, shape_);
     glBindTextureUnit(8, detail_);
     for (GLuint i = 0; i < static_cast<GLuint>(gl::kCloudMaxLayers); ++i) {
-        // Unused units get a valid texture so every sampler is complete.
-        glBindTextureUnit(9 + i, weather_maps_.empty()      ? shape_
-                                 : i < weather_maps_.size() ? weather_maps_[i]
-                                                            : weather_maps_[0]);
+        // Units of absent layers get the first map, so every sampler is complete.
+        glBindTextureUnit(9 + i, i < weather_maps_.size() ? weather_maps_[i] : weather_maps_[0]);
     }
 }
 

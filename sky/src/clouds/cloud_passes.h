@@ -18,8 +18,8 @@ namespace zenith::sky {
 
 class CloudPasses {
   public:
-    // Throws clouds::WeatherError for a bad weather or map file, std::invalid_argument for bad
-    // settings or more than 4 layers.
+    // For a validated weather with at least one layer and validated settings. Throws
+    // clouds::WeatherError for a bad map file, std::invalid_argument for more than 4 layers.
     CloudPasses(const clouds::Weather& weather, const CloudSettings& settings);
     ~CloudPasses();
     CloudPasses(const CloudPasses&) = delete;

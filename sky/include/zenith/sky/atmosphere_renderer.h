@@ -155,9 +155,10 @@ public:
     // The last frame's clouds: rgb luminance in front of the sky (aerial perspective applied),
     // a their transmittance, so frame = rgb + a * sky. Frame-sized; throws without weather.
     LutImage ReadClouds() const;
-    // Sun transmittance through every layer at the ground, shadow_map_size^2 texels over
-    // shadow_map_extent around the camera's ground point: texel (i, j) at east/north offsets
-    // ((i + 0.5) / size - 0.5) extent, in the renderer's frame. Throws without weather.
+    // Transmittance toward the Sun (the Moon at night) through every layer at the ground,
+    // shadow_map_size^2 texels over shadow_map_extent around the camera's ground point: texel
+    // (i, j) at east/north offsets ((i + 0.5) / size - 0.5) extent, in the renderer's frame.
+    // Throws without weather.
     LutImage ReadCloudShadowMap() const;
 
     // GL texture names, for hosts that sample them (aerial perspective on their geometry).
