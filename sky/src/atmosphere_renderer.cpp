@@ -13,6 +13,7 @@
 #include "gl/atmosphere_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
+#include "gl/textures.h"
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
 #include "shader_parameters.h"
@@ -51,36 +52,6 @@ constexpr std::array<std::string_view, kPassCount> kPassFiles = {
     "atmosphere/render.frag",             "atmosphere/render.frag",
     "atmosphere/render.frag",
 };
-
-GLuint CreateTexture2D(glm::ivec2 size, GLenum wrap_s = GL_CLAMP_TO_EDGE) {
-    GLuint texture = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-    glTextureStorage2D(texture, 1, GL_RGBA32F, size.x, size.y);
-    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap_s));
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return texture;
-}
-
-GLuint CreateTexture3D(glm::ivec3 size) {
-    GLuint texture = 0;
-    glCreateTextures(GL_TEXTURE_3D, 1, &texture);
-    glTextureStorage3D(texture, 1, GL_RGBA32F, size.x, size.y, size.z);
-    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    return texture;
-}
-
-LutImage ReadTexture(GLuint texture, glm::ivec3 size) {
-    LutImage image(size.x, size.y, size.z);
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.bytes()),
-                      image.texels.data());
-    return image;
-}
 
 GLuint Groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
 
@@ -211,11 +182,11 @@ struct AtmosphereRenderer::Impl {
         for (GLuint i = 0; i < buffers.size(); ++i) {
             glBindBufferBase(GL_UNIFORM_BUFFER, i, buffers[i]);
         }
-        transmittance = CreateTexture2D(s.transmittance_size);
-        multiple_scattering = CreateTexture2D(s.multiple_scattering_size);
-        irradiance = CreateTexture2D(s.irradiance_size);
-        sky_view = CreateTexture2D(s.sky_view_size, GL_REPEAT);  // azimuth wraps
-        aerial_perspective = CreateTexture3D(s.aerial_perspective_size);
+        transmittance = gl::CreateTexture2D(s.transmittance_size);
+        multiple_scattering = gl::CreateTexture2D(s.multiple_scattering_size);
+        irradiance = gl::CreateTexture2D(s.irradiance_size);
+        sky_view = gl::CreateTexture2D(s.sky_view_size, GL_RGBA32F, GL_REPEAT);  // azimuth wraps
+        aerial_perspective = gl::CreateTexture3D(s.aerial_perspective_size);
         glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries.size()), queries.data());
         glCreateFramebuffers(1, &framebuffer);
         glCreateVertexArrays(1, &vertex_array);  // core profile draws need one, even empty
@@ -353,7 +324,7 @@ struct AtmosphereRenderer::Impl {
         Dispatch(kIrradiancePass, irradiance, false, Groups(s.irradiance_size.x, 64),
                  static_cast<GLuint>(s.irradiance_size.y), 1);
         transmittance_cpu =
-            ref::FromImage(ReadTexture(transmittance, glm::ivec3(s.transmittance_size, 1)));
+            ref::FromImage(gl::ReadTexture(transmittance, glm::ivec3(s.transmittance_size, 1)));
     }
 };
 
@@ -423,8 +394,8 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         for (GLuint* t : {&d.frame, &d.stars}) {
             if (*t != 0) glDeleteTextures(1, t);
         }
-        d.frame = CreateTexture2D(options.size);
-        d.stars = CreateTexture2D(options.size);
+        d.frame = gl::CreateTexture2D(options.size);
+        d.stars = gl::CreateTexture2D(options.size);
         d.frame_size = options.size;
         glNamedFramebufferTexture(d.framebuffer, GL_COLOR_ATTACHMENT0, d.frame, 0);
         if (glCheckNamedFramebufferStatus(d.framebuffer, GL_FRAMEBUFFER) !=
@@ -503,24 +474,25 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {
-    return ReadTexture(impl_->transmittance, glm::ivec3(impl_->settings.transmittance_size, 1));
+    return gl::ReadTexture(impl_->transmittance,
+                           glm::ivec3(impl_->settings.transmittance_size, 1));
 }
 LutImage AtmosphereRenderer::ReadMultipleScattering() const {
-    return ReadTexture(impl_->multiple_scattering,
-                       glm::ivec3(impl_->settings.multiple_scattering_size, 1));
+    return gl::ReadTexture(impl_->multiple_scattering,
+                           glm::ivec3(impl_->settings.multiple_scattering_size, 1));
 }
 LutImage AtmosphereRenderer::ReadGroundIrradiance() const {
-    return ReadTexture(impl_->irradiance, glm::ivec3(impl_->settings.irradiance_size, 1));
+    return gl::ReadTexture(impl_->irradiance, glm::ivec3(impl_->settings.irradiance_size, 1));
 }
 LutImage AtmosphereRenderer::ReadSkyView() const {
-    return ReadTexture(impl_->sky_view, glm::ivec3(impl_->settings.sky_view_size, 1));
+    return gl::ReadTexture(impl_->sky_view, glm::ivec3(impl_->settings.sky_view_size, 1));
 }
 LutImage AtmosphereRenderer::ReadAerialPerspective() const {
-    return ReadTexture(impl_->aerial_perspective, impl_->settings.aerial_perspective_size);
+    return gl::ReadTexture(impl_->aerial_perspective, impl_->settings.aerial_perspective_size);
 }
 LutImage AtmosphereRenderer::ReadFrame() const {
     if (impl_->frame == 0) throw gl::GlError("ReadFrame before any Render");
-    return ReadTexture(impl_->frame, glm::ivec3(impl_->frame_size, 1));
+    return gl::ReadTexture(impl_->frame, glm::ivec3(impl_->frame_size, 1));
 }
 
 unsigned AtmosphereRenderer::transmittance_texture() const { return impl_->transmittance; }

@@ -10,6 +10,7 @@
 #include "gl/cloud_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
+#include "gl/textures.h"
 #include "zenith/sky/gl/error.h"
 
 namespace zenith::sky {
@@ -23,25 +24,9 @@ constexpr std::array<std::string_view, 4> kCloudParts = {
     "clouds/definitions.glsl", "clouds/functions.glsl", "clouds/march.glsl",
     "clouds/interface.glsl"};
 
-GLuint CreateTexture(GLenum target) {
-    GLuint texture = 0;
-    glCreateTextures(target, 1, &texture);
-    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    return texture;
-}
-
-void SetWrap(GLuint texture, GLenum wrap, bool three_d) {
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
-    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
-    if (three_d) glTextureParameteri(texture, GL_TEXTURE_WRAP_R, static_cast<GLint>(wrap));
-}
-
 // A noise volume as 8-bit UNORM texels, tiling (GL_REPEAT) on every axis.
 GLuint UploadNoise(const clouds::NoiseVolume& volume) {
-    const GLuint texture = CreateTexture(GL_TEXTURE_3D);
-    SetWrap(texture, GL_REPEAT, true);
-    glTextureStorage3D(texture, 1, GL_RGBA8, volume.size.x, volume.size.y, volume.size.z);
+    const GLuint texture = gl::CreateTexture3D(volume.size, GL_RGBA8, GL_REPEAT);
     const GLenum format = volume.channels == 4 ? GL_RGBA : volume.channels == 3 ? GL_RGB : GL_RG;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTextureSubImage3D(texture, 0, 0, 0, 0, volume.size.x, volume.size.y, volume.size.z, format,
@@ -51,18 +36,10 @@ GLuint UploadNoise(const clouds::NoiseVolume& volume) {
 }
 
 GLuint UploadWeatherMap(const clouds::WeatherMap& map) {
-    const GLuint texture = CreateTexture(GL_TEXTURE_2D);
-    SetWrap(texture, GL_REPEAT, false);
-    glTextureStorage2D(texture, 1, GL_RGBA32F, map.size, map.size);
+    const GLuint texture =
+        gl::CreateTexture2D(glm::ivec2(map.size), GL_RGBA32F, GL_REPEAT, GL_REPEAT);
     glTextureSubImage2D(texture, 0, 0, 0, map.size, map.size, GL_RGBA, GL_FLOAT,
                         map.texels.data());
-    return texture;
-}
-
-GLuint CreateTarget(glm::ivec2 size, GLenum format) {
-    const GLuint texture = CreateTexture(GL_TEXTURE_2D);
-    SetWrap(texture, GL_CLAMP_TO_EDGE, false);
-    glTextureStorage2D(texture, 1, format, size.x, size.y);
     return texture;
 }
 
@@ -125,13 +102,6 @@ float VanDerCorput(unsigned long long n) {
     return static_cast<float>(result);
 }
 
-LutImage ReadTexture(GLuint texture, glm::ivec2 size) {
-    LutImage image(size.x, size.y, 1);
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(image.bytes()),
-                      image.texels.data());
-    return image;
-}
-
 }  // namespace
 
 CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings)
@@ -160,7 +130,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
     detail_ = UploadNoise(noise.noise.detail);
     glCreateBuffers(1, &uniforms_);
     glNamedBufferStorage(uniforms_, sizeof(gl::CloudUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    shadow_map_ = CreateTarget(glm::ivec2(settings_.shadow_map_size), GL_RGBA32F);
+    shadow_map_ = gl::CreateTexture2D(glm::ivec2(settings_.shadow_map_size));
     glCreateVertexArrays(1, &vertex_array_);
     glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries_.size()), queries_.data());
 }
@@ -182,12 +152,12 @@ void CloudPasses::Resize(glm::ivec2 size) {
     size_ = size;
     const int block = settings_.block;
     trace_size_ = (size + block - 1) / block;
-    trace_color_ = CreateTarget(trace_size_, GL_RGBA32F);
-    trace_depth_ = CreateTarget(trace_size_, GL_R32F);
+    trace_color_ = gl::CreateTexture2D(trace_size_);
+    trace_depth_ = gl::CreateTexture2D(trace_size_, GL_R32F);
     trace_framebuffer_ = CreateFramebuffer(trace_color_, trace_depth_);
     for (std::size_t i = 0; i < 2; ++i) {
-        history_color_[i] = CreateTarget(size, GL_RGBA32F);
-        history_depth_[i] = CreateTarget(size, GL_R32F);
+        history_color_[i] = gl::CreateTexture2D(size);
+        history_depth_[i] = gl::CreateTexture2D(size, GL_R32F);
         history_framebuffer_[i] = CreateFramebuffer(history_color_[i], history_depth_[i]);
     }
     previous_.reset();
@@ -304,11 +274,11 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
 
 LutImage CloudPasses::ReadClouds() const {
     if (size_.x == 0) throw gl::GlError("ReadClouds before any Render with weather");
-    return ReadTexture(history_color_[current_], size_);
+    return gl::ReadTexture(history_color_[current_], glm::ivec3(size_, 1));
 }
 
 LutImage CloudPasses::ReadShadowMap() const {
-    return ReadTexture(shadow_map_, glm::ivec2(settings_.shadow_map_size));
+    return gl::ReadTexture(shadow_map_, glm::ivec3(glm::ivec2(settings_.shadow_map_size), 1));
 }
 
 std::array<double, 4> CloudPasses::LastPassTimes() const {
