@@ -179,7 +179,7 @@ TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbi
                                                          2.0 * (y + 0.5) / size.y - 1.0);
                 cpu.at(x, y) = glm::vec4(ref::TraceClouds(
                     scene, camera_km, v.altitude / kKm, view,
-                    ref::CloudJitter({x, y}, 0.0f)));
+                    ref::CloudJitter({x, y}, 0.0)));
             }
         }
         double cover = 0.0;

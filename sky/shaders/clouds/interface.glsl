@@ -43,14 +43,6 @@ mat3 WeatherFromFrame() {
     return mat3(weather_from_frame[0].xyz, weather_from_frame[1].xyz, weather_from_frame[2].xyz);
 }
 
-// A per-pixel offset in [0, 1) with little low-frequency content (Jimenez 2014's interleaved
-// gradient noise), shifted each frame by frame_jitter: banding from equal steps becomes fine
-// noise that the reprojection averages away (F16 §5.5.3).
-float CloudJitter(ivec2 pixel) {
-    float ign = fract(52.9829189 * fract(0.06711056 * float(pixel.x) + 0.00583715 * float(pixel.y)));
-    return fract(ign + frame_jitter);
-}
-
 // Marches every layer along `view` (this frame's world direction) from the camera, front to
 // back, and applies the aerial perspective at the clouds' mean depth. Returns (L, T) and the
 // mean depth in km (-1 where no cloud was met).

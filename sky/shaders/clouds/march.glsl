@@ -49,6 +49,16 @@ Number CloudMeanDepth(IN(CloudMarchState) s) {
     return s.depth_weight > 0.0 ? s.weighted_depth / s.depth_weight : -1.0;
 }
 
+// Where in its step a pixel's samples fall, in [0, 1): Jimenez's (2014) interleaved gradient
+// noise, which has little low-frequency content, shifted by frame_jitter (a Van der Corput
+// sequence over frames). Banding from equal steps becomes fine noise that the reprojection
+// averages away (F16 §5.5.3).
+Number CloudJitter(ivec2 pixel, Number frame_jitter) {
+    Number ign =
+        fract(52.9829189 * fract(0.06711056 * Number(pixel.x) + 0.00583715 * Number(pixel.y)));
+    return fract(ign + frame_jitter);
+}
+
 // The part [x, y] (km) of a ray within a layer's shell (H16 §5.1-5.3), from radius r with zenith
 // cosine mu at `altitude` above bottom_radius (exact); y < x when the ray misses the layer or
 // meets the ground first. Below the layer the march starts at the base; inside, at the camera;

@@ -33,7 +33,8 @@ void main() {
     // This frame's trace around the pixel: the cell's own value, or the four nearest cells
     // (the trace is sampled at pixel cell * block + trace_offset).
     vec2 trace_uv = (vec2(pixel - trace_offset) / float(block) + 0.5) / vec2(trace_size);
-    vec4 current = traced ? texelFetch(cloud_trace, cell, 0) : textureLod(cloud_trace, trace_uv, 0.0);
+    vec4 current =
+        traced ? texelFetch(cloud_trace, cell, 0) : textureLod(cloud_trace, trace_uv, 0.0);
     // The depth to reproject with: the cell's own (a bilinear one would mix clouds with clear
     // sky, -1, at every edge).
     float depth = texelFetch(cloud_trace_depth, min(cell, trace_size - 1), 0).r;

@@ -8,6 +8,6 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy) * block + trace_offset;
     vec3 view = CameraDirection(vec2(pixel), vec2(output_size));
     float depth;
-    out_cloud = TraceClouds(view, CloudJitter(pixel), depth);
+    out_cloud = TraceClouds(view, CloudJitter(pixel, frame_jitter), depth);
     out_depth = vec4(depth, 0.0, 0.0, 0.0);
 }

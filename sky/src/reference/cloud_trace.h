@@ -89,14 +89,5 @@ vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 vie
         scene.aerial_perspective_steps);
 }
 
-// The same jitter as clouds/interface.glsl's CloudJitter (float arithmetic, as on the GPU).
-Number CloudJitter(ivec2 pixel, float frame_jitter) {
-    const float a = 0.06711056f * static_cast<float>(pixel.x) +
-                    0.00583715f * static_cast<float>(pixel.y);
-    const float ign = 52.9829189f * (a - std::floor(a));
-    const float f = ign - std::floor(ign) + frame_jitter;
-    return static_cast<Number>(f - std::floor(f));
-}
-
 }  // namespace
 }  // namespace zenith::sky::ref

@@ -23,6 +23,7 @@ using glm::clamp;
 using glm::cross;
 using glm::dot;
 using glm::exp;
+using glm::fract;
 using glm::length;
 using glm::max;
 using glm::min;
