@@ -65,6 +65,16 @@ struct SkySystem::Impl {
     std::optional<double> weather_epoch_jd;
     sky::CloudView cloud_view;
 
+    // The current sky state drawn with `options` (size and target set by the caller); a
+    // requested cut applies to this frame only.
+    void Draw(sky::RenderOptions& options) {
+        options.moon = state.moon;
+        options.stars = state.stars;
+        options.clouds = cloud_view;
+        renderer->Render(state.camera, state.lights, options);
+        cloud_view.reset_history = false;
+    }
+
     Impl(const SkySystemSettings& s, std::unique_ptr<sky::gl::HeadlessContext> c)
         : context(std::move(c)), settings(s), atmosphere(sky::LoadAtmosphere(s.preset)) {
         try {
@@ -226,29 +236,19 @@ void SkySystem::Update() {
 }
 
 void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
-    Impl& d = *impl_;
     sky::RenderOptions options;
     options.size = {viewport.z, viewport.w};
     options.target_framebuffer = framebuffer;
     options.target_viewport = viewport;
-    options.scene_depth = d.scene_depth;
-    options.moon = d.state.moon;
-    options.stars = d.state.stars;
-    options.clouds = d.cloud_view;
-    d.renderer->Render(d.state.camera, d.state.lights, options);
-    d.cloud_view.reset_history = false;
+    options.scene_depth = impl_->scene_depth;
+    impl_->Draw(options);
 }
 
 sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
-    Impl& d = *impl_;
     sky::RenderOptions options;
     options.size = size;
-    options.moon = d.state.moon;
-    options.stars = d.state.stars;
-    options.clouds = d.cloud_view;
-    d.renderer->Render(d.state.camera, d.state.lights, options);
-    d.cloud_view.reset_history = false;
-    return d.renderer->ReadFrame();
+    impl_->Draw(options);
+    return impl_->renderer->ReadFrame();
 }
 
 const SkyLighting& SkySystem::lighting() const { return impl_->lighting; }
