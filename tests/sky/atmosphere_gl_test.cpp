@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "gl_test_support.h"
 #include "zenith/sky/atmosphere_renderer.h"
-#include "zenith/sky/gl/context.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 
 namespace zenith::sky {
@@ -34,18 +34,7 @@ Difference Compare(const LutImage& gpu, const LutImage& cpu, double floor, int c
     return d;
 }
 
-class AtmosphereGlTest : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        context_ = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa).release();
-    }
-    static void TearDownTestSuite() {
-        delete context_;
-        context_ = nullptr;
-    }
-    static gl::HeadlessContext* context_;
-};
-gl::HeadlessContext* AtmosphereGlTest::context_ = nullptr;
+class AtmosphereGlTest : public gl::test::HeadlessGlTest {};
 
 Lights MorningLights() {
     Lights lights;

@@ -10,27 +10,16 @@
 #include <gtest/gtest.h>
 
 #include "cloud_test_support.h"
+#include "gl_test_support.h"
 #include "reference/cloud_trace.h"
 #include "zenith/sky/atmosphere_renderer.h"
-#include "zenith/sky/gl/context.h"
 
 namespace zenith::sky {
 namespace {
 
 constexpr double kKm = 1000.0;
 
-class CloudRenderGlTest : public ::testing::Test {
-  protected:
-    static void SetUpTestSuite() {
-        context_ = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa).release();
-    }
-    static void TearDownTestSuite() {
-        delete context_;
-        context_ = nullptr;
-    }
-    static gl::HeadlessContext* context_;
-};
-gl::HeadlessContext* CloudRenderGlTest::context_ = nullptr;
+class CloudRenderGlTest : public gl::test::HeadlessGlTest {};
 
 CloudSettings Settings(int block = 1) {
     CloudSettings s;
