@@ -143,6 +143,7 @@ struct AtmosphereRenderer::Impl {
     glm::ivec2 frame_size{0, 0};
     std::array<GLuint, kQueryCount> queries{};
     std::array<bool, kQueryCount> query_used{};
+    int light_count = 1;  // as last uploaded: with the Sun alone, the Sky-View LUT is symmetric
     std::unique_ptr<CloudPasses> clouds;  // with weather that has layers
     clouds::Weather weather;              // as last set (also when clear)
     CloudSettings cloud_settings;
@@ -271,9 +272,10 @@ struct AtmosphereRenderer::Impl {
         glNamedBufferSubData(buffers[0], 0, sizeof(u), &u);
     }
 
-    void UploadLights(const Lights& lights) {
-        const auto u = MakeLightSet<gl::LightUniforms>(lights);
+    void UploadLights(const Lights& lights, const Camera& camera) {
+        const auto u = MakeLightSet<gl::LightUniforms>(lights, camera.position);
         glNamedBufferSubData(buffers[1], 0, sizeof(u), &u);
+        light_count = u.count;
     }
 
     void UploadFrame(const Camera& camera, const Lights& lights, const RenderOptions& options,
@@ -362,11 +364,14 @@ const LutSettings& AtmosphereRenderer::settings() const { return impl_->settings
 
 void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lights) {
     Impl& d = *impl_;
-    d.UploadLights(lights);
+    d.UploadLights(lights, camera);
     RenderOptions options;
     d.UploadFrame(camera, lights, options);
     const LutSettings& s = d.settings;
-    d.Dispatch(kSkyViewPass, d.sky_view, false, Groups(s.sky_view_size.x, 8),
+    // With one light, each invocation marches a texel of the first half of the azimuths and
+    // writes its mirror image too (sky_view.comp).
+    const int columns = d.light_count == 1 ? (s.sky_view_size.x + 1) / 2 : s.sky_view_size.x;
+    d.Dispatch(kSkyViewPass, d.sky_view, false, Groups(columns, 8),
                Groups(s.sky_view_size.y, 8), 1);
     d.Dispatch(kAerialPerspectivePass, d.aerial_perspective, true,
                Groups(s.aerial_perspective_size.x, 8), Groups(s.aerial_perspective_size.y, 8), 1);
@@ -422,7 +427,7 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         glTextureSubImage2D(d.stars, 0, 0, 0, options.size.x, options.size.y, GL_RGBA, GL_FLOAT,
                             d.star_pixels.data());
     }
-    d.UploadLights(lights);
+    d.UploadLights(lights, camera);
     d.UploadFrame(camera, lights, options, sun_disk_resolved, !points.empty());
     if (options.scene_depth &&
         !(to_host && options.scene_depth->texture != 0 && options.scene_depth->near_m > 0.0 &&

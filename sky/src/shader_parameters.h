@@ -31,15 +31,26 @@ Parameters MakeShaderParameters(const Atmosphere& a) {
     return p;
 }
 
+// The Moon is a light of the atmosphere unless the Sun is above the horizon of `up` (the
+// camera's zenith) and outshines it a thousandfold at the top of the atmosphere: the sky's
+// moonlight is then under 2e-4 of its sunlight (tests/sky/atmosphere_lut_test.cpp), and with
+// the Sun alone the Sky-View LUT is symmetric about the Sun's vertical, so half of it is marched.
+inline bool MoonIsLight(const Lights& lights, const glm::dvec3& up) {
+    if (!lights.moon_enabled) return false;
+    const bool sun_up = glm::dot(glm::normalize(lights.sun_direction), glm::normalize(up)) > 0.0;
+    return !(sun_up &&
+             glm::length(lights.moon_illuminance) < 1e-3 * glm::length(lights.sun_illuminance));
+}
+
 template <typename LightSet>
-LightSet MakeLightSet(const Lights& lights) {
+LightSet MakeLightSet(const Lights& lights, const glm::dvec3& up) {
     using Vec3 = decltype(LightSet{}.light[0].direction);
     LightSet l{};
     l.light[0].direction = Vec3(glm::normalize(lights.sun_direction));
     l.light[0].illuminance = Vec3(lights.sun_illuminance);
     l.light[1].direction = Vec3(glm::normalize(lights.moon_direction));
     l.light[1].illuminance = Vec3(lights.moon_illuminance);
-    l.count = lights.moon_enabled ? 2 : 1;
+    l.count = MoonIsLight(lights, up) ? 2 : 1;
     return l;
 }
 

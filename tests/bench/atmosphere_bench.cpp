@@ -105,6 +105,25 @@ void BM_FullFrame720p(benchmark::State& state) {
 }
 BENCHMARK(BM_FullFrame720p)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The same frame at dusk with the Moon up: two lights, so the Sky-View LUT has no mirror
+// symmetry and every texel is marched for both (by day the Moon is left out, MakeLightSet).
+void BM_FullFrame720pTwoLights(benchmark::State& state) {
+    Fixture& f = Shared();
+    Lights dusk = f.lights;
+    dusk.sun_direction = glm::normalize(glm::dvec3(0.99, 0.0, -0.14));  // 8 deg below
+    dusk.moon_enabled = true;
+    dusk.moon_direction = glm::normalize(glm::dvec3(-0.5, 0.6, 0.6));
+    dusk.moon_illuminance = dusk.sun_illuminance * 2e-6;
+    f.options.force_ray_march = false;
+    for (auto _ : state) {
+        f.renderer.UpdateFrameLuts(f.camera, dusk);
+        f.renderer.Render(f.camera, dusk, f.options);
+        glFinish();
+    }
+    ReportPassTimes(state, f.renderer.LastPassTimes());
+}
+BENCHMARK(BM_FullFrame720pTwoLights)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 }  // namespace
 
 BENCHMARK_MAIN();

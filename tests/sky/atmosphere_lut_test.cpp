@@ -9,6 +9,7 @@
 
 #include "shader_parameters.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
+#include "zenith/sky/sky_state.h"
 
 namespace zenith::sky {
 namespace {
@@ -212,6 +213,55 @@ TEST(AtmosphereLuts, SkyViewMatchesPerPixelRayMarching) {
                     relative_rmse);
         EXPECT_LT(relative_rmse, 0.03) << h;
     }
+}
+
+TEST(AtmosphereLuts, MoonIsDroppedOnlyWhereItsSkyIsNegligible) {
+    // MakeLightSet leaves the Moon out while the Sun is up (so the Sky-View LUT is symmetric and
+    // half of it is marched). The full Moon's sky against the Sun's, texel by texel, with the
+    // Sun just above the horizon (its sky at its darkest) and the Moon where it scatters most
+    // into the Sun's darkest sky: opposite it, low, and high.
+    const AtmosphereReference reference(Atmosphere{});
+    const glm::dvec3 camera(0.0, 0.0, 6360e3 + 1500.0);
+    const double moon_radius = 0.5 * 0.5181 * ref::kPi / 180.0;
+    const double full_moon = LambertSphereIlluminanceFactor(0.12, 0.0, moon_radius);
+    const auto luminance = [](const glm::vec4& v) {
+        return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z;
+    };
+    double worst = 0.0;
+    for (double sun_elevation_deg : {0.25, 5.0}) {
+        const double e = sun_elevation_deg * ref::kPi / 180.0;
+        Lights sun;
+        sun.sun_direction = glm::dvec3(std::cos(e), 0.0, std::sin(e));
+        const LutImage sun_sky = reference.SkyView(camera, sun);
+        for (const glm::dvec3& moon_direction :
+             {glm::dvec3(-0.996, 0.0, 0.087), glm::dvec3(-0.5, 0.5, 0.707),
+              glm::dvec3(0.0, -0.94, 0.34)}) {
+            Lights both = sun;
+            both.moon_enabled = true;
+            both.moon_direction = glm::normalize(moon_direction);
+            both.moon_illuminance = sun.sun_illuminance * full_moon;
+            EXPECT_FALSE(MoonIsLight(both, camera));
+            Lights moon = both;
+            moon.sun_illuminance = glm::dvec3(0.0);  // the Moon's sky alone (the Moon is a light)
+            ASSERT_TRUE(MoonIsLight(moon, camera));
+            const LutImage moon_sky = reference.SkyView(camera, moon);
+            for (int y = 0; y < sun_sky.size.y; ++y) {
+                for (int x = 0; x < sun_sky.size.x; ++x) {
+                    worst = std::max(worst, luminance(moon_sky.at(x, y)) /
+                                                luminance(sun_sky.at(x, y)));
+                }
+            }
+        }
+    }
+    std::printf("the full Moon's sky over the Sun's with the Sun up: at most %.2e per texel\n",
+                worst);
+    EXPECT_LT(worst, 2e-4);  // 1.1e-4 at the Sun's darkest (Sun 0.25 deg up, Moon opposite)
+    // Once the Sun has set, the Moon lights the sky.
+    Lights dusk;
+    dusk.sun_direction = glm::normalize(glm::dvec3(1.0, 0.0, -0.01));
+    dusk.moon_enabled = true;
+    dusk.moon_illuminance = dusk.sun_illuminance * full_moon;
+    EXPECT_TRUE(MoonIsLight(dusk, camera));
 }
 
 }  // namespace

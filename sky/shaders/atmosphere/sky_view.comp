@@ -1,13 +1,21 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, rgba32f) uniform writeonly image2D output_image;
 
+// With the Sun alone the sky is symmetric about the Sun's vertical plane: azimuth phi and
+// 2 pi - phi, texel columns x and width - 1 - x, see the same luminance. The host then dispatches
+// the first (width + 1) / 2 columns and each invocation writes both; with the Moon, every column.
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(texel, sky_view_size))) return;
+    bool mirrored = lights.count == 1;
+    int columns = mirrored ? (sky_view_size.x + 1) / 2 : sky_view_size.x;
+    if (texel.x >= columns || texel.y >= sky_view_size.y) return;
     vec2 uv = (vec2(texel) + 0.5) / vec2(sky_view_size);
     vec3 l = ComputeSkyViewTexel(atmosphere, transmittance_texture, transmittance_size,
                                  multiple_scattering_texture, multiple_scattering_size,
                                  irradiance_texture, irradiance_size, lights, camera_km,
                                  camera_altitude_km, uv, sky_view_size, sky_view_steps);
     imageStore(output_image, texel, vec4(l, 1.0));
+    if (mirrored) {
+        imageStore(output_image, ivec2(sky_view_size.x - 1 - texel.x, texel.y), vec4(l, 1.0));
+    }
 }

@@ -30,8 +30,9 @@ struct AtmosphereReference::Impl {
         return glm::length(position) / kKm - atmosphere.bottom_radius;
     }
 
-    ref::LightSet ToLightSet(const Lights& lights) const {
-        return MakeLightSet<ref::LightSet>(lights);
+    // The lights as the renderer passes them for a camera (or ray origin) at `position` (m).
+    ref::LightSet ToLightSet(const Lights& lights, const glm::dvec3& position) const {
+        return MakeLightSet<ref::LightSet>(lights, position);
     }
 };
 
@@ -100,7 +101,7 @@ const LutImage& AtmosphereReference::ground_irradiance() const {
 
 LutImage AtmosphereReference::SkyView(const glm::dvec3& camera, const Lights& lights) const {
     const Impl& d = *impl_;
-    const ref::LightSet light_set = d.ToLightSet(lights);
+    const ref::LightSet light_set = d.ToLightSet(lights, camera);
     const glm::ivec2 size = d.settings.sky_view_size;
     LutImage image(size.x, size.y);
     for (int y = 0; y < size.y; ++y) {
@@ -119,7 +120,7 @@ LutImage AtmosphereReference::SkyView(const glm::dvec3& camera, const Lights& li
 LutImage AtmosphereReference::AerialPerspective(const Camera& camera,
                                                 const Lights& lights) const {
     const Impl& d = *impl_;
-    const ref::LightSet light_set = d.ToLightSet(lights);
+    const ref::LightSet light_set = d.ToLightSet(lights, camera.position);
     const glm::ivec3 size = d.settings.aerial_perspective_size;
     LutImage image(size.x, size.y, size.z);
     const double range_km = d.settings.aerial_perspective_range / kKm;
@@ -160,7 +161,7 @@ glm::dvec4 AtmosphereReference::InScattering(const glm::dvec3& origin,
     const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
         d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
         d.settings.multiple_scattering_size, d.irradiance, d.settings.irradiance_size,
-        d.ToLightSet(lights), origin / kKm, d.AltitudeKm(origin), direction, 0.0,
+        d.ToLightSet(lights, origin), origin / kKm, d.AltitudeKm(origin), direction, 0.0,
         distance / kKm, steps, false);
     return {r.luminance, (r.transmittance.x + r.transmittance.y + r.transmittance.z) / 3.0};
 }
@@ -171,7 +172,7 @@ glm::dvec3 AtmosphereReference::RayMarch(const glm::dvec3& origin, const glm::dv
     return ref::IntegrateScatteredLuminance(
                d.atmosphere, d.transmittance, d.settings.transmittance_size,
                d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
-               d.settings.irradiance_size, d.ToLightSet(lights), origin / kKm,
+               d.settings.irradiance_size, d.ToLightSet(lights, origin), origin / kKm,
                d.AltitudeKm(origin), direction, 0.0, 1e9, steps, true)
         .luminance;
 }

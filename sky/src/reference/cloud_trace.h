@@ -50,7 +50,7 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
     scene.detail = ToTexture(noise.detail);
     scene.scattering = MakeCloudScatteringParameters<CloudScatteringParameters>(settings);
     scene.march = MakeCloudMarchParameters<CloudMarchParameters>(settings);
-    scene.lights = MakeLightSet<LightSet>(lights);
+    scene.lights = MakeLightSet<LightSet>(lights, camera.position);
     scene.cloud_lights =
         MakeCloudLightSet<LightSet>(lights, camera.position, view.weather_from_world);
     scene.weather_from_frame = view.weather_from_world;
