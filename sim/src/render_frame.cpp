@@ -78,12 +78,12 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
     sky::AtmosphereRenderer renderer(atmosphere, request.lut_settings);
     renderer.SetWeather(weather, request.clouds);
-    renderer.UpdateFrameLuts(state.camera, state.lights);
     sky::RenderOptions options;
     options.size = request.size;
     options.force_ray_march = request.force_ray_march;
     options.moon = state.moon;
     options.stars = std::move(state.stars);
+    renderer.UpdateFrameLuts(state.camera, state.lights, options.clouds);
     const int passes = weather.layers.empty() ? 1 : request.cloud_passes;
     for (int i = 0; i < passes; ++i) renderer.Render(state.camera, state.lights, options);
     const sky::LutImage frame = renderer.ReadFrame();

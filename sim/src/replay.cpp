@@ -178,8 +178,8 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
                                                        lat, lon, h);
             const geo::Observer camera(lat, lon, h);
             sky->SetViewFromEnu(camera.enu_from_ecef() * ecef_from_view);
-            sky->Update();
             sky->ResetCloudHistory();
+            sky->Update();
             sky::LutImage frame = sky->RenderOffscreen(r.size);
             for (int pass = 1; pass < r.cloud_passes && sky->has_clouds(); ++pass) {
                 frame = sky->RenderOffscreen(r.size);

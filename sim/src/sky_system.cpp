@@ -203,7 +203,6 @@ void SkySystem::Update() {
     d.state = sky::MakeSkyState(d.ephemeris, d.observer, d.atmosphere, attitude, d.vertical_fov,
                                 d.aspect);
     if (!d.attitude) d.state.camera.world_from_view = d.world_from_view;
-    d.renderer->UpdateFrameLuts(d.state.camera, d.state.lights);
     if (!d.weather_origin) {
         d.weather_origin = glm::dvec2(d.observer.lat_deg(), d.observer.lon_deg());
     }
@@ -211,6 +210,7 @@ void SkySystem::Update() {
     d.cloud_view.time = (d.time.jd_utc - *d.weather_epoch_jd) * geo::kSecondsPerDay;
     d.cloud_view.weather_from_world =
         sky::WeatherFrame(d.observer, d.weather_origin->x, d.weather_origin->y);
+    d.renderer->UpdateFrameLuts(d.state.camera, d.state.lights, d.cloud_view);
 
     SkyLighting& l = d.lighting;
     const glm::dmat3 ecef_from_enu = d.observer.ecef_from_enu();

@@ -362,11 +362,17 @@ const clouds::Weather& AtmosphereRenderer::weather() const { return impl_->weath
 const CloudSettings& AtmosphereRenderer::cloud_settings() const { return impl_->cloud_settings; }
 const LutSettings& AtmosphereRenderer::settings() const { return impl_->settings; }
 
-void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lights) {
+void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lights,
+                                         const CloudView& clouds) {
     Impl& d = *impl_;
     d.UploadLights(lights, camera);
     RenderOptions options;
     d.UploadFrame(camera, lights, options);
+    if (d.clouds) {
+        // What the clouds do to the light beneath them goes into the light block first.
+        d.BindInputs();
+        d.clouds->Prepare(d.atmosphere, camera, lights, clouds, d.buffers[1]);
+    }
     const LutSettings& s = d.settings;
     // With one light, each invocation marches a texel of the first half of the azimuths and
     // writes its mirror image too (sky_view.comp).
@@ -427,7 +433,7 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         glTextureSubImage2D(d.stars, 0, 0, 0, options.size.x, options.size.y, GL_RGBA, GL_FLOAT,
                             d.star_pixels.data());
     }
-    d.UploadLights(lights, camera);
+    // The light block is UpdateFrameLuts' (with the clouds' shading in it).
     d.UploadFrame(camera, lights, options, sun_disk_resolved, !points.empty());
     if (options.scene_depth &&
         !(to_host && options.scene_depth->texture != 0 && options.scene_depth->near_m > 0.0 &&
@@ -513,6 +519,17 @@ LutImage AtmosphereRenderer::ReadClouds() const {
     if (!impl_->clouds) throw std::logic_error("ReadClouds: the renderer has no weather");
     return impl_->clouds->ReadClouds();
 }
+CloudShade AtmosphereRenderer::ReadCloudShade() const {
+    gl::LightUniforms u{};
+    glGetNamedBufferSubData(impl_->buffers[1], 0, sizeof(u), &u);
+    CloudShade shade;
+    shade.base_altitude = static_cast<double>(u.cloud_base) * kKm;
+    shade.direct_transmittance = u.cloud_direct;
+    shade.sky_transmittance = u.cloud_sky;
+    shade.luminance = glm::dvec3(u.cloud_luminance);
+    return shade;
+}
+
 LutImage AtmosphereRenderer::ReadCloudShadowMap() const {
     if (!impl_->clouds) throw std::logic_error("ReadCloudShadowMap: the renderer has no weather");
     return impl_->clouds->ReadShadowMap();
@@ -546,11 +563,12 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
                 ms(kRenderRayMarchDepthPass) + ms(kDiskPass) + ms(kDiskDepthPass) +
                 ms(kSecondDiskQuery)};
     if (d.clouds) {
-        const std::array<double, 4> clouds = d.clouds->LastPassTimes();
+        const std::array<double, 5> clouds = d.clouds->LastPassTimes();
         times.cloud_shadow_map = clouds[0];
-        times.cloud_trace = clouds[1];
-        times.cloud_reconstruct = clouds[2];
-        times.cloud_composite = clouds[3];
+        times.cloud_shade = clouds[1];
+        times.cloud_trace = clouds[2];
+        times.cloud_reconstruct = clouds[3];
+        times.cloud_composite = clouds[4];
     }
     return times;
 }

@@ -51,6 +51,10 @@ LightSet MakeLightSet(const Lights& lights, const glm::dvec3& up) {
     l.light[1].direction = Vec3(glm::normalize(lights.moon_direction));
     l.light[1].illuminance = Vec3(lights.moon_illuminance);
     l.count = MoonIsLight(lights, up) ? 2 : 1;
+    // No clouds (CloudPasses writes what they do into the GL block each frame).
+    l.cloud_base = 0.0;
+    l.cloud_direct = 1.0;
+    l.cloud_sky = 1.0;
     return l;
 }
 

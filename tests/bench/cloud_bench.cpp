@@ -67,7 +67,7 @@ RenderOptions Options() {
 }
 
 void Frame(Fixture& f, const Camera& camera, const RenderOptions& options) {
-    f.renderer.UpdateFrameLuts(camera, f.lights);
+    f.renderer.UpdateFrameLuts(camera, f.lights, options.clouds);
     f.renderer.Render(camera, f.lights, options);
 }
 

@@ -264,5 +264,47 @@ TEST(AtmosphereLuts, MoonIsDroppedOnlyWhereItsSkyIsNegligible) {
     EXPECT_TRUE(MoonIsLight(dusk, camera));
 }
 
+TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
+    // Frostbite 2016 Eq. 22 as IntegrateScatteredLuminance applies it: below cloud_base the air
+    // scatters the clouds' mean luminance L isotropically (half of it: they fill the upper
+    // hemisphere), the ground is lit by them as a uniform hemisphere (pi L), and the lights are
+    // dimmed. With the lights fully blocked and no absorption, energy conservation gives closed
+    // forms: L (1 - T) / 2 toward the sky, plus T albedo L where the ray ends on the ground.
+    ref::AtmosphereParameters a = EarthKm();
+    a.mie_extinction = a.mie_scattering;
+    a.absorption_extinction = ref::vec3(0.0);
+    const ref::Texture2D zero(8, 8);  // LUTs: every lookup is multiplied by a zero light
+    ref::LightSet lights{};
+    lights.count = 1;
+    lights.light[0].direction = ref::vec3(0.0, 0.0, 1.0);
+    lights.light[0].illuminance = ref::vec3(127000.0);
+    lights.cloud_base = 200.0;  // the whole atmosphere is beneath
+    lights.cloud_direct = 0.0;
+    lights.cloud_sky = 0.0;
+    lights.cloud_luminance = ref::vec3(1000.0, 2000.0, 3000.0);
+    const ref::vec3 origin(0.0, 0.0, a.bottom_radius + 1.0);
+    for (double mu : {0.3, -0.01, -0.02, -0.6}) {  // up; above, beyond and below the horizon
+        const ref::vec3 direction(std::sqrt(1.0 - mu * mu), 0.0, mu);
+        const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
+            a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights, origin, 1.0, direction, 0.0,
+            1e9, 40, true);
+        const double r0 = a.bottom_radius + 1.0;
+        const bool ground = mu < -std::sqrt(1.0 - a.bottom_radius * a.bottom_radius / (r0 * r0));
+        for (int c = 0; c < 3; ++c) {
+            const double l = lights.cloud_luminance[c];
+            const double t = r.transmittance[c];
+            const double expected =
+                0.5 * l * (1.0 - t) + (ground ? t * a.ground_albedo[c] * l : 0.0);
+            EXPECT_NEAR(r.luminance[c] / expected, 1.0, 1e-9) << "mu " << mu << " channel " << c;
+        }
+    }
+    // Without clouds (cloud_base 0) nothing changes: the same march, the lights at full.
+    lights.cloud_base = 0.0;
+    const ref::ScatteringResult clear = ref::IntegrateScatteredLuminance(
+        a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights, origin, 1.0,
+        ref::vec3(0.0, 0.6, 0.8), 0.0, 1e9, 40, true);
+    EXPECT_EQ(clear.luminance, ref::vec3(0.0));  // zero LUTs: no light but the clouds'
+}
+
 }  // namespace
 }  // namespace zenith::sky

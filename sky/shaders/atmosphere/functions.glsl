@@ -287,6 +287,31 @@ vec3 TransmittanceToSpace(IN(AtmosphereParameters) atmosphere,
                                                    dot(entry, direction) / length(entry));
 }
 
+// Transmittance from a camera (km, planet-centred; `camera_altitude` exact) to the ground
+// `distance` km along `direction`, a ray that meets it: T(r_g, -mu_g) / T(r, -mu), both rays
+// leaving the atmosphere upward (B17 "GetTransmittance"); from space, from where the ray enters.
+vec3 TransmittanceToGround(IN(AtmosphereParameters) atmosphere,
+                           IN(TransmittanceTexture) transmittance_texture,
+                           ivec2 transmittance_size, vec3 camera, Number camera_altitude,
+                           vec3 direction, Number distance) {
+    Number r = length(camera);
+    Number mu = dot(camera, direction) / r;
+    Number shell = atmosphere.top_radius - atmosphere.bottom_radius;
+    if (camera_altitude > shell) {
+        Number t_top = RaySphereDistance(r, mu, camera_altitude - shell, atmosphere.top_radius);
+        mu = (r * mu + t_top) / atmosphere.top_radius;
+        r = atmosphere.top_radius;
+        distance -= t_top;
+    }
+    Number mu_ground = ClampCosine((r * mu + distance) / atmosphere.bottom_radius);
+    vec3 from_ground = GetTransmittanceToTopAtmosphereBoundary(
+        atmosphere, transmittance_texture, transmittance_size, atmosphere.bottom_radius,
+        -mu_ground);
+    vec3 from_camera = GetTransmittanceToTopAtmosphereBoundary(
+        atmosphere, transmittance_texture, transmittance_size, r, -mu);
+    return min(from_ground / max(from_camera, vec3(1e-30)), vec3(1.0));
+}
+
 // ---------------------------------------------------------------------------------------------
 // Multiple-scattering LUT (H20 §5.5): v = h / (R_t - R) as in the paper, but u = 0.5 + 0.5 sign(mu_s)
 // sqrt(|mu_s|) instead of 0.5 + 0.5 mu_s: Psi_ms falls steeply through twilight, and with the
@@ -423,25 +448,42 @@ struct Light {
 // Light 0 is the Sun (the Sky-View LUT's azimuth origin); light 1, when count is 2, the Moon.
 // A loop over `count` rather than a branch per light: llvmpipe runs both sides of a branch under
 // a mask, but stops a loop when no lane goes on, so a disabled Moon costs nothing.
+//
+// The clouds above, as the air and the ground beneath them see them (F16 §5.9.2, Eq. 22:
+// L_ap = L_ap Tr_cloud + L_cloud). Below cloud_base (km above the ground; 0 without clouds) each
+// light's direct part is scaled by cloud_direct, the clouds' mean transmittance toward the main
+// light over the ground around the camera, its sky-scattered part by cloud_sky, the clouds' mean
+// transmittance over the upper hemisphere, and the clouds' own light is added as an isotropic
+// source: cloud_luminance, their mean luminance over that hemisphere (CloudSkyShade).
 struct LightSet {
     Light light[2];
     int count;
-    int padding0;
-    int padding1;
-    int padding2;
+    Number cloud_base;
+    Number cloud_direct;
+    Number cloud_sky;
+    vec3 cloud_luminance;
+    Number padding0;
 };
+
+// A sample at `altitude` (km) lies under the clouds: 1, else 0. A factor rather than a branch
+// (see LightSet).
+Number UnderClouds(IN(LightSet) lights, Number altitude) {
+    return altitude < lights.cloud_base ? 1.0 : 0.0;
+}
 
 struct ScatteringResult {
     vec3 luminance;      // cd/m^2 (per the illuminances given)
     vec3 transmittance;  // along the marched segment
 };
 
-// In-scattered luminance from one light at point p (position relative to the planet centre).
+// In-scattered luminance from one light at point p (position relative to the planet centre),
+// its single scattering scaled by `direct` and its multiple scattering by `sky` (the clouds'
+// shading, 1 without clouds).
 vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
                        IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
                        IN(MultipleScatteringTexture) multiple_scattering_texture,
                        ivec2 multiple_scattering_size, IN(MediumSample) s, vec3 p, Number r_p,
-                       vec3 view_direction, vec3 light_direction) {
+                       vec3 view_direction, vec3 light_direction, Number direct, Number sky) {
     Number mu_l = dot(p, light_direction) / r_p;
     Number nu = dot(view_direction, light_direction);
     vec3 transmittance = GetTransmittanceToSun(atmosphere, transmittance_texture,
@@ -450,7 +492,7 @@ vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
                             s.mie_scattering * CornetteShanksPhase(atmosphere.mie_g, nu);
     vec3 psi_ms = GetMultipleScattering(atmosphere, multiple_scattering_texture,
                                         multiple_scattering_size, r_p, mu_l);
-    return transmittance * phase_scattering + psi_ms * s.scattering;
+    return transmittance * phase_scattering * direct + psi_ms * s.scattering * sky;
 }
 
 // Marches from `origin` (km, planet-centred; `origin_altitude` its altitude above the ground, exact)
@@ -530,14 +572,20 @@ ScatteringResult IntegrateScatteredLuminance(
         vec3 p = origin + direction * t;  // for light directions only
         Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
         Number r_p = sqrt(atmosphere.bottom_radius * atmosphere.bottom_radius + excess);
-        MediumSample s =
-            SampleMedium(atmosphere, excess / (r_p + atmosphere.bottom_radius));
-        vec3 source = vec3(0.0);
+        Number altitude = excess / (r_p + atmosphere.bottom_radius);
+        MediumSample s = SampleMedium(atmosphere, altitude);
+        // Under the clouds: the lights dimmed, the clouds' light scattered isotropically
+        // (1/4 pi over the 2 pi sr of the hemisphere: half their mean luminance).
+        Number under = UnderClouds(lights, altitude);
+        Number direct = 1.0 + under * (lights.cloud_direct - 1.0);
+        Number sky = 1.0 + under * (lights.cloud_sky - 1.0);
+        vec3 source = s.scattering * lights.cloud_luminance * (0.5 * under);
         for (int l = 0; l < lights.count; ++l) {
             source += lights.light[l].illuminance *
                       LightInScattering(atmosphere, transmittance_texture, transmittance_size,
                                         multiple_scattering_texture, multiple_scattering_size, s,
-                                        p, r_p, direction, lights.light[l].direction);
+                                        p, r_p, direction, lights.light[l].direction, direct,
+                                        sky);
         }
         vec3 step_transmittance = exp(-s.extinction * dt);
         vec3 integral = StepIntegral(s.extinction, dt);
@@ -548,14 +596,20 @@ ScatteringResult IntegrateScatteredLuminance(
     if (include_ground && ends_on_ground) {
         vec3 p = origin + direction * t_end;
         vec3 n_ground = normalize(p);
-        vec3 ground = vec3(0.0);
+        // Under clouds the ground's sunlight and skylight are dimmed like the air's, and the
+        // clouds light it as a uniform hemisphere: irradiance pi L.
+        Number under = UnderClouds(lights, 0.0);
+        Number direct = 1.0 + under * (lights.cloud_direct - 1.0);
+        Number sky = 1.0 + under * (lights.cloud_sky - 1.0);
+        vec3 ground = lights.cloud_luminance * (kPi * under);
         for (int l = 0; l < lights.count; ++l) {
             Number mu_l = dot(n_ground, lights.light[l].direction);
             ground += lights.light[l].illuminance *
                       (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
                                                               transmittance_size,
-                                                              atmosphere.bottom_radius, mu_l) +
-                       GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l));
+                                                              atmosphere.bottom_radius, mu_l) *
+                           direct +
+                       GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) * sky);
         }
         result.luminance += result.transmittance * ground * atmosphere.ground_albedo / kPi;
     }
@@ -696,9 +750,11 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
     unit_sun.light[0].padding1 = 0.0;
     unit_sun.light[1] = unit_sun.light[0];
     unit_sun.count = 1;
-    unit_sun.padding0 = 0;
-    unit_sun.padding1 = 0;
-    unit_sun.padding2 = 0;
+    unit_sun.cloud_base = 0.0;  // a clear sky
+    unit_sun.cloud_direct = 1.0;
+    unit_sun.cloud_sky = 1.0;
+    unit_sun.cloud_luminance = vec3(0.0);
+    unit_sun.padding0 = 0.0;
     vec3 origin = vec3(0.0, 0.0, atmosphere.bottom_radius);
     // Upper hemisphere in equal-solid-angle strata: cos(theta) uniform in (0, 1].
     vec3 irradiance = vec3(0.0);

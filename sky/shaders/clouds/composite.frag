@@ -1,14 +1,17 @@
 // The clouds over the sky (and the Sun, the Moon and the stars): blended premultiplied
 // (ONE, SRC_ALPHA), framebuffer = L + T * what is behind. Over the host's geometry
-// (ZENITH_SCENE_DEPTH) only the clouds nearer than it are drawn.
+// (ZENITH_SCENE_DEPTH) only the clouds nearer than it are drawn. Where our own ground shows, its
+// change by the clouds' shadow is added behind the clouds (L + T * (ground + change)).
 layout(location = 0) out vec4 out_luminance;
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(viewport_x, viewport_y);
     vec4 cloud = texelFetch(cloud_history, pixel, 0);
+    bool ground_shows = true;
 #if ZENITH_SCENE_DEPTH
     float depth = texelFetch(scene_depth_texture, pixel, 0).r;
     if (depth < 1.0) {
+        ground_shows = false;
         float z_ndc = 2.0 * depth - 1.0;
         float eye_depth = 2.0 * scene_near_m * scene_far_m /
                           (scene_far_m + scene_near_m - z_ndc * (scene_far_m - scene_near_m));
@@ -19,5 +22,8 @@ void main() {
         if (!(cloud_depth > 0.0 && cloud_depth < distance_km)) cloud = vec4(0.0, 0.0, 0.0, 1.0);
     }
 #endif
-    out_luminance = cloud;
+    vec3 shadow = ground_shows
+                      ? GroundShadowCorrection(CameraDirection(vec2(pixel), vec2(output_size)))
+                      : vec3(0.0);
+    out_luminance = vec4(cloud.rgb + cloud.a * shadow, cloud.a);
 }

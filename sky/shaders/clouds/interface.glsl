@@ -24,11 +24,12 @@ layout(std140, binding = 4) uniform CloudBlock {
     float shadow_map_extent_km;
     int shadow_map_size;
     int shadow_map_steps;
-    int cloud_padding0;
+    int sky_shade_size;               // directions per side of the sky_shade passes
     // The layers in the order a ray from the camera meets them (CloudLayerOrder on the CPU: the
     // camera's layer and those below it downward, then those above upward). The same for every
     // pixel, so the weather maps are indexed by a dynamically uniform index, as GLSL requires.
     ivec4 cloud_layer_order;
+    ivec4 cloud_ground_layer_order;  // the same from the ground (CloudSkyShade's origin)
 };
 
 layout(binding = 7) uniform sampler3D shape_noise;
@@ -38,34 +39,69 @@ layout(binding = 13) uniform sampler2D cloud_trace;        // rgb luminance, a t
 layout(binding = 14) uniform sampler2D cloud_trace_depth;  // r: mean depth (km), -1 for none
 layout(binding = 15) uniform sampler2D cloud_history;
 layout(binding = 16) uniform sampler2D cloud_history_depth;
+layout(binding = 17) uniform sampler2D cloud_shadow_map;    // r: transmittance to the light
 
 mat3 WeatherFromFrame() {
     return mat3(weather_from_frame[0].xyz, weather_from_frame[1].xyz, weather_from_frame[2].xyz);
 }
 
-// Marches every layer along `view` (this frame's world direction) from the camera, front to
-// back, and applies the aerial perspective at the clouds' mean depth. Returns (L, T) and the
-// mean depth in km (-1 where no cloud was met).
-vec4 TraceClouds(vec3 view, float jitter, out float depth) {
-    mat3 to_weather = WeatherFromFrame();
-    vec3 origin = to_weather * camera_km;
-    vec3 direction = to_weather * view;
+// Marches every layer, in `order`, along `direction` from `origin` (both in the cloud frame;
+// `altitude` km above the ground, exact): the clouds alone, front to back.
+CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, float jitter,
+                                 ivec4 order) {
     float r = length(origin);
     float mu = dot(origin, direction) / r;
     CloudMarchState state = CloudMarchStart();
     for (int k = 0; k < cloud_layer_count; ++k) {
-        int i = cloud_layer_order[k];
-        vec2 interval = CloudLayerInterval(cloud_layers[i], r, mu, camera_altitude_km,
+        int i = order[k];
+        vec2 interval = CloudLayerInterval(cloud_layers[i], r, mu, altitude,
                                            cloud_march.max_distance);
         MarchCloudLayer(atmosphere, transmittance_texture, transmittance_size, irradiance_texture,
                         irradiance_size, cloud_layers[i], weather_maps[i], shape_noise,
                         detail_noise, cloud_scattering, cloud_march, cloud_lights,
                         cloud_light_count, origin, direction, interval, jitter, state);
     }
+    return state;
+}
+
+// The clouds along `view` (this frame's world direction) from the camera, with the aerial
+// perspective at their mean depth. Returns (L, T) and the mean depth in km (-1 where no cloud
+// was met).
+vec4 TraceClouds(vec3 view, float jitter, out float depth) {
+    mat3 to_weather = WeatherFromFrame();
+    CloudMarchState state = MarchCloudLayers(to_weather * camera_km, camera_altitude_km,
+                                             to_weather * view, jitter, cloud_layer_order);
     depth = CloudMeanDepth(state);
     return CloudApplyAerialPerspective(atmosphere, transmittance_texture, transmittance_size,
                                        multiple_scattering_texture, multiple_scattering_size,
                                        irradiance_texture, irradiance_size, lights, camera_km,
                                        camera_altitude_km, view, state,
                                        cloud_aerial_perspective_steps);
+}
+
+// The clouds' shadow on the ground the atmosphere drew (F16 §5.9), as a change of what the
+// camera sees along `view`: the ground's direct light was dimmed by the clouds' mean
+// transmittance toward the light (LightSet.cloud_direct); where the shadow map reaches, the
+// local transmittance replaces it (faded out over the map's outer tenth, so its edge does not
+// show). Zero where the ray misses the ground.
+vec3 GroundShadowCorrection(vec3 view) {
+    float r = length(camera_km);
+    float mu = dot(camera_km, view) / r;
+    float t = RaySphereDistance(r, mu, camera_altitude_km, atmosphere.bottom_radius);
+    if (!(t >= 0.0 && lights.cloud_base > 0.0)) return vec3(0.0);
+    vec3 ground = camera_km + view * t;
+    vec2 uv = CloudShadowMapUv(camera_km, atmosphere.bottom_radius, shadow_map_extent_km, ground);
+    float weight = clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0);
+    float shadow = texture(cloud_shadow_map, uv).r;
+    vec3 n = normalize(ground);
+    vec3 direct = vec3(0.0);
+    for (int l = 0; l < lights.count; ++l) {
+        float mu_l = dot(n, lights.light[l].direction);
+        direct += lights.light[l].illuminance * max(mu_l, 0.0) *
+                  GetTransmittanceToSun(atmosphere, transmittance_texture, transmittance_size,
+                                        atmosphere.bottom_radius, mu_l);
+    }
+    return weight * (shadow - lights.cloud_direct) * direct * atmosphere.ground_albedo / kPi *
+           TransmittanceToGround(atmosphere, transmittance_texture, transmittance_size, camera_km,
+                                 camera_altitude_km, view, t);
 }

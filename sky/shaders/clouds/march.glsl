@@ -210,3 +210,82 @@ vec4 CloudApplyAerialPerspective(IN(AtmosphereParameters) atmosphere,
                     (1.0 - state.transmittance) * segment.luminance,
                 state.transmittance);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The ground shadow map (F16 §5.9): a square of `extent` km around the camera's ground point,
+// east/north in the camera's tangent plane mapped onto the sphere as arc lengths. Positions are
+// planet-centred (km) in the frame of `camera`.
+
+void CloudShadowMapAxes(vec3 camera, OUT(vec3) up, OUT(vec3) east, OUT(vec3) north) {
+    up = normalize(camera);
+    vec3 e = cross(vec3(0.0, 0.0, 1.0), up);
+    east = length(e) > 1e-6 ? normalize(e) : vec3(1.0, 0.0, 0.0);
+    north = cross(up, east);
+}
+
+// The ground point at shadow-map coordinate uv in [0, 1]^2.
+vec3 CloudShadowMapGroundPoint(vec3 camera, Number bottom_radius, Number extent, vec2 uv) {
+    vec3 up;
+    vec3 east;
+    vec3 north;
+    CloudShadowMapAxes(camera, up, east, north);
+    vec2 offset = (uv - vec2(0.5)) * extent;
+    Number arc = length(offset);
+    Number theta = arc / bottom_radius;
+    vec3 along = arc > 0.0 ? (east * offset.x + north * offset.y) / arc : east;
+    return bottom_radius * (up * cos(theta) + along * sin(theta));
+}
+
+// Its inverse: the shadow-map coordinate of the ground point at `ground` (outside [0, 1]^2 when
+// the map does not reach it). The arc is atan(sin, cos) of the tangential components, which keep
+// metres in float where acos of the cosine would not.
+vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 ground) {
+    vec3 up;
+    vec3 east;
+    vec3 north;
+    CloudShadowMapAxes(camera, up, east, north);
+    vec3 n = normalize(ground);
+    vec2 tangent = vec2(dot(n, east), dot(n, north));
+    Number s = length(tangent);
+    Number arc = atan(s, dot(n, up)) * bottom_radius;
+    vec2 offset = s > 0.0 ? tangent * (arc / s) : vec2(0.0);
+    return offset / extent + vec2(0.5);
+}
+
+// Optical depth of one layer from the ground point `origin` (cloud frame) toward the light, with
+// `steps` samples of the density in the layer: the shadow map's march (no lighting).
+Number CloudLayerGroundShadowDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
+                                   IN(CloudNoiseTexture) shape_noise,
+                                   IN(CloudNoiseTexture) detail_noise,
+                                   IN(CloudMarchParameters) march, vec3 origin,
+                                   vec3 light_direction, int steps) {
+    Number r = length(origin);
+    Number mu = dot(origin, light_direction) / r;
+    vec2 interval = CloudLayerInterval(layer, r, mu, 0.0, march.max_distance);
+    Number length_km = interval.y - interval.x;
+    if (!(length_km > 0.0)) return 0.0;
+    Number dt = length_km / Number(steps);
+    Number optical_depth = 0.0;
+    for (int j = 0; j < steps; ++j) {
+        vec3 p = origin + light_direction * (interval.x + (Number(j) + 0.5) * dt);
+        optical_depth += SampleCloudDensity(layer, weather_map, shape_noise, detail_noise, p)
+                             .density *
+                         march.extinction * dt;
+    }
+    return optical_depth;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The clouds as the air and the ground beneath them see them (F16 §5.9.2, LightSet's cloud_*):
+// marched over the upper hemisphere from the ground below the camera and averaged. Direction i
+// of n_sqrt^2 about `up`: equal solid angles, cos(theta) and phi each in n_sqrt strata, taken
+// at the strata's centres (the same directions every frame, so the averages do not flicker).
+vec3 CloudSkyShadeDirection(int i, int n_sqrt, vec3 up) {
+    vec3 x = SkyViewFrameX(up, vec3(1.0, 0.0, 0.0));
+    vec3 y = cross(up, x);
+    int row = i / n_sqrt;
+    Number cos_theta = (Number(row) + 0.5) / Number(n_sqrt);
+    Number phi = 2.0 * kPi * (Number(i - row * n_sqrt) + 0.5) / Number(n_sqrt);
+    Number sin_theta = SafeSqrt(1.0 - cos_theta * cos_theta);
+    return up * cos_theta + x * (sin_theta * cos(phi)) + y * (sin_theta * sin(phi));
+}

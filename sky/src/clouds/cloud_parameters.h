@@ -10,6 +10,10 @@
 
 namespace zenith::sky {
 
+// Directions per side of the clouds' sky shade (clouds/sky_shade_trace.comp): 16^2 over the
+// upper hemisphere, equal solid angles.
+inline constexpr int kCloudSkyShadeSize = 16;
+
 // Layer `layer` after `time` seconds of wind, on a planet of bottom_radius metres.
 template <typename Parameters>
 Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, const CloudSettings& s,

@@ -17,7 +17,13 @@ namespace zenith::sky {
 namespace {
 
 constexpr double kKm = 1000.0;
-enum Query : std::size_t { kShadowQuery, kTraceQuery, kReconstructQuery, kCompositeQuery };
+enum Query : std::size_t {
+    kShadowQuery,
+    kShadeQuery,
+    kTraceQuery,
+    kReconstructQuery,
+    kCompositeQuery
+};
 
 // The cloud files follow the atmosphere prelude in every cloud pass.
 constexpr std::array<std::string_view, 4> kCloudParts = {
@@ -113,7 +119,9 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
                                        kCloudParts)),
       composite_depth_(gl::FullscreenProgram("clouds/composite.frag",
                                              "#define ZENITH_SCENE_DEPTH 1\n", kCloudParts)),
-      shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)) {
+      shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)),
+      shade_trace_pass_(gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts)),
+      shade_pass_(gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts)) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(gl::kCloudMaxLayers)) {
         throw std::invalid_argument("weather '" + weather_.name + "' has " +
@@ -131,6 +139,9 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
     glCreateBuffers(1, &uniforms_);
     glNamedBufferStorage(uniforms_, sizeof(gl::CloudUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
     shadow_map_ = gl::CreateTexture2D(glm::ivec2(settings_.shadow_map_size));
+    shade_directions_ = gl::CreateTexture2D(glm::ivec2(kCloudSkyShadeSize));
+    glCreateFramebuffers(1, &shade_framebuffer_);
+    glNamedFramebufferTexture(shade_framebuffer_, GL_COLOR_ATTACHMENT0, shade_directions_, 0);
     glCreateVertexArrays(1, &vertex_array_);
     glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries_.size()), queries_.data());
 }
@@ -138,9 +149,11 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
 CloudPasses::~CloudPasses() {
     glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
     glDeleteVertexArrays(1, &vertex_array_);
-    DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1]});
+    DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1],
+                        &shade_framebuffer_});
     DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &history_color_[0],
-                    &history_color_[1], &history_depth_[0], &history_depth_[1], &shadow_map_});
+                    &history_color_[1], &history_depth_[0], &history_depth_[1], &shadow_map_,
+                    &shade_directions_});
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
     glDeleteBuffers(1, &uniforms_);
 }
@@ -164,10 +177,9 @@ void CloudPasses::Resize(glm::ivec2 size) {
 }
 
 void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& camera,
-                                 const Lights& lights, const RenderOptions& options,
+                                 const Lights& lights, const CloudView& view,
                                  bool history_valid) {
     gl::CloudUniforms u{};
-    const CloudView& view = options.clouds;
     for (std::size_t i = 0; i < weather_.layers.size(); ++i) {
         u.layers[i] = MakeCloudLayerParameters<gl::CloudLayerUniforms>(
             weather_.layers[i], settings_, atmosphere.bottom_radius, view.time);
@@ -207,9 +219,14 @@ void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& cam
     u.shadow_map_extent_km = static_cast<float>(settings_.shadow_map_extent / kKm);
     u.shadow_map_size = settings_.shadow_map_size;
     u.shadow_map_steps = settings_.shadow_map_steps;
+    u.sky_shade_size = kCloudSkyShadeSize;
     const std::vector<int> order = CloudLayerOrder(
         weather_, glm::length(camera.position) - atmosphere.bottom_radius);
-    for (std::size_t i = 0; i < order.size(); ++i) u.layer_order[static_cast<int>(i)] = order[i];
+    const std::vector<int> ground_order = CloudLayerOrder(weather_, 0.0);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        u.layer_order[static_cast<int>(i)] = order[i];
+        u.ground_layer_order[static_cast<int>(i)] = ground_order[i];
+    }
     glNamedBufferSubData(uniforms_, 0, sizeof(u), &u);
 }
 
@@ -223,15 +240,13 @@ void CloudPasses::BindTextures() const {
     }
 }
 
-void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
-                         const RenderOptions& options, GLuint target, glm::ivec4 viewport,
-                         GLuint scene_depth) {
-    if (options.size != size_) Resize(options.size);
+void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera,
+                          const Lights& lights, const CloudView& view, GLuint light_buffer) {
     // A cut starts the jitter sequence over too, so the frame does not depend on what came
     // before it (replayed frames match whether rendered in order, resumed or sharded).
-    if (options.clouds.reset_history) frame_index_ = 0;
-    const bool history_valid = previous_.has_value() && !options.clouds.reset_history;
-    UploadUniforms(atmosphere, camera, lights, options, history_valid);
+    if (view.reset_history) frame_index_ = 0;
+    const bool history_valid = previous_.has_value() && !view.reset_history;
+    UploadUniforms(atmosphere, camera, lights, view, history_valid);
     BindTextures();
     query_used_.fill(false);
 
@@ -243,8 +258,34 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
         glDispatchCompute(groups, groups, 1);
         glEndQuery(GL_TIME_ELAPSED);
         query_used_[kShadowQuery] = true;
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                        GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
+
+    glBeginQuery(GL_TIME_ELAPSED, queries_[kShadeQuery]);
+    gl::DrawFullscreen(shade_trace_pass_, vertex_array_, shade_framebuffer_,
+                       glm::ivec4(0, 0, kCloudSkyShadeSize, kCloudSkyShadeSize),
+                       gl::Blend::kReplace, 0);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    shade_pass_.Use();
+    glBindImageTexture(0, shade_directions_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, shadow_map_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, light_buffer);
+    glDispatchCompute(1, 1, 1);
+    glEndQuery(GL_TIME_ELAPSED);
+    query_used_[kShadeQuery] = true;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    // Later passes read the block as uniforms; a read back or the next upload comes after.
+    glMemoryBarrier(GL_UNIFORM_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
+                         const RenderOptions& options, GLuint target, glm::ivec4 viewport,
+                         GLuint scene_depth) {
+    if (options.size != size_) Resize(options.size);
+    const bool history_valid = previous_.has_value() && !options.clouds.reset_history;
+    UploadUniforms(atmosphere, camera, lights, options.clouds, history_valid);
+    BindTextures();
 
     gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_,
                        glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace, queries_[kTraceQuery]);
@@ -263,6 +304,7 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
 
     glBindTextureUnit(15, history_color_[current_]);
     glBindTextureUnit(16, history_depth_[current_]);
+    glBindTextureUnit(17, shadow_map_);
     if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
     gl::DrawFullscreen(scene_depth != 0 ? composite_depth_ : composite_, vertex_array_, target,
                        viewport, gl::Blend::kPremultiplied, queries_[kCompositeQuery]);
@@ -281,8 +323,8 @@ LutImage CloudPasses::ReadShadowMap() const {
     return gl::ReadTexture(shadow_map_, glm::ivec3(glm::ivec2(settings_.shadow_map_size), 1));
 }
 
-std::array<double, 4> CloudPasses::LastPassTimes() const {
-    std::array<double, 4> times{};
+std::array<double, 5> CloudPasses::LastPassTimes() const {
+    std::array<double, 5> times{};
     for (std::size_t i = 0; i < times.size(); ++i) {
         if (!query_used_[i]) continue;
         GLuint64 ns = 0;

@@ -28,8 +28,15 @@ class CloudPasses {
     const clouds::Weather& weather() const { return weather_; }
     const CloudSettings& settings() const { return settings_; }
 
-    // Traces, reconstructs and composites the clouds over `target` (premultiplied; behind the
-    // host's geometry when scene_depth is not 0), and updates the shadow map.
+    // First in a frame, before the atmosphere's per-frame LUTs: updates the shadow map (every
+    // shadow_map_interval frames) and writes what the clouds do to the light beneath them into
+    // the LightSet in `light_buffer` (the atmosphere's light block, already holding this frame's
+    // lights; sky_shade.comp).
+    void Prepare(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
+                 const CloudView& view, GLuint light_buffer);
+    // Then traces, reconstructs and composites the clouds over `target` (premultiplied; behind
+    // the host's geometry when scene_depth is not 0), with their shadow on the ground drawn by
+    // the atmosphere.
     void Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
                 const RenderOptions& options, GLuint target, glm::ivec4 viewport,
                 GLuint scene_depth);
@@ -38,27 +45,30 @@ class CloudPasses {
     LutImage ReadShadowMap() const;
     GLuint shadow_map_texture() const { return shadow_map_; }
 
-    // GPU times (ms) of the last Render: shadow map, trace, reconstruct, composite.
-    std::array<double, 4> LastPassTimes() const;
+    // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, composite.
+    std::array<double, 5> LastPassTimes() const;
 
   private:
     void Resize(glm::ivec2 size);
     void UploadUniforms(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
-                        const RenderOptions& options, bool history_valid);
+                        const CloudView& view, bool history_valid);
     void BindTextures() const;
 
     clouds::Weather weather_;
     CloudSettings settings_;
-    gl::Program trace_, reconstruct_, composite_, composite_depth_, shadow_pass_;
+    gl::Program trace_, reconstruct_, composite_, composite_depth_, shadow_pass_,
+        shade_trace_pass_, shade_pass_;
     GLuint uniforms_ = 0;
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;
     GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
     std::array<GLuint, 2> history_color_{}, history_depth_{}, history_framebuffer_{};
     GLuint shadow_map_ = 0;
+    GLuint shade_directions_ = 0;  // (L, T) of the clouds along each sky-shade direction
+    GLuint shade_framebuffer_ = 0;
     GLuint vertex_array_ = 0;
-    std::array<GLuint, 4> queries_{};
-    std::array<bool, 4> query_used_{};
+    std::array<GLuint, 5> queries_{};
+    std::array<bool, 5> query_used_{};
     glm::ivec2 size_{0, 0};
     glm::ivec2 trace_size_{0, 0};
     std::size_t current_ = 0;  // history set written by the last Render

@@ -40,13 +40,17 @@ struct LightUniforms {  // functions.glsl: struct LightSet (array elements 16-by
         float padding1;
     } light[2];
     int count;
-    int padding0;
-    int padding1;
-    int padding2;
+    float cloud_base;
+    float cloud_direct;
+    float cloud_sky;
+    glm::vec3 cloud_luminance;
+    float padding0;
 };
 static_assert(sizeof(LightUniforms::Light) == 32);
-static_assert(sizeof(LightUniforms) == 80);
+static_assert(sizeof(LightUniforms) == 96);
 static_assert(offsetof(LightUniforms, count) == 64);
+static_assert(offsetof(LightUniforms, cloud_base) == 68);
+static_assert(offsetof(LightUniforms, cloud_luminance) == 80);
 
 struct SettingsUniforms {  // interface.glsl: SettingsBlock
     glm::ivec2 transmittance_size;

@@ -78,20 +78,22 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     float shadow_map_extent_km;
     int shadow_map_size;
     int shadow_map_steps;
-    int padding0;
+    int sky_shade_size;
     glm::ivec4 layer_order;
+    glm::ivec4 ground_layer_order;
 };
 static_assert(offsetof(CloudUniforms, scattering) == 192);
 static_assert(offsetof(CloudUniforms, march) == 224);
 static_assert(offsetof(CloudUniforms, lights) == 272);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 352);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 400);
-static_assert(offsetof(CloudUniforms, previous_camera_km) == 448);
-static_assert(offsetof(CloudUniforms, trace_size) == 464);
-static_assert(offsetof(CloudUniforms, block) == 480);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 496);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 512);
-static_assert(offsetof(CloudUniforms, layer_order) == 528);
-static_assert(sizeof(CloudUniforms) == 544);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 368);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 416);
+static_assert(offsetof(CloudUniforms, previous_camera_km) == 464);
+static_assert(offsetof(CloudUniforms, trace_size) == 480);
+static_assert(offsetof(CloudUniforms, block) == 496);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 512);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 528);
+static_assert(offsetof(CloudUniforms, layer_order) == 544);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 560);
+static_assert(sizeof(CloudUniforms) == 576);
 
 }  // namespace zenith::sky::gl

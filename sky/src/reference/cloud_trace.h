@@ -25,12 +25,105 @@ struct CloudScene {
     LightSet lights{};        // the atmosphere's, for the aerial perspective
     LightSet cloud_lights{};  // MakeCloudLightSet's, in the weather frame
     mat3 weather_from_frame{1.0};
-    std::vector<int> order;
+    std::vector<int> order;         // the layers as a ray from the camera meets them
+    std::vector<int> ground_order;  // ...and from the ground
     int aerial_perspective_steps = 8;
 };
 
+// MarchCloudLayers of clouds/interface.glsl: the clouds alone along `direction` from `origin`
+// (cloud frame, km; `altitude` km above the ground, exact), layers in `order`.
+CloudMarchState MarchCloudLayers(const CloudScene& scene, vec3 origin, Number altitude,
+                                 vec3 direction, Number jitter, const std::vector<int>& order) {
+    const Number r = length(origin);
+    const Number mu = dot(origin, direction) / r;
+    CloudMarchState state = CloudMarchStart();
+    const ivec2 transmittance_size(scene.transmittance.width(), scene.transmittance.height());
+    const ivec2 irradiance_size(scene.irradiance.width(), scene.irradiance.height());
+    for (int i : order) {
+        const auto layer = static_cast<std::size_t>(i);
+        const vec2 interval = CloudLayerInterval(scene.layers[layer], r, mu, altitude,
+                                                 scene.march.max_distance);
+        MarchCloudLayer(scene.atmosphere, scene.transmittance, transmittance_size,
+                        scene.irradiance, irradiance_size, scene.layers[layer],
+                        scene.weather_maps[layer], scene.shape, scene.detail, scene.scattering,
+                        scene.march, scene.cloud_lights, scene.cloud_lights.count, origin,
+                        direction, interval, jitter, state);
+    }
+    return state;
+}
+
+// TraceClouds of clouds/interface.glsl: (L, T) of the clouds along `view` from `camera` (km,
+// the renderer's frame; `altitude` km above the ground, exact), aerial perspective applied;
+// *depth gets the mean depth (km, -1 for none).
+vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 view, Number jitter,
+                 Number* depth = nullptr) {
+    const CloudMarchState state =
+        MarchCloudLayers(scene, scene.weather_from_frame * camera, altitude,
+                         scene.weather_from_frame * view, jitter, scene.order);
+    if (depth != nullptr) *depth = CloudMeanDepth(state);
+    return CloudApplyAerialPerspective(
+        scene.atmosphere, scene.transmittance,
+        ivec2(scene.transmittance.width(), scene.transmittance.height()),
+        scene.multiple_scattering,
+        ivec2(scene.multiple_scattering.width(), scene.multiple_scattering.height()),
+        scene.irradiance, ivec2(scene.irradiance.width(), scene.irradiance.height()),
+        scene.lights, camera, altitude, view, state, scene.aerial_perspective_steps);
+}
+
+// A texel of clouds/shadow_map.comp: the transmittance toward the main cloud light from the
+// ground at shadow-map coordinate uv around `camera` (km, the renderer's frame).
+Number CloudShadowMapTexel(const CloudScene& scene, const CloudSettings& settings, vec3 camera,
+                           vec2 uv) {
+    if (scene.cloud_lights.count == 0) return 1.0;
+    const vec3 origin =
+        scene.weather_from_frame * CloudShadowMapGroundPoint(camera, scene.atmosphere.bottom_radius,
+                                                              settings.shadow_map_extent / 1000.0,
+                                                              uv);
+    Number optical_depth = 0.0;
+    for (std::size_t i = 0; i < scene.layers.size(); ++i) {
+        optical_depth += CloudLayerGroundShadowDepth(
+            scene.layers[i], scene.weather_maps[i], scene.shape, scene.detail, scene.march,
+            origin, scene.cloud_lights.light[0].direction, settings.shadow_map_steps);
+    }
+    return exp(-optical_depth);
+}
+
+// clouds/sky_shade.comp: the LightSet members that say what the clouds do to the light beneath
+// them, for `camera` (km): the shadow map's mean and the clouds' mean transmittance and
+// luminance over the upper hemisphere from the ground below the camera.
+void ShadeLightsUnderClouds(const CloudScene& scene, const CloudSettings& settings, vec3 camera,
+                            LightSet& lights) {
+    if (scene.layers.empty()) return;  // a clear sky: nothing to shade
+    constexpr int kShadeSqrt = kCloudSkyShadeSize;
+    const vec3 up = normalize(camera);
+    vec4 sum(0.0);
+    for (int i = 0; i < kShadeSqrt * kShadeSqrt; ++i) {
+        const CloudMarchState state = MarchCloudLayers(
+            scene, scene.weather_from_frame * (up * scene.atmosphere.bottom_radius), 0.0,
+            scene.weather_from_frame * CloudSkyShadeDirection(i, kShadeSqrt, up), 0.5,
+            scene.ground_order);
+        sum += vec4(state.luminance, state.transmittance);
+    }
+    const int n = settings.shadow_map_size;
+    Number shadow = 0.0;
+    for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) {
+            shadow += CloudShadowMapTexel(scene, settings, camera,
+                                          (vec2(x, y) + vec2(0.5)) / Number(n));
+        }
+    }
+    Number base = scene.layers[0].base_altitude;
+    for (const CloudLayerParameters& layer : scene.layers) base = min(base, layer.base_altitude);
+    const vec4 mean = sum / Number(kShadeSqrt * kShadeSqrt);
+    lights.cloud_base = base;
+    lights.cloud_direct = shadow / Number(n * n);
+    lights.cloud_sky = mean.w;
+    lights.cloud_luminance = vec3(mean);
+}
+
 // The scene the renderer draws for this camera: LUTs as read back from the GPU (so the CPU
-// samples what the GPU samples), the noise and weather maps as uploaded.
+// samples what the GPU samples), the noise and weather maps as uploaded, and the atmosphere's
+// lights shaded by the clouds as UpdateFrameLuts shades them.
 CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmittance,
                           const LutImage& multiple_scattering, const LutImage& irradiance,
                           const clouds::Weather& weather, const CloudSettings& settings,
@@ -55,38 +148,10 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
         MakeCloudLightSet<LightSet>(lights, camera.position, view.weather_from_world);
     scene.weather_from_frame = view.weather_from_world;
     scene.order = CloudLayerOrder(weather, glm::length(camera.position) - atmosphere.bottom_radius);
+    scene.ground_order = CloudLayerOrder(weather, 0.0);
     scene.aerial_perspective_steps = settings.aerial_perspective_steps;
+    ShadeLightsUnderClouds(scene, settings, camera.position / 1000.0, scene.lights);
     return scene;
-}
-
-// TraceClouds of clouds/interface.glsl: (L, T) of the clouds along `view` from `camera` (km,
-// the renderer's frame; `altitude` km above the ground, exact), aerial perspective applied;
-// *depth gets the mean depth (km, -1 for none).
-vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 view, Number jitter,
-                 Number* depth = nullptr) {
-    const vec3 origin = scene.weather_from_frame * camera;
-    const vec3 direction = scene.weather_from_frame * view;
-    const Number r = length(origin);
-    const Number mu = dot(origin, direction) / r;
-    CloudMarchState state = CloudMarchStart();
-    const ivec2 transmittance_size(scene.transmittance.width(), scene.transmittance.height());
-    const ivec2 irradiance_size(scene.irradiance.width(), scene.irradiance.height());
-    for (int i : scene.order) {
-        const auto layer = static_cast<std::size_t>(i);
-        const vec2 interval = CloudLayerInterval(scene.layers[layer], r, mu, altitude,
-                                                 scene.march.max_distance);
-        MarchCloudLayer(scene.atmosphere, scene.transmittance, transmittance_size,
-                        scene.irradiance, irradiance_size, scene.layers[layer],
-                        scene.weather_maps[layer], scene.shape, scene.detail, scene.scattering,
-                        scene.march, scene.cloud_lights, scene.cloud_lights.count, origin,
-                        direction, interval, jitter, state);
-    }
-    if (depth != nullptr) *depth = CloudMeanDepth(state);
-    return CloudApplyAerialPerspective(
-        scene.atmosphere, scene.transmittance, transmittance_size, scene.multiple_scattering,
-        ivec2(scene.multiple_scattering.width(), scene.multiple_scattering.height()),
-        scene.irradiance, irradiance_size, scene.lights, camera, altitude, view, state,
-        scene.aerial_perspective_steps);
 }
 
 }  // namespace

@@ -105,7 +105,8 @@ public:
     void SetWeatherEpoch(const geo::Time& utc);
     bool has_clouds() const;
     // The next frame does not reproject earlier ones (after a cut or a jump in time or place),
-    // and its jitter sequence starts over, so it is the same whatever was drawn before.
+    // and its jitter sequence starts over, so it is the same whatever was drawn before. Call it
+    // before that frame's Update(), which renews the clouds' shadow map on a cut.
     void ResetCloudHistory();
     // The host's depth texture (0..1, standard perspective with these planes, metres) for the
     // next Render calls: its geometry gets aerial perspective, framebuffer = L + T * colour, and

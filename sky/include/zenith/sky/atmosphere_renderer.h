@@ -75,6 +75,17 @@ struct CloudSettings {
     void Validate() const;
 };
 
+// What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found each
+// frame by UpdateFrameLuts: the air and the ground below base_altitude get each light's direct
+// part times direct_transmittance and the sky's part times sky_transmittance, and the clouds'
+// own light as a source of luminance `luminance` over the upper hemisphere.
+struct CloudShade {
+    double base_altitude = 0.0;         // m above the ground; 0: no clouds
+    double direct_transmittance = 1.0;  // toward the Sun (Moon at night), mean over the shadow map
+    double sky_transmittance = 1.0;     // mean over the upper hemisphere, from the ground
+    glm::dvec3 luminance{0.0};          // cd/m^2, the clouds' mean over the upper hemisphere
+};
+
 // Per frame: where the weather is.
 struct CloudView {
     double time = 0.0;  // s since the weather's epoch: how far the wind has carried the layers
@@ -115,6 +126,7 @@ struct PassTimes {
     double aerial_perspective = 0.0;
     double render = 0.0;
     double cloud_shadow_map = 0.0;  // 0 without weather
+    double cloud_shade = 0.0;       // the clouds' effect on the light beneath them
     double cloud_trace = 0.0;
     double cloud_reconstruct = 0.0;
     double cloud_composite = 0.0;
@@ -139,10 +151,13 @@ public:
     const clouds::Weather& weather() const;
     const CloudSettings& cloud_settings() const;
 
-    // The per-frame LUTs (Sky-View, aerial perspective) for this camera and these lights.
-    void UpdateFrameLuts(const Camera& camera, const Lights& lights);
+    // The per-frame LUTs (Sky-View, aerial perspective) for this camera and these lights; with
+    // weather, first the clouds' shadow map and their shading of the air and the ground beneath
+    // them (Frostbite 2016 Eq. 22), for the clouds placed by `clouds`.
+    void UpdateFrameLuts(const Camera& camera, const Lights& lights,
+                         const CloudView& clouds = {});
     // Renders the frame into the renderer's RGBA32F colour texture (after UpdateFrameLuts for
-    // the same camera and lights).
+    // the same camera, lights and CloudView).
     void Render(const Camera& camera, const Lights& lights, const RenderOptions& options);
 
     // Read back for tests, tools and offscreen output (synchronous).
@@ -160,6 +175,8 @@ public:
     // (i, j) at east/north offsets ((i + 0.5) / size - 0.5) extent, in the renderer's frame.
     // Throws without weather.
     LutImage ReadCloudShadowMap() const;
+    // This frame's CloudShade (the clear-sky values without weather).
+    CloudShade ReadCloudShade() const;
 
     // GL texture names, for hosts that sample them (aerial perspective on their geometry).
     unsigned transmittance_texture() const;

@@ -1,0 +1,34 @@
+// What the clouds do to the light beneath them (F16 §5.9.2, LightSet's cloud_* members): the
+// mean of sky_shade_trace.frag's directions (equal solid angles of the upper hemisphere seen
+// from the ground below the camera) and the mean of this frame's shadow map, written into the
+// atmosphere's light block, which the frame's later passes read: the Sky-View and aerial-
+// perspective LUTs, the composite's ray march and the clouds' own aerial perspective. One
+// invocation: some 16,000 texel reads.
+layout(local_size_x = 1) in;
+layout(std140, binding = 1) buffer LightStorage {
+    LightSet shaded_lights;
+};
+layout(binding = 0, rgba32f) uniform readonly image2D shade_directions;
+layout(binding = 1, rgba32f) uniform readonly image2D shadow_map_image;
+
+void main() {
+    vec4 shade = vec4(0.0);
+    for (int y = 0; y < sky_shade_size; ++y) {
+        for (int x = 0; x < sky_shade_size; ++x) {
+            shade += imageLoad(shade_directions, ivec2(x, y));
+        }
+    }
+    shade /= float(sky_shade_size * sky_shade_size);
+    float shadow = 0.0;
+    for (int y = 0; y < shadow_map_size; ++y) {
+        for (int x = 0; x < shadow_map_size; ++x) {
+            shadow += imageLoad(shadow_map_image, ivec2(x, y)).r;
+        }
+    }
+    float base = cloud_layers[0].base_altitude;
+    for (int k = 1; k < cloud_layer_count; ++k) base = min(base, cloud_layers[k].base_altitude);
+    shaded_lights.cloud_base = base;
+    shaded_lights.cloud_direct = shadow / float(shadow_map_size * shadow_map_size);
+    shaded_lights.cloud_sky = shade.a;
+    shaded_lights.cloud_luminance = shade.rgb;
+}
