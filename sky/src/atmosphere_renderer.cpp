@@ -563,12 +563,12 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
                 ms(kRenderRayMarchDepthPass) + ms(kDiskPass) + ms(kDiskDepthPass) +
                 ms(kSecondDiskQuery)};
     if (d.clouds) {
-        const std::array<double, 5> clouds = d.clouds->LastPassTimes();
+        const auto clouds = d.clouds->LastPassTimes();
         times.cloud_shadow_map = clouds[0];
         times.cloud_shade = clouds[1];
         times.cloud_trace = clouds[2];
         times.cloud_reconstruct = clouds[3];
-        times.cloud_composite = clouds[4];
+        times.cloud_composite = clouds[4] + clouds[5];
     }
     return times;
 }

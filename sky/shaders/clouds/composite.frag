@@ -1,7 +1,8 @@
 // The clouds over the sky (and the Sun, the Moon and the stars): blended premultiplied
 // (ONE, SRC_ALPHA), framebuffer = L + T * what is behind. Over the host's geometry
 // (ZENITH_SCENE_DEPTH) only the clouds nearer than it are drawn. Where our own ground shows, its
-// change by the clouds' shadow is added behind the clouds (L + T * (ground + change)).
+// change by the clouds' shadow (ground_shadow.frag, interpolated between trace cells) is added
+// behind the clouds: L + T (ground + change).
 layout(location = 0) out vec4 out_luminance;
 
 void main() {
@@ -22,8 +23,12 @@ void main() {
         if (!(cloud_depth > 0.0 && cloud_depth < distance_km)) cloud = vec4(0.0, 0.0, 0.0, 1.0);
     }
 #endif
-    vec3 shadow = ground_shows
-                      ? GroundShadowCorrection(CameraDirection(vec2(pixel), vec2(output_size)))
-                      : vec3(0.0);
+    vec3 view = CameraDirection(vec2(pixel), vec2(output_size));
+    float r = length(camera_km);
+    ground_shows = ground_shows && RaySphereDistance(r, dot(camera_km, view) / r,
+                                                     camera_altitude_km,
+                                                     atmosphere.bottom_radius) >= 0.0;
+    vec2 uv = (vec2(pixel) + 0.5) / (float(block) * vec2(trace_size));
+    vec3 shadow = ground_shows ? texture(cloud_ground_shadow, uv).rgb : vec3(0.0);
     out_luminance = vec4(cloud.rgb + cloud.a * shadow, cloud.a);
 }

@@ -40,6 +40,7 @@ layout(binding = 14) uniform sampler2D cloud_trace_depth;  // r: mean depth (km)
 layout(binding = 15) uniform sampler2D cloud_history;
 layout(binding = 16) uniform sampler2D cloud_history_depth;
 layout(binding = 17) uniform sampler2D cloud_shadow_map;    // r: transmittance to the light
+layout(binding = 18) uniform sampler2D cloud_ground_shadow; // rgb: ground_shadow.frag, per cell
 
 mat3 WeatherFromFrame() {
     return mat3(weather_from_frame[0].xyz, weather_from_frame[1].xyz, weather_from_frame[2].xyz);

@@ -22,6 +22,7 @@ enum Query : std::size_t {
     kShadeQuery,
     kTraceQuery,
     kReconstructQuery,
+    kGroundShadowQuery,
     kCompositeQuery
 };
 
@@ -49,13 +50,18 @@ GLuint UploadWeatherMap(const clouds::WeatherMap& map) {
     return texture;
 }
 
-GLuint CreateFramebuffer(GLuint color, GLuint depth) {
+// A framebuffer drawing into `textures` (colour attachments 0, 1, ...).
+GLuint CreateFramebuffer(std::initializer_list<GLuint> textures) {
     GLuint framebuffer = 0;
     glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, color, 0);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, depth, 0);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(framebuffer, 2, buffers);
+    std::vector<GLenum> buffers;
+    for (GLuint texture : textures) {
+        const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
+        glNamedFramebufferTexture(framebuffer, attachment, texture, 0);
+        buffers.push_back(attachment);
+    }
+    glNamedFramebufferDrawBuffers(framebuffer, static_cast<GLsizei>(buffers.size()),
+                                  buffers.data());
     if (glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
         throw gl::GlError("the cloud render targets are not a complete framebuffer");
     }
@@ -121,7 +127,8 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
                                              "#define ZENITH_SCENE_DEPTH 1\n", kCloudParts)),
       shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)),
       shade_trace_pass_(gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts)),
-      shade_pass_(gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts)) {
+      shade_pass_(gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts)),
+      ground_shadow_(gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts)) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(gl::kCloudMaxLayers)) {
         throw std::invalid_argument("weather '" + weather_.name + "' has " +
@@ -140,8 +147,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
     glNamedBufferStorage(uniforms_, sizeof(gl::CloudUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
     shadow_map_ = gl::CreateTexture2D(glm::ivec2(settings_.shadow_map_size));
     shade_directions_ = gl::CreateTexture2D(glm::ivec2(kCloudSkyShadeSize));
-    glCreateFramebuffers(1, &shade_framebuffer_);
-    glNamedFramebufferTexture(shade_framebuffer_, GL_COLOR_ATTACHMENT0, shade_directions_, 0);
+    shade_framebuffer_ = CreateFramebuffer({shade_directions_});
     glCreateVertexArrays(1, &vertex_array_);
     glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries_.size()), queries_.data());
 }
@@ -150,8 +156,9 @@ CloudPasses::~CloudPasses() {
     glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
     glDeleteVertexArrays(1, &vertex_array_);
     DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1],
-                        &shade_framebuffer_});
-    DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &history_color_[0],
+                        &shade_framebuffer_, &ground_shadow_framebuffer_});
+    DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &ground_shadow_color_,
+                    &history_color_[0],
                     &history_color_[1], &history_depth_[0], &history_depth_[1], &shadow_map_,
                     &shade_directions_});
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
@@ -159,19 +166,22 @@ CloudPasses::~CloudPasses() {
 }
 
 void CloudPasses::Resize(glm::ivec2 size) {
-    DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1]});
-    DeleteTextures({&trace_color_, &trace_depth_, &history_color_[0], &history_color_[1],
-                    &history_depth_[0], &history_depth_[1]});
+    DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_,
+                        &history_framebuffer_[0], &history_framebuffer_[1]});
+    DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &history_color_[0],
+                    &history_color_[1], &history_depth_[0], &history_depth_[1]});
     size_ = size;
     const int block = settings_.block;
     trace_size_ = (size + block - 1) / block;
     trace_color_ = gl::CreateTexture2D(trace_size_);
     trace_depth_ = gl::CreateTexture2D(trace_size_, GL_R32F);
-    trace_framebuffer_ = CreateFramebuffer(trace_color_, trace_depth_);
+    trace_framebuffer_ = CreateFramebuffer({trace_color_, trace_depth_});
+    ground_shadow_color_ = gl::CreateTexture2D(trace_size_);
+    ground_shadow_framebuffer_ = CreateFramebuffer({ground_shadow_color_});
     for (std::size_t i = 0; i < 2; ++i) {
         history_color_[i] = gl::CreateTexture2D(size);
         history_depth_[i] = gl::CreateTexture2D(size, GL_R32F);
-        history_framebuffer_[i] = CreateFramebuffer(history_color_[i], history_depth_[i]);
+        history_framebuffer_[i] = CreateFramebuffer({history_color_[i], history_depth_[i]});
     }
     previous_.reset();
 }
@@ -302,9 +312,15 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
                        glm::ivec4(0, 0, size_), gl::Blend::kReplace, queries_[kReconstructQuery]);
     query_used_[kReconstructQuery] = true;
 
+    glBindTextureUnit(17, shadow_map_);
+    gl::DrawFullscreen(ground_shadow_, vertex_array_, ground_shadow_framebuffer_,
+                       glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace,
+                       queries_[kGroundShadowQuery]);
+    query_used_[kGroundShadowQuery] = true;
+
     glBindTextureUnit(15, history_color_[current_]);
     glBindTextureUnit(16, history_depth_[current_]);
-    glBindTextureUnit(17, shadow_map_);
+    glBindTextureUnit(18, ground_shadow_color_);
     if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
     gl::DrawFullscreen(scene_depth != 0 ? composite_depth_ : composite_, vertex_array_, target,
                        viewport, gl::Blend::kPremultiplied, queries_[kCompositeQuery]);
@@ -323,8 +339,8 @@ LutImage CloudPasses::ReadShadowMap() const {
     return gl::ReadTexture(shadow_map_, glm::ivec3(glm::ivec2(settings_.shadow_map_size), 1));
 }
 
-std::array<double, 5> CloudPasses::LastPassTimes() const {
-    std::array<double, 5> times{};
+std::array<double, CloudPasses::kPassCount> CloudPasses::LastPassTimes() const {
+    std::array<double, kPassCount> times{};
     for (std::size_t i = 0; i < times.size(); ++i) {
         if (!query_used_[i]) continue;
         GLuint64 ns = 0;

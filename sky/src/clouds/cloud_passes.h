@@ -45,8 +45,10 @@ class CloudPasses {
     LutImage ReadShadowMap() const;
     GLuint shadow_map_texture() const { return shadow_map_; }
 
-    // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, composite.
-    std::array<double, 5> LastPassTimes() const;
+    // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, the ground's
+    // shadow, composite.
+    static constexpr std::size_t kPassCount = 6;
+    std::array<double, kPassCount> LastPassTimes() const;
 
   private:
     void Resize(glm::ivec2 size);
@@ -57,18 +59,19 @@ class CloudPasses {
     clouds::Weather weather_;
     CloudSettings settings_;
     gl::Program trace_, reconstruct_, composite_, composite_depth_, shadow_pass_,
-        shade_trace_pass_, shade_pass_;
+        shade_trace_pass_, shade_pass_, ground_shadow_;
     GLuint uniforms_ = 0;
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;
     GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
+    GLuint ground_shadow_color_ = 0, ground_shadow_framebuffer_ = 0;  // per trace cell
     std::array<GLuint, 2> history_color_{}, history_depth_{}, history_framebuffer_{};
     GLuint shadow_map_ = 0;
     GLuint shade_directions_ = 0;  // (L, T) of the clouds along each sky-shade direction
     GLuint shade_framebuffer_ = 0;
     GLuint vertex_array_ = 0;
-    std::array<GLuint, 5> queries_{};
-    std::array<bool, 5> query_used_{};
+    std::array<GLuint, kPassCount> queries_{};
+    std::array<bool, kPassCount> query_used_{};
     glm::ivec2 size_{0, 0};
     glm::ivec2 trace_size_{0, 0};
     std::size_t current_ = 0;  // history set written by the last Render

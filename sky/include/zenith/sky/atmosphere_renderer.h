@@ -129,7 +129,7 @@ struct PassTimes {
     double cloud_shade = 0.0;       // the clouds' effect on the light beneath them
     double cloud_trace = 0.0;
     double cloud_reconstruct = 0.0;
-    double cloud_composite = 0.0;
+    double cloud_composite = 0.0;   // with the clouds' shadow on our ground
 };
 
 class AtmosphereRenderer {
