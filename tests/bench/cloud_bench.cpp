@@ -89,6 +89,7 @@ void BM_Frame720p(benchmark::State& state) {
     state.counters["sky_view_ms"] = t.sky_view;
     state.counters["composite_ms"] = t.render;
     state.counters["cloud_shadow_ms"] = t.cloud_shadow_map;
+    state.counters["cloud_shade_ms"] = t.cloud_shade;
     state.counters["cloud_trace_ms"] = t.cloud_trace;
     state.counters["cloud_reconstruct_ms"] = t.cloud_reconstruct;
     state.counters["cloud_composite_ms"] = t.cloud_composite;

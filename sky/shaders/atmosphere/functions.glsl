@@ -454,7 +454,7 @@ struct Light {
 // light's direct part is scaled by cloud_direct, the clouds' mean transmittance toward the main
 // light over the ground around the camera, its sky-scattered part by cloud_sky, the clouds' mean
 // transmittance over the upper hemisphere, and the clouds' own light is added as an isotropic
-// source: cloud_luminance, their mean luminance over that hemisphere (CloudSkyShade).
+// source: cloud_luminance, their mean luminance over that hemisphere (clouds/sky_shade.comp).
 struct LightSet {
     Light light[2];
     int count;

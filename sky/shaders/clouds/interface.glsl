@@ -29,7 +29,7 @@ layout(std140, binding = 4) uniform CloudBlock {
     // camera's layer and those below it downward, then those above upward). The same for every
     // pixel, so the weather maps are indexed by a dynamically uniform index, as GLSL requires.
     ivec4 cloud_layer_order;
-    ivec4 cloud_ground_layer_order;  // the same from the ground (CloudSkyShade's origin)
+    ivec4 cloud_ground_layer_order;  // the same from the ground (the sky shade's origin)
 };
 
 layout(binding = 7) uniform sampler3D shape_noise;
@@ -83,8 +83,8 @@ vec4 TraceClouds(vec3 view, float jitter, out float depth) {
 // The clouds' shadow on the ground the atmosphere drew (F16 §5.9), as a change of what the
 // camera sees along `view`: the ground's direct light was dimmed by the clouds' mean
 // transmittance toward the light (LightSet.cloud_direct); where the shadow map reaches, the
-// local transmittance replaces it (faded out over the map's outer tenth, so its edge does not
-// show). Zero where the ray misses the ground.
+// local transmittance replaces it (faded out over the outer 5 % of the map on each side, so
+// its edge does not show). Zero where the ray misses the ground.
 vec3 GroundShadowCorrection(vec3 view) {
     float r = length(camera_km);
     float mu = dot(camera_km, view) / r;

@@ -158,9 +158,8 @@ CloudPasses::~CloudPasses() {
     DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1],
                         &shade_framebuffer_, &ground_shadow_framebuffer_});
     DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &ground_shadow_color_,
-                    &history_color_[0],
-                    &history_color_[1], &history_depth_[0], &history_depth_[1], &shadow_map_,
-                    &shade_directions_});
+                    &history_color_[0], &history_color_[1], &history_depth_[0],
+                    &history_depth_[1], &shadow_map_, &shade_directions_});
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
     glDeleteBuffers(1, &uniforms_);
 }
