@@ -25,22 +25,7 @@ const Texture3D& Detail() {
     return t;
 }
 
-// A cumulus layer 1.5-4 km, weather tile 40 km, shape noise 10 km (2.5 km in altitude), detail
-// 2 km: both noises tile a whole number of times per weather tile.
-CloudLayerParameters Layer() {
-    CloudLayerParameters p{};
-    p.bottom_radius = 6360.0;
-    p.base_altitude = 1.5;
-    p.top_altitude = 4.0;
-    p.weather_period = 40.0;
-    p.shape_period = 10.0;
-    p.shape_period_y = 2.5;
-    p.detail_period = 2.0;
-    p.erosion_strength = 0.5;
-    p.wind_offset_x = 0.0;
-    p.wind_offset_y = 0.0;
-    return p;
-}
+CloudLayerParameters Layer() { return clouds::test::CumulusLayer(); }
 
 RepeatTexture2D WeatherFor(double coverage, WeatherMapSource::Kind kind, double type = 0.5,
                            double precipitation = 0.0) {

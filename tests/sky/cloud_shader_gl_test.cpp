@@ -48,20 +48,8 @@ void main() {
 }
 )";
 
-ref::CloudLayerParameters Layer() {
-    ref::CloudLayerParameters p{};
-    p.bottom_radius = 6360.0;
-    p.base_altitude = 1.5;
-    p.top_altitude = 4.0;
-    p.weather_period = 40.0;
-    p.shape_period = 10.0;
-    p.shape_period_y = 2.5;
-    p.detail_period = 2.0;
-    p.erosion_strength = 0.5;
-    p.wind_offset_x = 1.25;
-    p.wind_offset_y = -3.5;
-    return p;
-}
+// Drifted by the wind, so the GPU's offset path is exercised too.
+ref::CloudLayerParameters Layer() { return clouds::test::CumulusLayer(1.25, -3.5); }
 
 ref::CloudScatteringParameters Scattering() {
     ref::CloudScatteringParameters p{};
