@@ -4,6 +4,7 @@
 // the dome projection that keeps the shell at a constant altitude over the curved planet.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <random>
 
@@ -210,6 +211,49 @@ TEST(CloudDensity, TypeSetsHowHighCloudsReach) {
     }
     EXPECT_EQ(CloudTypeHeightFraction(1.0), 1.0);
     EXPECT_LT(CloudTypeHeightFraction(0.0), CloudTypeHeightFraction(0.5));
+}
+
+// The march ends at the clouds' top (CloudTopFraction): it must never cut off a cloud, and be
+// tight enough to matter. Every built-in preset's maps, and a uniform map of each type.
+TEST(CloudDensity, NothingAboveTheMapsCloudTopWhichIsTight) {
+    std::vector<clouds::CloudLayer> layers;
+    for (const char* preset : {"scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus"}) {
+        for (const CloudLayer& l : clouds::LoadWeather(preset).layers) layers.push_back(l);
+    }
+    for (const double type : {0.0, 0.5, 1.0}) {
+        CloudLayer l;
+        l.coverage = 1.0;
+        l.cloud_type = type;
+        l.map.kind = WeatherMapSource::Kind::kUniform;
+        l.map.size = 16;
+        layers.push_back(l);
+    }
+    for (const CloudLayer& l : layers) {
+        const clouds::WeatherMap map = clouds::BuildWeatherMap(l);
+        const double fraction = clouds::CloudTopFraction(map);
+        CloudLayerParameters layer = Layer();
+        layer.weather_period = 20.0;  // the whole map within the random points' 200 km
+        const double top =
+            layer.base_altitude + (layer.top_altitude - layer.base_altitude) * fraction;
+        const RepeatTexture2D weather = ToTexture(map);
+        double highest = layer.base_altitude;
+        for (const Point& p : RandomPoints(40000, 1.5, 4.0, 13)) {
+            if (Density(layer, weather, p) > 0.0) highest = std::max(highest, p.altitude);
+        }
+        SCOPED_TRACE(l.name + " type " + std::to_string(l.cloud_type));
+        std::printf(
+            "%-14s type %.2f: clouds reach %.3f of the layer, the highest found %.0f %% of it\n",
+            l.name.c_str(), l.cloud_type, fraction,
+            100.0 * (highest - layer.base_altitude) / (top - layer.base_altitude));
+        EXPECT_LE(highest, top);
+        // 40,000 random points find a cloud within a quarter of the bound below it.
+        EXPECT_GT(highest, layer.base_altitude + 0.75 * (top - layer.base_altitude));
+        EXPECT_GT(fraction, 0.2);
+        EXPECT_LE(fraction, 1.0);
+    }
+    CloudLayer clear;
+    clear.coverage = 0.0;
+    EXPECT_EQ(clouds::CloudTopFraction(clouds::BuildWeatherMap(clear)), 0.0);
 }
 
 TEST(CloudDensity, PrecipitationDarkensTheBaseOnly) {

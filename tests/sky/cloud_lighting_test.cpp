@@ -157,6 +157,7 @@ struct Scene {
         layer.shape_period_y = 2.5;
         layer.detail_period = 2.0;
         layer.erosion_strength = 0.5;
+        layer.cloud_top_altitude = layer.top_altitude;
         clouds::CloudLayer weather_layer;
         weather_layer.coverage = 0.7;
         weather_layer.cloud_type = 0.5;

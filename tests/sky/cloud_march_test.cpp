@@ -24,6 +24,7 @@ CloudLayerParameters Layer(double base = 1.5, double top = 4.0) {
     p.shape_period_y = 3.5;
     p.detail_period = 1.8;
     p.erosion_strength = 0.45;
+    p.cloud_top_altitude = top;
     return p;
 }
 
@@ -71,6 +72,18 @@ TEST(CloudLayerInterval, MatchesClosedFormsFromBelowInsideAboveAndOrbit) {
     // max_distance counts from the entry.
     const vec2 cut = CloudLayerInterval(layer, kR, std::sin(e), 0.0, 10.0);
     EXPECT_NEAR(cut.y - cut.x, 10.0, 1e-9);
+
+    // Clouds that reach only 3 km: the march ends there, and a camera at 3.5 km is above them.
+    CloudLayerParameters low_clouds = layer;
+    low_clouds.cloud_top_altitude = 3.0;
+    EXPECT_NEAR(CloudLayerInterval(low_clouds, kR, 1.0, 0.0, 1e9).y, 3.0, 1e-9);
+    EXPECT_NEAR(CloudLayerInterval(low_clouds, kR, std::sin(e), 0.0, 1e9).y,
+                Chord(kR, e, kR + 3.0, false), 1e-6);
+    const vec2 above = CloudLayerInterval(low_clouds, kR + 3.5, -1.0, 3.5, 1e9);
+    EXPECT_NEAR(above.x, 0.5, 1e-9);
+    EXPECT_NEAR(above.y, 2.0, 1e-9);
+    const vec2 level = CloudLayerInterval(low_clouds, kR + 3.5, 0.0, 3.5, 1e9);
+    EXPECT_LT(level.y, level.x);
 }
 
 // A smooth cloud (constant noise, uniform full coverage: density is the height signal's

@@ -46,6 +46,7 @@ inline ref::CloudLayerParameters CumulusLayer(double wind_x = 0.0, double wind_y
     p.erosion_strength = 0.5;
     p.wind_offset_x = wind_x;
     p.wind_offset_y = wind_y;
+    p.cloud_top_altitude = p.top_altitude;  // a bound for any map (CloudTopFraction is tighter)
     return p;
 }
 

@@ -35,7 +35,7 @@ struct CloudLayerParameters {
     Number erosion_strength;  // [0, kCloudMaxErosion]: how much detail noise eats the edges
     Number wind_offset_x;     // km the clouds have moved along ground x (H16 §4.4.2)
     Number wind_offset_y;     // km along ground y
-    Number padding0;
+    Number cloud_top_altitude;  // km: the map's clouds reach no higher (clouds::CloudTopFraction)
     Number padding1;
 };
 

@@ -61,27 +61,29 @@ Number CloudJitter(ivec2 pixel, Number frame_jitter) {
 
 // The part [x, y] (km) of a ray within a layer's shell (H16 §5.1-5.3), from radius r with zenith
 // cosine mu at `altitude` above bottom_radius (exact); y < x when the ray misses the layer or
-// meets the ground first. Below the layer the march starts at the base; inside, at the camera;
-// above (up to orbit), at the top; each ends where the ray leaves the shell or meets the ground,
-// or max_distance past its start. A ray from above that grazes the base sphere without meeting
-// the ground re-enters the layer beyond; that second part (only ever seen at the horizon from
-// above the layer) is not marched.
+// meets the ground first. The shell is the part of the layer its clouds reach: from the base to
+// cloud_top_altitude, above which the density is 0. Below the shell the march starts at the base;
+// inside, at the camera; above (up to orbit), at the top; each ends where the ray leaves the
+// shell or meets the ground, or max_distance past its start. A ray from above that grazes the
+// base sphere without meeting the ground re-enters the layer beyond; that second part (only ever
+// seen at the horizon from above the layer) is not marched.
 vec2 CloudLayerInterval(IN(CloudLayerParameters) layer, Number r, Number mu, Number altitude,
                         Number max_distance) {
+    Number top_altitude = layer.cloud_top_altitude;
     Number base_radius = layer.bottom_radius + layer.base_altitude;
-    Number top_radius = layer.bottom_radius + layer.top_altitude;
+    Number top_radius = layer.bottom_radius + top_altitude;
     Number t_ground = RaySphereDistance(r, mu, altitude, layer.bottom_radius);
     Number t_base = RaySphereDistance(r, mu, altitude - layer.base_altitude, base_radius);
-    Number t_top = RaySphereDistance(r, mu, altitude - layer.top_altitude, top_radius);
+    Number t_top = RaySphereDistance(r, mu, altitude - top_altitude, top_radius);
     vec2 interval = vec2(0.0, -1.0);
     if (altitude < layer.base_altitude) {
         interval = vec2(t_base, t_top);  // both exits: the camera is inside both spheres
-    } else if (altitude <= layer.top_altitude) {
+    } else if (altitude <= top_altitude) {
         interval = vec2(0.0, t_base >= 0.0 ? t_base : t_top);
     } else if (t_top >= 0.0) {
         // Above: t_top is the entry; the exit is the base sphere, or the top sphere's far root.
         Number b = r * mu;
-        Number far_root = -b + SafeSqrt(b * b - (altitude - layer.top_altitude) * (r + top_radius));
+        Number far_root = -b + SafeSqrt(b * b - (altitude - top_altitude) * (r + top_radius));
         interval = vec2(t_top, t_base >= 0.0 ? t_base : far_root);
     }
     if (t_ground >= 0.0) interval.y = min(interval.y, t_ground);

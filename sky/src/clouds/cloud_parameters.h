@@ -14,10 +14,11 @@ namespace zenith::sky {
 // upper hemisphere, equal solid angles.
 inline constexpr int kCloudSkyShadeSize = 16;
 
-// Layer `layer` after `time` seconds of wind, on a planet of bottom_radius metres.
+// Layer `layer` after `time` seconds of wind, on a planet of bottom_radius metres; its clouds
+// reach top_fraction of its thickness (clouds::CloudTopFraction of its map).
 template <typename Parameters>
-Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, const CloudSettings& s,
-                                    double bottom_radius, double time) {
+Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_fraction,
+                                    const CloudSettings& s, double bottom_radius, double time) {
     using Scalar = decltype(Parameters{}.bottom_radius);
     constexpr double kKm = 1000.0;
     // The map is sampled at ground + offset: to carry the clouds downwind by d, offset = -d.
@@ -33,6 +34,8 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, const Cloud
     p.erosion_strength = Scalar(s.erosion);
     p.wind_offset_x = Scalar(-drift.x / kKm);
     p.wind_offset_y = Scalar(-drift.y / kKm);
+    p.cloud_top_altitude = Scalar(
+        (layer.base_altitude + (layer.top_altitude - layer.base_altitude) * top_fraction) / kKm);
     return p;
 }
 

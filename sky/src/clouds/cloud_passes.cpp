@@ -137,7 +137,9 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
                                     std::to_string(gl::kCloudMaxLayers) + ")");
     }
     for (const clouds::CloudLayer& layer : weather_.layers) {
-        weather_maps_.push_back(UploadWeatherMap(clouds::BuildWeatherMap(layer)));
+        const clouds::WeatherMap map = clouds::BuildWeatherMap(layer);
+        weather_maps_.push_back(UploadWeatherMap(map));
+        cloud_tops_.push_back(clouds::CloudTopFraction(map));
     }
     const clouds::CloudNoiseLoad noise =
         clouds::LoadOrGenerateCloudNoise(settings_.noise, settings_.noise_cache_directory);
@@ -191,7 +193,7 @@ void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& cam
     gl::CloudUniforms u{};
     for (std::size_t i = 0; i < weather_.layers.size(); ++i) {
         u.layers[i] = MakeCloudLayerParameters<gl::CloudLayerUniforms>(
-            weather_.layers[i], settings_, atmosphere.bottom_radius, view.time);
+            weather_.layers[i], cloud_tops_[i], settings_, atmosphere.bottom_radius, view.time);
     }
     u.scattering = MakeCloudScatteringParameters<gl::CloudScatteringUniforms>(settings_);
     u.march = MakeCloudMarchParameters<gl::CloudMarchUniforms>(settings_);

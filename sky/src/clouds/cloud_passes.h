@@ -63,6 +63,7 @@ class CloudPasses {
     GLuint uniforms_ = 0;
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;
+    std::vector<double> cloud_tops_;  // clouds::CloudTopFraction of each map
     GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
     GLuint ground_shadow_color_ = 0, ground_shadow_framebuffer_ = 0;  // per trace cell
     std::array<GLuint, 2> history_color_{}, history_depth_{}, history_framebuffer_{};

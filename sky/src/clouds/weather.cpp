@@ -22,6 +22,7 @@
 #include "zenith/sky/clouds/noise.h"
 #include "data_files.h"
 #include "zenith/sky/image_io.h"
+#include "reference/cloud_functions.h"
 
 namespace zenith::sky::clouds {
 namespace {
@@ -382,6 +383,33 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer) {
         }
     }
     return map;
+}
+
+double CloudTopFraction(const WeatherMap& map) {
+    // Bilinear filtering keeps each channel within the four texels it mixes, and the height
+    // grows with both the type and A: a cell's largest type profile times its largest A bounds
+    // every cloud height h read inside it (GL_REPEAT: the cells wrap). And with shape <= 1, the
+    // coverage remap leaves density only where the height signal 4u(1 - u) (u the share of h
+    // above the base) exceeds 1 - coverage: below u = (1 + sqrt(coverage)) / 2.
+    double top = 0.0;
+    for (int y = 0; y < map.size; ++y) {
+        for (int x = 0; x < map.size; ++x) {
+            double coverage = 0.0, type = 0.0, height = 0.0;
+            for (const glm::ivec2 d :
+                 {glm::ivec2(0, 0), glm::ivec2(1, 0), glm::ivec2(0, 1), glm::ivec2(1, 1)}) {
+                const glm::vec4& t = map.at((x + d.x) % map.size, (y + d.y) % map.size);
+                coverage = std::max(coverage, double(t.r));
+                type = std::max(type, double(t.b));
+                height = std::max(height, double(t.a));
+            }
+            if (coverage > 0.0) {
+                top = std::max(top, ref::CloudTypeHeightFraction(type) *
+                                        ref::CloudSaturate(height) * 0.5 *
+                                        (1.0 + std::sqrt(std::min(coverage, 1.0))));
+            }
+        }
+    }
+    return top;
 }
 
 namespace {

@@ -21,7 +21,7 @@ struct CloudLayerUniforms {  // clouds/functions.glsl: struct CloudLayerParamete
     float erosion_strength;
     float wind_offset_x;
     float wind_offset_y;
-    float padding0;
+    float cloud_top_altitude;
     float padding1;
 };
 static_assert(sizeof(CloudLayerUniforms) == 48);

@@ -135,9 +135,10 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
     scene.multiple_scattering = FromImage(multiple_scattering);
     scene.irradiance = FromImage(irradiance);
     for (const clouds::CloudLayer& layer : weather.layers) {
+        const clouds::WeatherMap map = clouds::BuildWeatherMap(layer);
         scene.layers.push_back(MakeCloudLayerParameters<CloudLayerParameters>(
-            layer, settings, atmosphere.bottom_radius, view.time));
-        scene.weather_maps.push_back(ToTexture(clouds::BuildWeatherMap(layer)));
+            layer, clouds::CloudTopFraction(map), settings, atmosphere.bottom_radius, view.time));
+        scene.weather_maps.push_back(ToTexture(map));
     }
     scene.shape = ToTexture(noise.shape);
     scene.detail = ToTexture(noise.detail);

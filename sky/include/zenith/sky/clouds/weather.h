@@ -128,6 +128,14 @@ std::filesystem::path WeatherDirectory();
 // the layer's image file through LoadWeatherMapImage.
 WeatherMap BuildWeatherMap(const CloudLayer& layer);
 
+// How high the clouds of `map` reach, as a share of their layer's thickness: a bound from the
+// largest height (B's type profile times A) and coverage that the density's bilinear reading of
+// the map can give wherever its coverage is above 0. Above it the density is exactly 0, so the
+// ray march ends there (CloudLayerParameters.cloud_top_altitude): the scattered cumulus, whose
+// clouds reach 53 % of their layer, are not marched through the empty rest above them. 0 for a
+// map without cover.
+double CloudTopFraction(const WeatherMap& map);
+
 // Reads a weather map image: PNG (8- or 16-bit RGB: R coverage, G precipitation, B cloud type;
 // A = 1) or OpenEXR (channels R, G, B and optionally A, half or float). Throws WeatherError
 // naming the file, the problem and what is expected, for: an unknown extension; a size that is
