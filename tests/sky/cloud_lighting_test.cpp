@@ -141,7 +141,7 @@ TEST(CloudOctaves, HigherOctavesReachDeeperAndSpreadWider) {
 // --- integration ------------------------------------------------------------------------------
 
 struct Scene {
-    CloudLayerParameters layer{};
+    CloudLayerParameters layer;
     RepeatTexture2D weather;
     Texture3D shape, detail;
     CloudScatteringParameters scattering = Scattering(0.5, 0.5, 0.5, 3);
@@ -149,14 +149,10 @@ struct Scene {
     vec3 sun;
 
     Scene() {
-        layer.bottom_radius = 6360.0;
+        // The test cumulus layer, 1-3 km.
+        layer = clouds::test::CumulusLayer();
         layer.base_altitude = 1.0;
         layer.top_altitude = 3.0;
-        layer.weather_period = 40.0;
-        layer.shape_period = 10.0;
-        layer.shape_period_y = 2.5;
-        layer.detail_period = 2.0;
-        layer.erosion_strength = 0.5;
         layer.cloud_top_altitude = layer.top_altitude;
         clouds::CloudLayer weather_layer;
         weather_layer.coverage = 0.7;
