@@ -19,7 +19,7 @@ void main() {
         vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
         float distance_km = eye_depth * length(vec3(ndc.x * tan_half_fov * aspect,
                                                     ndc.y * tan_half_fov, 1.0)) / 1000.0;
-        float cloud_depth = texelFetch(cloud_history_depth, pixel, 0).r;
+        float cloud_depth = CloudTraceDepth(pixel);
         if (!(cloud_depth > 0.0 && cloud_depth < distance_km)) cloud = vec4(0.0, 0.0, 0.0, 1.0);
     }
 #endif

@@ -38,9 +38,15 @@ layout(binding = 9) uniform sampler2D weather_maps[kCloudMaxLayers];  // units 9
 layout(binding = 13) uniform sampler2D cloud_trace;        // rgb luminance, a transmittance
 layout(binding = 14) uniform sampler2D cloud_trace_depth;  // r: mean depth (km), -1 for none
 layout(binding = 15) uniform sampler2D cloud_history;
-layout(binding = 16) uniform sampler2D cloud_history_depth;
 layout(binding = 17) uniform sampler2D cloud_shadow_map;    // r: transmittance to the light
 layout(binding = 18) uniform sampler2D cloud_ground_shadow; // rgb: ground_shadow.frag, per cell
+
+// The clouds' mean depth (km, -1 for none) at a full-resolution pixel: its trace cell's own, the
+// depth to reproject with and to test against a host's geometry (a bilinear one would mix clouds
+// with clear sky at every edge).
+float CloudTraceDepth(ivec2 pixel) {
+    return texelFetch(cloud_trace_depth, min(pixel / block, trace_size - 1), 0).r;
+}
 
 mat3 WeatherFromFrame() {
     return mat3(weather_from_frame[0].xyz, weather_from_frame[1].xyz, weather_from_frame[2].xyz);

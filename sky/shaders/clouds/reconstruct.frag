@@ -10,7 +10,6 @@
 // view never converged), while what it would catch, one cloud sliding behind another, changes
 // over many frames at flight speeds and is refreshed within block^2 frames.
 layout(location = 0) out vec4 out_cloud;
-layout(location = 1) out vec4 out_depth;
 
 // The previous frame's texture coordinate of the point at `depth` km along `view` (the
 // direction alone when depth <= 0); false when it was outside the previous view.
@@ -35,9 +34,7 @@ void main() {
     vec2 trace_uv = (vec2(pixel - trace_offset) / float(block) + 0.5) / vec2(trace_size);
     vec4 current =
         traced ? texelFetch(cloud_trace, cell, 0) : textureLod(cloud_trace, trace_uv, 0.0);
-    // The depth to reproject with: the cell's own (a bilinear one would mix clouds with clear
-    // sky, -1, at every edge).
-    float depth = texelFetch(cloud_trace_depth, min(cell, trace_size - 1), 0).r;
+    float depth = CloudTraceDepth(pixel);
 
     vec3 view = CameraDirection(vec2(pixel), vec2(output_size));
     vec2 uv;
@@ -48,5 +45,4 @@ void main() {
     } else {
         out_cloud = valid ? history : current;
     }
-    out_depth = vec4(depth, 0.0, 0.0, 0.0);
 }

@@ -160,8 +160,7 @@ CloudPasses::~CloudPasses() {
     DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1],
                         &shade_framebuffer_, &ground_shadow_framebuffer_});
     DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &ground_shadow_color_,
-                    &history_color_[0], &history_color_[1], &history_depth_[0],
-                    &history_depth_[1], &shadow_map_, &shade_directions_});
+                    &history_color_[0], &history_color_[1], &shadow_map_, &shade_directions_});
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
     glDeleteBuffers(1, &uniforms_);
 }
@@ -170,7 +169,7 @@ void CloudPasses::Resize(glm::ivec2 size) {
     DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_,
                         &history_framebuffer_[0], &history_framebuffer_[1]});
     DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &history_color_[0],
-                    &history_color_[1], &history_depth_[0], &history_depth_[1]});
+                    &history_color_[1]});
     size_ = size;
     const int block = settings_.block;
     trace_size_ = (size + block - 1) / block;
@@ -181,8 +180,7 @@ void CloudPasses::Resize(glm::ivec2 size) {
     ground_shadow_framebuffer_ = CreateFramebuffer({ground_shadow_color_});
     for (std::size_t i = 0; i < 2; ++i) {
         history_color_[i] = gl::CreateTexture2D(size);
-        history_depth_[i] = gl::CreateTexture2D(size, GL_R32F);
-        history_framebuffer_[i] = CreateFramebuffer({history_color_[i], history_depth_[i]});
+        history_framebuffer_[i] = CreateFramebuffer({history_color_[i]});
     }
     previous_.reset();
 }
@@ -307,7 +305,6 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     glBindTextureUnit(13, trace_color_);
     glBindTextureUnit(14, trace_depth_);
     glBindTextureUnit(15, history_color_[previous]);
-    glBindTextureUnit(16, history_depth_[previous]);
     gl::DrawFullscreen(reconstruct_, vertex_array_,
                        history_framebuffer_[current_],
                        glm::ivec4(0, 0, size_), gl::Blend::kReplace, queries_[kReconstructQuery]);
@@ -320,7 +317,6 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     query_used_[kGroundShadowQuery] = true;
 
     glBindTextureUnit(15, history_color_[current_]);
-    glBindTextureUnit(16, history_depth_[current_]);
     glBindTextureUnit(18, ground_shadow_color_);
     if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
     gl::DrawFullscreen(scene_depth != 0 ? composite_depth_ : composite_, vertex_array_, target,

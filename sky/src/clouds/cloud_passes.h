@@ -2,7 +2,7 @@
 // textures, the reduced-resolution trace, the temporal reconstruction, the composite over the
 // sky and the ground shadow map. Owned by AtmosphereRenderer, which binds the atmosphere's
 // uniform blocks (0-3) and LUTs (units 0-6) before each call; the clouds use block 4 and units
-// 7-16.
+// 7-18.
 #pragma once
 
 #include <glad/gl.h>
@@ -66,7 +66,7 @@ class CloudPasses {
     std::vector<double> cloud_tops_;  // clouds::CloudTopFraction of each map
     GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
     GLuint ground_shadow_color_ = 0, ground_shadow_framebuffer_ = 0;  // per trace cell
-    std::array<GLuint, 2> history_color_{}, history_depth_{}, history_framebuffer_{};
+    std::array<GLuint, 2> history_color_{}, history_framebuffer_{};
     GLuint shadow_map_ = 0;
     GLuint shade_directions_ = 0;  // (L, T) of the clouds along each sky-shade direction
     GLuint shade_framebuffer_ = 0;
