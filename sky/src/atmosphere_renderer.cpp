@@ -145,6 +145,9 @@ struct AtmosphereRenderer::Impl {
     std::array<bool, kQueryCount> query_used{};
     int light_count = 1;  // as last uploaded: with the Sun alone, the Sky-View LUT is symmetric
     std::unique_ptr<CloudPasses> clouds;  // with weather that has layers
+    // The six composite programs again, laying the clouds over the sky and the disks; built
+    // with the first weather that has layers.
+    std::vector<gl::Program> cloud_composites;
     clouds::Weather weather;              // as last set (also when clear)
     CloudSettings cloud_settings;
 
@@ -155,18 +158,26 @@ struct AtmosphereRenderer::Impl {
                 // Six programs from one source: llvmpipe runs both sides of a branch under a
                 // mask, so a per-frame choice made in the shader cost every pixel the 32-step
                 // ray march (or the disks); chosen here it costs nothing.
-                Composite(kPassFiles[5], 0, 0, 0), Composite(kPassFiles[6], 1, 0, 0),
-                Composite(kPassFiles[7], 0, 1, 0), Composite(kPassFiles[8], 1, 1, 0),
-                Composite(kPassFiles[9], 0, 0, 1), Composite(kPassFiles[10], 0, 1, 1)};
+                Composite(kRenderPass, false), Composite(kRenderRayMarchPass, false),
+                Composite(kRenderDepthPass, false), Composite(kRenderRayMarchDepthPass, false),
+                Composite(kDiskPass, false), Composite(kDiskDepthPass, false)};
     }
 
-    static gl::Program Composite(std::string_view file, int ray_march, int scene_depth,
-                                 int disks) {
-        return gl::FullscreenProgram(file, "#define ZENITH_RAY_MARCH " + std::to_string(ray_march) +
-                                               "\n#define ZENITH_SCENE_DEPTH " +
-                                               std::to_string(scene_depth) +
-                                               "\n#define ZENITH_DISKS " +
-                                               std::to_string(disks) + "\n");
+    static gl::Program Composite(Pass pass, bool clouds) {
+        const auto define = [](std::string_view name, bool value) {
+            return "#define " + std::string(name) + (value ? " 1\n" : " 0\n");
+        };
+        const std::string defines =
+            define("ZENITH_RAY_MARCH", pass == kRenderRayMarchPass ||
+                                           pass == kRenderRayMarchDepthPass) +
+            define("ZENITH_SCENE_DEPTH", pass == kRenderDepthPass ||
+                                             pass == kRenderRayMarchDepthPass ||
+                                             pass == kDiskDepthPass) +
+            define("ZENITH_DISKS", pass == kDiskPass || pass == kDiskDepthPass) +
+            define("ZENITH_CLOUDS", clouds);
+        return gl::FullscreenProgram(kPassFiles[pass], defines,
+                                     clouds ? CloudShaderParts()
+                                            : std::span<const std::string_view>{});
     }
 
     Impl(const Atmosphere& a, const LutSettings& s)
@@ -253,16 +264,20 @@ struct AtmosphereRenderer::Impl {
     // by query `query`. The sky pass replaces the sky (blending premultiplied over the host's
     // geometry when there is scene depth); a disk pass adds the Sun and the Moon inside
     // `scissor` (viewport pixels).
+    // With weather, the clouds (CloudPasses::Render, this frame) go over what it draws.
     void Draw(Pass pass, std::size_t query, GLuint target, glm::ivec4 viewport,
               GLuint scene_depth = 0, std::optional<glm::ivec4> scissor = std::nullopt) {
         BindInputs();
+        if (clouds) clouds->BindForComposite();
         if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
         // Over the host's geometry the sky pass is premultiplied: (L, T) over geometry and
         // (sky, 0) elsewhere.
         const gl::Blend blend = pass == kDiskPass || pass == kDiskDepthPass ? gl::Blend::kAdd
                                 : scene_depth != 0 ? gl::Blend::kPremultiplied
                                                    : gl::Blend::kReplace;
-        gl::DrawFullscreen(programs[pass], vertex_array, target, viewport, blend, queries[query],
+        const gl::Program& program =
+            clouds ? cloud_composites[pass - kRenderPass] : programs[pass];
+        gl::DrawFullscreen(program, vertex_array, target, viewport, blend, queries[query],
                            scissor);
         query_used[query] = true;
     }
@@ -353,7 +368,14 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     Impl& d = *impl_;
     // Built before the old passes go, so a bad map leaves the previous weather in place.
     std::unique_ptr<CloudPasses> passes;
-    if (!weather.layers.empty()) passes = std::make_unique<CloudPasses>(weather, settings);
+    if (!weather.layers.empty()) {
+        passes = std::make_unique<CloudPasses>(weather, settings);
+        if (d.cloud_composites.empty()) {
+            for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
+                d.cloud_composites.push_back(Impl::Composite(static_cast<Pass>(pass), true));
+            }
+        }
+    }
     d.clouds = std::move(passes);
     d.weather = weather;
     d.cloud_settings = settings;
@@ -450,6 +472,10 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     const glm::ivec4 viewport =
         to_host ? options.target_viewport : glm::ivec4(0, 0, options.size.x, options.size.y);
     const GLuint depth = options.scene_depth ? options.scene_depth->texture : 0;
+    if (d.clouds) {
+        d.BindInputs();
+        d.clouds->Render(d.atmosphere, camera, lights, options);
+    }
     // LastPassTimes reports this frame's composite draws only.
     std::fill(d.query_used.begin() + kRenderPass, d.query_used.end(), false);
     d.Draw(pass, pass, target, viewport, depth);
@@ -476,11 +502,6 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         d.Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, target, viewport, depth,
                boxes[i]);
-    }
-    // The clouds last, over everything they hide: the sky, the disks and the stars.
-    if (d.clouds) {
-        d.BindInputs();
-        d.clouds->Render(d.atmosphere, camera, lights, options, target, viewport, depth);
     }
 }
 
@@ -568,7 +589,7 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
         times.cloud_shade = clouds[1];
         times.cloud_trace = clouds[2];
         times.cloud_reconstruct = clouds[3];
-        times.cloud_composite = clouds[4] + clouds[5];
+        times.cloud_ground_shadow = clouds[4];
     }
     return times;
 }

@@ -93,7 +93,7 @@ void BM_Frame720p(benchmark::State& state) {
     state.counters["cloud_shade_ms"] = t.cloud_shade;
     state.counters["cloud_trace_ms"] = t.cloud_trace;
     state.counters["cloud_reconstruct_ms"] = t.cloud_reconstruct;
-    state.counters["cloud_composite_ms"] = t.cloud_composite;
+    state.counters["cloud_ground_shadow_ms"] = t.cloud_ground_shadow;
     state.SetLabel(std::string(view.name) +
                    (block == 0 ? " clear" : " block " + std::to_string(block)));
 }

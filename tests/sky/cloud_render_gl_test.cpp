@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
+#include <glad/gl.h>
 #include <gtest/gtest.h>
 
 #include "cloud_test_support.h"
@@ -129,6 +131,114 @@ TEST_F(CloudRenderGlTest, CoverageZeroIsExactlyTheClearSky) {
         ASSERT_EQ(layer.texels[i], glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)) << "pixel " << i;
     }
     for (const glm::vec4& t : renderer.ReadCloudShadowMap().texels) ASSERT_EQ(t.r, 1.0f);
+}
+
+// The host's framebuffer after Render over geometry at `eye_depth` m everywhere, filled with
+// `colour` before: L + T colour per pixel.
+std::vector<glm::vec4> RenderOverGeometry(AtmosphereRenderer& renderer, const Camera& camera,
+                                          const Lights& lights, RenderOptions options,
+                                          double eye_depth, float colour) {
+    constexpr double kNear = 1.0, kFar = 100000.0;
+    const glm::ivec2 size = options.size;
+    const double z_ndc = (kFar + kNear - 2.0 * kNear * kFar / eye_depth) / (kFar - kNear);
+    const std::vector<float> depth(static_cast<std::size_t>(size.x * size.y),
+                                   static_cast<float>(0.5 * (z_ndc + 1.0)));
+    GLuint texture = 0, depth_texture = 0, framebuffer = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGBA32F, size.x, size.y);
+    glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture);
+    glTextureStorage2D(depth_texture, 1, GL_DEPTH_COMPONENT32F, size.x, size.y);
+    glTextureSubImage2D(depth_texture, 0, 0, 0, size.x, size.y, GL_DEPTH_COMPONENT, GL_FLOAT,
+                        depth.data());
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    const float fill[4] = {colour, colour, colour, 1.0f};
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, fill);
+    options.target_framebuffer = framebuffer;
+    options.target_viewport = {0, 0, size.x, size.y};
+    options.scene_depth = SceneDepth{depth_texture, kNear, kFar};
+    renderer.UpdateFrameLuts(camera, lights, options.clouds);
+    renderer.Render(camera, lights, options);
+    std::vector<glm::vec4> pixels(static_cast<std::size_t>(size.x * size.y));
+    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
+                      pixels.data());
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &texture);
+    glDeleteTextures(1, &depth_texture);
+    return pixels;
+}
+
+// The composite lays the clouds, (L, T) as ReadClouds gives them, over what they hide: the
+// Sun's disk shows through them times exactly T, and over a host's geometry only the clouds in
+// front of it are drawn, so geometry before the clouds keeps the air's transmittance and
+// geometry behind them takes T times it. With the history reset, every render of a view draws
+// the same clouds.
+TEST_F(CloudRenderGlTest, CompositeHidesTheSunAndOnlyGeometryBehindTheClouds) {
+    const Atmosphere earth;
+    // Looking at the Sun, 0.74 rad up, from 500 m, toward a cloud's edge: the clouds lie
+    // 1.5-5 km away along the rays.
+    const Camera camera = CameraAt(500.0, 1.9, 0.74, 0.1);
+    Lights lights;
+    lights.sun_direction = -camera.world_from_view[2];
+    RenderOptions options = Options({96, 54});
+    options.clouds.reset_history = true;
+
+    AtmosphereRenderer clear(earth);
+    AtmosphereRenderer cloudy(earth);
+    cloudy.SetWeather(Cumulus(0.6), Settings());
+    const auto sun_disk = [&](AtmosphereRenderer& renderer) {
+        RenderOptions o = options;
+        o.draw_sun_disk = true;
+        renderer.UpdateFrameLuts(camera, lights, o.clouds);
+        renderer.Render(camera, lights, o);
+        LutImage with = renderer.ReadFrame();
+        o.draw_sun_disk = false;
+        renderer.UpdateFrameLuts(camera, lights, o.clouds);
+        renderer.Render(camera, lights, o);
+        const LutImage without = renderer.ReadFrame();
+        for (std::size_t i = 0; i < with.texels.size(); ++i) with.texels[i] -= without.texels[i];
+        return with;
+    };
+    const LutImage disk = sun_disk(clear);
+    const LutImage disk_through_clouds = sun_disk(cloudy);
+    const LutImage clouds = cloudy.ReadClouds();
+    int disk_pixels = 0, hidden = 0;
+    for (std::size_t i = 0; i < disk.texels.size(); ++i) {
+        const double expected = clouds.texels[i].a * disk.texels[i].g;
+        ASSERT_NEAR(disk_through_clouds.texels[i].g, expected, 1e-5 * disk.texels[i].g + 1.0)
+            << "pixel " << i;
+        if (disk.texels[i].g > 0.0f) {
+            ++disk_pixels;
+            if (clouds.texels[i].a < 0.5f) ++hidden;
+        }
+    }
+
+    // The transmittance over the geometry: the difference of two host colours.
+    const auto transmittance = [&](AtmosphereRenderer& renderer, double eye_depth) {
+        const std::vector<glm::vec4> black =
+            RenderOverGeometry(renderer, camera, lights, options, eye_depth, 0.0f);
+        const std::vector<glm::vec4> white =
+            RenderOverGeometry(renderer, camera, lights, options, eye_depth, 1000.0f);
+        std::vector<double> t(black.size());
+        for (std::size_t i = 0; i < t.size(); ++i) t[i] = (white[i].g - black[i].g) / 1000.0;
+        return t;
+    };
+    int covered = 0;
+    for (const double eye_depth : {1000.0, 20000.0}) {
+        const std::vector<double> air = transmittance(clear, eye_depth);
+        const std::vector<double> seen = transmittance(cloudy, eye_depth);
+        for (std::size_t i = 0; i < air.size(); ++i) {
+            const double cloud = eye_depth < 2000.0 ? 1.0 : clouds.texels[i].a;
+            ASSERT_NEAR(seen[i], cloud * air[i], 1e-4) << eye_depth << " m, pixel " << i;
+            if (cloud < 0.5) ++covered;
+        }
+    }
+    std::printf("sun disk %d pixels, %d of them behind clouds with T < 0.5; %d pixels of "
+                "geometry 20 km away behind such clouds\n",
+                disk_pixels, hidden, covered);
+    EXPECT_GT(disk_pixels, 10);
+    EXPECT_GT(hidden, 0);
+    EXPECT_GT(covered, 100);
 }
 
 // GPU trace (block 1, first frame: no history) vs ref::TraceClouds at every pixel.

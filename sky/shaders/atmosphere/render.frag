@@ -3,6 +3,11 @@
 // second additive pass over each disk (ZENITH_DISKS 1), the Sun and the Moon. Writes linear
 // luminance, cd/m^2. A fragment pass over a full-screen triangle: it can draw into a host's
 // framebuffer, and llvmpipe's fragment path is several times faster than compute image stores.
+// With weather (ZENITH_CLOUDS 1, after the cloud files) it also lays this frame's clouds,
+// reconstructed at full resolution (clouds/reconstruct.frag), over everything they hide: the
+// sky, the stars, our own ground with their shadow on it, the disks, and the aerial perspective
+// in front of the host's geometry where they are nearer than it. In this pass rather than one
+// of their own, since on llvmpipe a full-resolution pass costs 4 ms before it does anything.
 layout(location = 0) out vec4 out_luminance;
 
 // Solar limb darkening, Hestroffer & Magnan (1998) 5th-order polynomial in mu = cos of the angle
@@ -61,6 +66,9 @@ void main() {
                                                        transmittance_size, camera_km,
                                                        camera_altitude_km, direction),
                          0.0);
+  #if ZENITH_CLOUDS
+    out_luminance.rgb *= texelFetch(cloud_history, pixel, 0).a;
+  #endif
 #else
   #if ZENITH_RAY_MARCH
     vec3 luminance = IntegrateScatteredLuminance(
@@ -76,6 +84,9 @@ void main() {
     // Stars (and a Sun narrower than a pixel): luminance already attenuated on the CPU by the
     // same TransmittanceToSpace.
     if (stars_enabled != 0) luminance += texelFetch(star_texture, pixel, 0).rgb;
+  #if ZENITH_CLOUDS
+    vec4 clouds = texelFetch(cloud_history, pixel, 0);  // (L, T), premultiplied
+  #endif
 
   #if ZENITH_SCENE_DEPTH
     // The host's geometry: where its depth is nearer than the far plane, the output is the
@@ -88,11 +99,27 @@ void main() {
         vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
         float distance_km = eye_depth * length(vec3(ndc.x * tan_half_fov * aspect,
                                                     ndc.y * tan_half_fov, 1.0)) / 1000.0;
-        out_luminance = SampleAerialPerspective(
+        vec4 air = SampleAerialPerspective(
             aerial_perspective_texture, (vec2(pixel) + 0.5) / vec2(output_size), distance_km,
             aerial_perspective_range_km, aerial_perspective_size.z);
+    #if ZENITH_CLOUDS
+        // Only the clouds in front of the geometry.
+        float cloud_depth = CloudTraceDepth(pixel);
+        if (!(cloud_depth > 0.0 && cloud_depth < distance_km)) clouds = vec4(0.0, 0.0, 0.0, 1.0);
+        air = vec4(clouds.rgb + clouds.a * air.rgb, clouds.a * air.a);
+    #endif
+        out_luminance = air;
         return;
     }
+  #endif
+  #if ZENITH_CLOUDS
+    float r = length(camera_km);
+    bool ground = RaySphereDistance(r, dot(camera_km, direction) / r, camera_altitude_km,
+                                    atmosphere.bottom_radius) >= 0.0;
+    if (ground) luminance += CloudGroundShadow(pixel);
+    luminance = clouds.rgb + clouds.a * luminance;
+  #endif
+  #if ZENITH_SCENE_DEPTH
     out_luminance = vec4(luminance, 0.0);
   #else
     out_luminance = vec4(luminance, 1.0);

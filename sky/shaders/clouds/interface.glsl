@@ -48,6 +48,13 @@ float CloudTraceDepth(ivec2 pixel) {
     return texelFetch(cloud_trace_depth, min(pixel / block, trace_size - 1), 0).r;
 }
 
+// The change of our own ground's luminance by the clouds' shadow at a full-resolution pixel whose
+// ray meets the ground: ground_shadow.frag's values, one per trace cell at its centre, filtered.
+vec3 CloudGroundShadow(ivec2 pixel) {
+    vec2 uv = (vec2(pixel) + 0.5) / (float(block) * vec2(trace_size));
+    return texture(cloud_ground_shadow, uv).rgb;
+}
+
 mat3 WeatherFromFrame() {
     return mat3(weather_from_frame[0].xyz, weather_from_frame[1].xyz, weather_from_frame[2].xyz);
 }

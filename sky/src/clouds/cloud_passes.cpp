@@ -22,11 +22,9 @@ enum Query : std::size_t {
     kShadeQuery,
     kTraceQuery,
     kReconstructQuery,
-    kGroundShadowQuery,
-    kCompositeQuery
+    kGroundShadowQuery
 };
 
-// The cloud files follow the atmosphere prelude in every cloud pass.
 constexpr std::array<std::string_view, 4> kCloudParts = {
     "clouds/definitions.glsl", "clouds/functions.glsl", "clouds/march.glsl",
     "clouds/interface.glsl"};
@@ -116,15 +114,13 @@ float VanDerCorput(unsigned long long n) {
 
 }  // namespace
 
+std::span<const std::string_view> CloudShaderParts() { return kCloudParts; }
+
 CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings)
     : weather_(weather),
       settings_(settings),
       trace_(gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts)),
       reconstruct_(gl::FullscreenProgram("clouds/reconstruct.frag", {}, kCloudParts)),
-      composite_(gl::FullscreenProgram("clouds/composite.frag", "#define ZENITH_SCENE_DEPTH 0\n",
-                                       kCloudParts)),
-      composite_depth_(gl::FullscreenProgram("clouds/composite.frag",
-                                             "#define ZENITH_SCENE_DEPTH 1\n", kCloudParts)),
       shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)),
       shade_trace_pass_(gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts)),
       shade_pass_(gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts)),
@@ -289,8 +285,7 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera,
 }
 
 void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
-                         const RenderOptions& options, GLuint target, glm::ivec4 viewport,
-                         GLuint scene_depth) {
+                         const RenderOptions& options) {
     if (options.size != size_) Resize(options.size);
     const bool history_valid = previous_.has_value() && !options.clouds.reset_history;
     UploadUniforms(atmosphere, camera, lights, options.clouds, history_valid);
@@ -316,15 +311,15 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
                        queries_[kGroundShadowQuery]);
     query_used_[kGroundShadowQuery] = true;
 
-    glBindTextureUnit(15, history_color_[current_]);
-    glBindTextureUnit(18, ground_shadow_color_);
-    if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
-    gl::DrawFullscreen(scene_depth != 0 ? composite_depth_ : composite_, vertex_array_, target,
-                       viewport, gl::Blend::kPremultiplied, queries_[kCompositeQuery]);
-    query_used_[kCompositeQuery] = true;
-
     previous_ = Previous{camera, options.clouds.weather_from_world};
     ++frame_index_;
+}
+
+void CloudPasses::BindForComposite() const {
+    glBindBufferBase(GL_UNIFORM_BUFFER, 4, uniforms_);
+    glBindTextureUnit(14, trace_depth_);
+    glBindTextureUnit(15, history_color_[current_]);
+    glBindTextureUnit(18, ground_shadow_color_);
 }
 
 LutImage CloudPasses::ReadClouds() const {

@@ -1,6 +1,7 @@
 // The GL side of the clouds (Högfeldt 2016 §5-6, Frostbite 2016 §5): noise and weather maps as
-// textures, the reduced-resolution trace, the temporal reconstruction, the composite over the
-// sky and the ground shadow map. Owned by AtmosphereRenderer, which binds the atmosphere's
+// textures, the reduced-resolution trace, the temporal reconstruction and the ground shadow map;
+// the atmosphere's sky pass composites them (atmosphere/render.frag with ZENITH_CLOUDS 1,
+// compiled with CloudShaderParts()). Owned by AtmosphereRenderer, which binds the atmosphere's
 // uniform blocks (0-3) and LUTs (units 0-6) before each call; the clouds use block 4 and units
 // 7-18.
 #pragma once
@@ -9,12 +10,17 @@
 
 #include <array>
 #include <optional>
+#include <span>
+#include <string_view>
 #include <vector>
 
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/shader.h"
 
 namespace zenith::sky {
+
+// The cloud files, which follow the atmosphere prelude in every program that uses the clouds.
+std::span<const std::string_view> CloudShaderParts();
 
 class CloudPasses {
   public:
@@ -34,20 +40,20 @@ class CloudPasses {
     // lights; sky_shade.comp).
     void Prepare(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
                  const CloudView& view, GLuint light_buffer);
-    // Then traces, reconstructs and composites the clouds over `target` (premultiplied; behind
-    // the host's geometry when scene_depth is not 0), with their shadow on the ground drawn by
-    // the atmosphere.
+    // Then, before the sky pass, traces the clouds and reconstructs them at full resolution,
+    // with their shadow on the ground the atmosphere draws.
     void Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
-                const RenderOptions& options, GLuint target, glm::ivec4 viewport,
-                GLuint scene_depth);
+                const RenderOptions& options);
+    // Binds what the sky pass reads to composite the last Render's clouds.
+    void BindForComposite() const;
 
     LutImage ReadClouds() const;
     LutImage ReadShadowMap() const;
     GLuint shadow_map_texture() const { return shadow_map_; }
 
     // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, the ground's
-    // shadow, composite.
-    static constexpr std::size_t kPassCount = 6;
+    // shadow.
+    static constexpr std::size_t kPassCount = 5;
     std::array<double, kPassCount> LastPassTimes() const;
 
   private:
@@ -58,8 +64,8 @@ class CloudPasses {
 
     clouds::Weather weather_;
     CloudSettings settings_;
-    gl::Program trace_, reconstruct_, composite_, composite_depth_, shadow_pass_,
-        shade_trace_pass_, shade_pass_, ground_shadow_;
+    gl::Program trace_, reconstruct_, shadow_pass_, shade_trace_pass_, shade_pass_,
+        ground_shadow_;
     GLuint uniforms_ = 0;
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;

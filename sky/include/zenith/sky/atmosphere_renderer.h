@@ -124,12 +124,12 @@ struct PassTimes {
     double irradiance = 0.0;
     double sky_view = 0.0;
     double aerial_perspective = 0.0;
-    double render = 0.0;
+    double render = 0.0;            // the composite: sky, disks and, with weather, the clouds
     double cloud_shadow_map = 0.0;  // 0 without weather
     double cloud_shade = 0.0;       // the clouds' effect on the light beneath them
     double cloud_trace = 0.0;
     double cloud_reconstruct = 0.0;
-    double cloud_composite = 0.0;   // with the clouds' shadow on our ground
+    double cloud_ground_shadow = 0.0;  // per trace cell, which the composite interpolates
 };
 
 class AtmosphereRenderer {
