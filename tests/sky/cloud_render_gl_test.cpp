@@ -475,6 +475,32 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
     }
 }
 
+// The shadow map and the shade are worked out every shadow_map_interval frames; the frames
+// between keep the last shade in the light block, which is uploaded without it every frame.
+TEST_F(CloudRenderGlTest, ShadeHoldsBetweenItsUpdates) {
+    const Atmosphere earth;
+    const Lights lights = Afternoon();
+    AtmosphereRenderer renderer(earth);
+    renderer.SetWeather(Cumulus(), Settings(4));
+    const Camera camera = CameraAt(300.0, 0.4, 0.15);
+    const RenderOptions options = Options({48, 27});
+    std::vector<CloudShade> shades;
+    for (int frame = 0; frame < 6; ++frame) {
+        RenderClouds(renderer, camera, lights, options);
+        shades.push_back(renderer.ReadCloudShade());
+        const bool updated = renderer.LastPassTimes().cloud_shade > 0.0;
+        EXPECT_EQ(updated, frame % 4 == 0) << "frame " << frame;
+    }
+    EXPECT_LT(shades[0].direct_transmittance, 0.95);
+    EXPECT_LT(shades[0].sky_transmittance, 0.95);
+    EXPECT_GT(shades[0].luminance.y, 0.0);
+    for (std::size_t frame = 1; frame < 4; ++frame) {
+        EXPECT_EQ(shades[frame].direct_transmittance, shades[0].direct_transmittance);
+        EXPECT_EQ(shades[frame].sky_transmittance, shades[0].sky_transmittance);
+        EXPECT_EQ(shades[frame].luminance, shades[0].luminance);
+    }
+}
+
 TEST_F(CloudRenderGlTest, OvercastShadowsTheGroundAndTheSettingsAreChecked) {
     const Atmosphere earth;
     clouds::Weather overcast = Cumulus(1.0);

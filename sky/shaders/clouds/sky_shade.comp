@@ -1,9 +1,9 @@
 // What the clouds do to the light beneath them (F16 §5.9.2, LightSet's cloud_* members): the
 // mean of sky_shade_trace.frag's directions (equal solid angles of the upper hemisphere seen
-// from the ground below the camera) and the mean of this frame's shadow map, written into the
-// atmosphere's light block, which the frame's later passes read: the Sky-View and aerial-
-// perspective LUTs, the composite's ray march and the clouds' own aerial perspective. One
-// invocation: some 16,000 texel reads.
+// from the ground below the camera) and the mean of the shadow map, written into the cloud
+// members of a LightSet, which CloudPasses copies into the atmosphere's light block each frame
+// for the later passes: the Sky-View and aerial-perspective LUTs, the composite's ray march and
+// the clouds' own aerial perspective. One invocation: some 16,000 texel reads.
 layout(local_size_x = 1) in;
 layout(std140, binding = 1) buffer LightStorage {
     LightSet shaded_lights;

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 
 #include "clouds/cloud_parameters.h"
+#include "gl/atmosphere_uniforms.h"
 #include "gl/cloud_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
@@ -143,6 +145,8 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
     detail_ = UploadNoise(noise.noise.detail);
     glCreateBuffers(1, &uniforms_);
     glNamedBufferStorage(uniforms_, sizeof(gl::CloudUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glCreateBuffers(1, &shade_);
+    glNamedBufferStorage(shade_, sizeof(gl::LightUniforms), nullptr, 0);
     shadow_map_ = gl::CreateTexture2D(glm::ivec2(settings_.shadow_map_size));
     shade_directions_ = gl::CreateTexture2D(glm::ivec2(kCloudSkyShadeSize));
     shade_framebuffer_ = CreateFramebuffer({shade_directions_});
@@ -159,6 +163,7 @@ CloudPasses::~CloudPasses() {
                     &history_color_[0], &history_color_[1], &shadow_map_, &shade_directions_});
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
     glDeleteBuffers(1, &uniforms_);
+    glDeleteBuffers(1, &shade_);
 }
 
 void CloudPasses::Resize(glm::ivec2 size) {
@@ -255,7 +260,10 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera,
     BindTextures();
     query_used_.fill(false);
 
-    if (!history_valid || frame_index_ % settings_.shadow_map_interval == 0) {
+    // The shadow map and the shade follow the Sun, the wind and the ground below the camera,
+    // which move little in shadow_map_interval frames.
+    const bool update = !history_valid || frame_index_ % settings_.shadow_map_interval == 0;
+    if (update) {
         shadow_pass_.Use();
         glBindImageTexture(0, shadow_map_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         glBeginQuery(GL_TIME_ELAPSED, queries_[kShadowQuery]);
@@ -265,23 +273,27 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera,
         query_used_[kShadowQuery] = true;
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    }
 
-    glBeginQuery(GL_TIME_ELAPSED, queries_[kShadeQuery]);
-    gl::DrawFullscreen(shade_trace_pass_, vertex_array_, shade_framebuffer_,
-                       glm::ivec4(0, 0, kCloudSkyShadeSize, kCloudSkyShadeSize),
-                       gl::Blend::kReplace, 0);
-    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    shade_pass_.Use();
-    glBindImageTexture(0, shade_directions_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, shadow_map_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, light_buffer);
-    glDispatchCompute(1, 1, 1);
-    glEndQuery(GL_TIME_ELAPSED);
-    query_used_[kShadeQuery] = true;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
-    // Later passes read the block as uniforms; a read back or the next upload comes after.
-    glMemoryBarrier(GL_UNIFORM_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        glBeginQuery(GL_TIME_ELAPSED, queries_[kShadeQuery]);
+        gl::DrawFullscreen(shade_trace_pass_, vertex_array_, shade_framebuffer_,
+                           glm::ivec4(0, 0, kCloudSkyShadeSize, kCloudSkyShadeSize),
+                           gl::Blend::kReplace, 0);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        shade_pass_.Use();
+        glBindImageTexture(0, shade_directions_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, shadow_map_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, shade_);
+        glDispatchCompute(1, 1, 1);
+        glEndQuery(GL_TIME_ELAPSED);
+        query_used_[kShadeQuery] = true;
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    }
+    // Every frame: the light block was just uploaded without the clouds; the last shade goes
+    // into its cloud members, which the later passes read as uniforms.
+    constexpr GLintptr kCloudMembers = offsetof(gl::LightUniforms, cloud_base);
+    glCopyNamedBufferSubData(shade_, light_buffer, kCloudMembers, kCloudMembers,
+                             sizeof(gl::LightUniforms) - kCloudMembers);
 }
 
 void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,

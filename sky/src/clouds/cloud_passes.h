@@ -34,10 +34,10 @@ class CloudPasses {
     const clouds::Weather& weather() const { return weather_; }
     const CloudSettings& settings() const { return settings_; }
 
-    // First in a frame, before the atmosphere's per-frame LUTs: updates the shadow map (every
-    // shadow_map_interval frames) and writes what the clouds do to the light beneath them into
-    // the LightSet in `light_buffer` (the atmosphere's light block, already holding this frame's
-    // lights; sky_shade.comp).
+    // First in a frame, before the atmosphere's per-frame LUTs: updates the shadow map and what
+    // the clouds do to the light beneath them (sky_shade.comp; both every shadow_map_interval
+    // frames), and writes the latter into the LightSet in `light_buffer` (the atmosphere's light
+    // block, already holding this frame's lights).
     void Prepare(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
                  const CloudView& view, GLuint light_buffer);
     // Then, before the sky pass, traces the clouds and reconstructs them at full resolution,
@@ -75,6 +75,7 @@ class CloudPasses {
     std::array<GLuint, 2> history_color_{}, history_framebuffer_{};
     GLuint shadow_map_ = 0;
     GLuint shade_directions_ = 0;  // (L, T) of the clouds along each sky-shade direction
+    GLuint shade_ = 0;             // a LightSet whose cloud members sky_shade.comp writes
     GLuint shade_framebuffer_ = 0;
     GLuint vertex_array_ = 0;
     std::array<GLuint, kPassCount> queries_{};
