@@ -9,12 +9,14 @@
 #include <string>
 #include <string_view>
 
+#include "clouds/cloud_parameters.h"
 #include "clouds/cloud_passes.h"
 #include "gl/atmosphere_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
 #include "gl/textures.h"
 #include "reference/atmosphere_functions.h"
+#include "reference/cloud_march.h"
 #include "reference/lut_texture.h"
 #include "shader_parameters.h"
 #include "zenith/sky/gl/error.h"
@@ -128,6 +130,41 @@ glm::ivec4 Union(const glm::ivec4& a, const glm::ivec4& b) {
     return {lo, hi - lo};
 }
 
+// The weather's density on the CPU: its maps and the noise as the GPU samples them.
+struct CpuClouds {
+    clouds::Weather weather;
+    CloudSettings settings;
+    std::vector<ref::RepeatTexture2D> maps;
+    std::vector<double> tops;  // clouds::CloudTopFraction of each map
+    ref::Texture3D shape, detail;
+
+    CpuClouds(const clouds::Weather& w, const CloudSettings& s, const clouds::CloudNoise& noise)
+        : weather(w), settings(s), shape(ref::ToTexture(noise.shape)),
+          detail(ref::ToTexture(noise.detail)) {
+        for (const clouds::CloudLayer& layer : weather.layers) {
+            const clouds::WeatherMap map = clouds::BuildWeatherMap(layer);
+            maps.push_back(ref::ToTexture(map));
+            tops.push_back(clouds::CloudTopFraction(map));
+        }
+    }
+
+    double Transmittance(double bottom_radius, const glm::dvec3& position,
+                         const glm::dvec3& direction, const CloudView& view, int steps) const {
+        const glm::dvec3 origin = view.weather_from_world * (position / kKm);
+        const glm::dvec3 toward = view.weather_from_world * glm::normalize(direction);
+        const double altitude = (glm::length(position) - bottom_radius) / kKm;
+        const auto march = MakeCloudMarchParameters<ref::CloudMarchParameters>(settings);
+        double optical_depth = 0.0;
+        for (std::size_t i = 0; i < weather.layers.size(); ++i) {
+            const auto layer = MakeCloudLayerParameters<ref::CloudLayerParameters>(
+                weather.layers[i], tops[i], settings, bottom_radius, view.time);
+            optical_depth += ref::CloudLayerShadowDepth(layer, maps[i], shape, detail, march,
+                                                        origin, altitude, toward, steps);
+        }
+        return std::exp(-optical_depth);
+    }
+};
+
 }  // namespace
 
 struct AtmosphereRenderer::Impl {
@@ -145,6 +182,7 @@ struct AtmosphereRenderer::Impl {
     std::array<bool, kQueryCount> query_used{};
     int light_count = 1;  // as last uploaded: with the Sun alone, the Sky-View LUT is symmetric
     std::unique_ptr<CloudPasses> clouds;  // with weather that has layers
+    std::unique_ptr<CpuClouds> cpu_clouds;  // the same weather's density, for CPU queries
     // The six composite programs again, laying the clouds over the sky and the disks; built
     // with the first weather that has layers.
     std::vector<gl::Program> cloud_composites;
@@ -368,8 +406,12 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     Impl& d = *impl_;
     // Built before the old passes go, so a bad map leaves the previous weather in place.
     std::unique_ptr<CloudPasses> passes;
+    std::unique_ptr<CpuClouds> cpu;
     if (!weather.layers.empty()) {
-        passes = std::make_unique<CloudPasses>(weather, settings);
+        const clouds::CloudNoiseLoad noise =
+            clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory);
+        passes = std::make_unique<CloudPasses>(weather, settings, noise.noise);
+        cpu = std::make_unique<CpuClouds>(weather, settings, noise.noise);
         if (d.cloud_composites.empty()) {
             for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
                 d.cloud_composites.push_back(Impl::Composite(static_cast<Pass>(pass), true));
@@ -377,6 +419,7 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
         }
     }
     d.clouds = std::move(passes);
+    d.cpu_clouds = std::move(cpu);
     d.weather = weather;
     d.cloud_settings = settings;
 }
@@ -549,6 +592,18 @@ CloudShade AtmosphereRenderer::ReadCloudShade() const {
     shade.sky_transmittance = u.cloud_sky;
     shade.luminance = glm::dvec3(u.cloud_luminance);
     return shade;
+}
+
+double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,
+                                              const glm::dvec3& direction, const CloudView& view,
+                                              int steps) const {
+    if (!(steps >= 1 && steps <= 4096)) {
+        throw std::invalid_argument("CloudTransmittance: steps " + std::to_string(steps) +
+                                    " is out of range (expected 1..4096)");
+    }
+    if (!impl_->cpu_clouds) return 1.0;
+    return impl_->cpu_clouds->Transmittance(impl_->atmosphere.bottom_radius, position, direction,
+                                            view, steps);
 }
 
 LutImage AtmosphereRenderer::ReadCloudShadowMap() const {

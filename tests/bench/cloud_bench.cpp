@@ -2,8 +2,8 @@
 // the horizon from the ground, inside the layer and from 12 km: whole frames (frame LUTs, sky,
 // clouds; glFinish) with the reduced-resolution trace and reprojection (block 4, the default,
 // and 8) and with every pixel traced each frame (block 1), beside the clear-sky frame as the
-// baseline; and the converged image against a full-resolution render with four times the
-// steps.
+// baseline; the converged image against a full-resolution render with four times the steps;
+// and the CPU march of the host's sunlight through the clouds.
 #include <benchmark/benchmark.h>
 #include <glad/gl.h>
 
@@ -102,6 +102,23 @@ BENCHMARK(BM_Frame720p)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
+
+// The host's sunlight at the aircraft (SkySystem::Update calls it for the Sun and the Moon): the
+// CPU march toward the Sun through scattered cumulus, 64 samples per layer, from the ground
+// and from inside the layer.
+void BM_CloudTransmittanceCpu(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.renderer.SetWeather(f.weather, Settings(4));
+    const Camera camera = f.CameraFor(kViews[state.range(0)]);
+    CloudView view;
+    double sum = 0.0;
+    for (auto _ : state) {
+        sum += f.renderer.CloudTransmittance(camera.position, f.lights.sun_direction, view);
+    }
+    benchmark::DoNotOptimize(sum);
+    state.SetLabel(kViews[state.range(0)].name);
+}
+BENCHMARK(BM_CloudTransmittanceCpu)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 double MeanLuminance(const LutImage& image) {
     double sum = 0.0;

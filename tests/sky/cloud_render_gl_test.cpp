@@ -475,6 +475,54 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
     }
 }
 
+// The host's sunlight through the clouds (CloudTransmittance): from the ground it is the shadow
+// map's march (ref::CloudShadowMapTexel at the camera's ground point, same steps); from higher
+// on the same ray less cloud lies ahead; above the clouds nothing; and it converges in the
+// step count.
+TEST_F(CloudRenderGlTest, CloudTransmittanceIsTheShadowMapsMarchFromAnyHeight) {
+    const Atmosphere earth;
+    const clouds::Weather weather = Cumulus(0.6);
+    const CloudSettings settings = Settings();
+    // Looking at the Sun through a cloud's edge (as in the composite test), from 500 m.
+    const Camera camera = CameraAt(500.0, 1.9, 0.74, 0.1);
+    Lights lights;
+    lights.sun_direction = -camera.world_from_view[2];
+    CloudView view;
+    view.time = 600.0;  // the wind has moved the clouds
+    AtmosphereRenderer renderer(earth);
+    EXPECT_EQ(renderer.CloudTransmittance(camera.position, lights.sun_direction, view), 1.0);
+    renderer.SetWeather(weather, settings);
+    EXPECT_THROW(renderer.CloudTransmittance(camera.position, lights.sun_direction, view, 0),
+                 std::invalid_argument);
+
+    const glm::dvec3 ground = glm::dvec3(0.0, 0.0, earth.bottom_radius);
+    const ref::CloudScene scene = ref::MakeCloudScene(
+        earth, renderer.ReadTransmittance(), renderer.ReadMultipleScattering(),
+        renderer.ReadGroundIrradiance(), weather, settings, clouds::test::CachedNoise(), camera,
+        lights, view);
+    const double shadow_map_texel =
+        ref::CloudShadowMapTexel(scene, settings, camera.position / kKm, glm::dvec2(0.5));
+    const double from_ground = renderer.CloudTransmittance(ground, lights.sun_direction, view,
+                                                           settings.shadow_map_steps);
+    EXPECT_NEAR(from_ground, shadow_map_texel, 1e-12);
+
+    const auto along_sun = [&](double metres) { return ground + lights.sun_direction * metres; };
+    const double exact = renderer.CloudTransmittance(ground, lights.sun_direction, view, 4096);
+    const double coarse = renderer.CloudTransmittance(ground, lights.sun_direction, view);
+    const double inside = renderer.CloudTransmittance(along_sun(2500.0), lights.sun_direction,
+                                                      view, 4096);
+    const double above = renderer.CloudTransmittance(along_sun(8000.0), lights.sun_direction,
+                                                     view);
+    std::printf("sun through cumulus from the ground: %.4f (64 steps), %.4f (4096); from 2.5 km "
+                "up the same ray %.4f; from above the clouds %.4f\n",
+                coarse, exact, inside, above);
+    EXPECT_LT(exact, 0.5);  // the Sun is behind the cloud
+    EXPECT_NEAR(std::log(coarse) / std::log(exact), 1.0, 0.05);
+    EXPECT_GT(inside, exact);
+    EXPECT_LT(inside, 1.0);
+    EXPECT_EQ(above, 1.0);
+}
+
 // The shadow map and the shade are worked out every shadow_map_interval frames; the frames
 // between keep the last shade in the light block, which is uploaded without it every frame.
 TEST_F(CloudRenderGlTest, ShadeHoldsBetweenItsUpdates) {

@@ -254,16 +254,16 @@ vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 gro
     return offset / extent + vec2(0.5);
 }
 
-// Optical depth of one layer from the ground point `origin` (cloud frame) toward the light, with
-// `steps` samples of the density in the layer: the shadow map's march (no lighting).
-Number CloudLayerGroundShadowDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
-                                   IN(CloudNoiseTexture) shape_noise,
-                                   IN(CloudNoiseTexture) detail_noise,
-                                   IN(CloudMarchParameters) march, vec3 origin,
-                                   vec3 light_direction, int steps) {
+// Optical depth of one layer from `origin` (cloud frame, `altitude` km above the ground, exact)
+// toward the light, with `steps` samples of the density in the layer: the shadow map's march
+// from the ground (no lighting), and the host's sunlight at the aircraft.
+Number CloudLayerShadowDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
+                             IN(CloudNoiseTexture) shape_noise, IN(CloudNoiseTexture) detail_noise,
+                             IN(CloudMarchParameters) march, vec3 origin, Number altitude,
+                             vec3 light_direction, int steps) {
     Number r = length(origin);
     Number mu = dot(origin, light_direction) / r;
-    vec2 interval = CloudLayerInterval(layer, r, mu, 0.0, march.max_distance);
+    vec2 interval = CloudLayerInterval(layer, r, mu, altitude, march.max_distance);
     Number length_km = interval.y - interval.x;
     if (!(length_km > 0.0)) return 0.0;
     Number dt = length_km / Number(steps);

@@ -19,10 +19,10 @@ void main() {
     float optical_depth = 0.0;
     for (int k = 0; k < cloud_layer_count; ++k) {
         int i = cloud_layer_order[k];
-        optical_depth += CloudLayerGroundShadowDepth(cloud_layers[i], weather_maps[i],
-                                                     shape_noise, detail_noise, cloud_march,
-                                                     origin, cloud_lights.light[0].direction,
-                                                     shadow_map_steps);
+        optical_depth += CloudLayerShadowDepth(cloud_layers[i], weather_maps[i], shape_noise,
+                                               detail_noise, cloud_march, origin, 0.0,
+                                               cloud_lights.light[0].direction,
+                                               shadow_map_steps);
     }
     imageStore(shadow_map, texel, vec4(vec3(exp(-optical_depth)), 1.0));
 }

@@ -118,7 +118,8 @@ float VanDerCorput(unsigned long long n) {
 
 std::span<const std::string_view> CloudShaderParts() { return kCloudParts; }
 
-CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings)
+CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings,
+                         const clouds::CloudNoise& noise)
     : weather_(weather),
       settings_(settings),
       trace_(gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts)),
@@ -139,10 +140,8 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
         weather_maps_.push_back(UploadWeatherMap(map));
         cloud_tops_.push_back(clouds::CloudTopFraction(map));
     }
-    const clouds::CloudNoiseLoad noise =
-        clouds::LoadOrGenerateCloudNoise(settings_.noise, settings_.noise_cache_directory);
-    shape_ = UploadNoise(noise.noise.shape);
-    detail_ = UploadNoise(noise.noise.detail);
+    shape_ = UploadNoise(noise.shape);
+    detail_ = UploadNoise(noise.detail);
     glCreateBuffers(1, &uniforms_);
     glNamedBufferStorage(uniforms_, sizeof(gl::CloudUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
     glCreateBuffers(1, &shade_);

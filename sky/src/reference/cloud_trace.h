@@ -81,9 +81,10 @@ Number CloudShadowMapTexel(const CloudScene& scene, const CloudSettings& setting
                                                               uv);
     Number optical_depth = 0.0;
     for (std::size_t i = 0; i < scene.layers.size(); ++i) {
-        optical_depth += CloudLayerGroundShadowDepth(
-            scene.layers[i], scene.weather_maps[i], scene.shape, scene.detail, scene.march,
-            origin, scene.cloud_lights.light[0].direction, settings.shadow_map_steps);
+        optical_depth += CloudLayerShadowDepth(scene.layers[i], scene.weather_maps[i],
+                                               scene.shape, scene.detail, scene.march, origin,
+                                               0.0, scene.cloud_lights.light[0].direction,
+                                               settings.shadow_map_steps);
     }
     return exp(-optical_depth);
 }

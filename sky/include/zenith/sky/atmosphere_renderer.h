@@ -75,8 +75,8 @@ struct CloudSettings {
     void Validate() const;
 };
 
-// What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found each
-// frame by UpdateFrameLuts: the air and the ground below base_altitude get each light's direct
+// What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found by
+// UpdateFrameLuts with the shadow map (every shadow_map_interval frames): the air and the ground below base_altitude get each light's direct
 // part times direct_transmittance and the sky's part times sky_transmittance, and the clouds'
 // own light as a source of luminance `luminance` over the upper hemisphere.
 struct CloudShade {
@@ -177,6 +177,12 @@ public:
     LutImage ReadCloudShadowMap() const;
     // This frame's CloudShade (the clear-sky values without weather).
     CloudShade ReadCloudShade() const;
+    // The clouds' transmittance from `position` (m, the renderer's frame) toward `direction`
+    // through every layer, the wind having blown for view.time: the shadow map's density march,
+    // `steps` samples per layer, on the CPU over the same functions and textures as the GPU (no
+    // GL call, nothing to wait for). 1 without weather. For a host's sunlight at the aircraft.
+    double CloudTransmittance(const glm::dvec3& position, const glm::dvec3& direction,
+                              const CloudView& view, int steps = 64) const;
 
     // GL texture names, for hosts that sample them (aerial perspective on their geometry).
     unsigned transmittance_texture() const;
