@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
@@ -55,6 +56,41 @@ TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
     EXPECT_GT(night.moon_illuminated_fraction, 0.95);
     EXPECT_GT(Y(night.moon_illuminance), 0.01);
     EXPECT_LT(Y(night.moon_illuminance), 0.4);
+}
+
+// Under an overcast deck the Sun reaching the aircraft is what the clouds let through: the
+// same lighting as the clear sky times sun_cloud_transmittance, which is small below the deck
+// and 1 above it.
+TEST_F(SkySystemTest, SunlightAtTheAircraftPassesThroughTheClouds) {
+    sky_->SetTime(geo::TimeFromIso8601("2024-06-21T11:30:00Z"));
+    sky_->SetAttitude(glm::radians(180.0), 0.1, 0.0);
+    sky_->SetProjection(1.0, 16.0 / 9.0);
+    const auto lighting_at = [&](double height_m) {
+        sky_->SetGeodetic(47.45, 8.56, height_m);
+        sky_->Update();
+        return sky_->lighting();
+    };
+    const SkyLighting clear_low = lighting_at(420.0);
+    const SkyLighting clear_high = lighting_at(9000.0);
+    sky::CloudSettings settings;
+    settings.noise_cache_directory =
+        std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    sky_->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
+    sky_->SetWeatherOrigin(47.45, 8.56);
+    const SkyLighting below = lighting_at(420.0);
+    const SkyLighting above = lighting_at(9000.0);
+    sky_->SetWeather(sky::clouds::Weather{});
+    std::printf("overcast stratus: sun through the deck %.4f from 420 m, %.4f from 9 km\n",
+                below.sun_cloud_transmittance, above.sun_cloud_transmittance);
+    EXPECT_EQ(clear_low.sun_cloud_transmittance, 1.0);
+    EXPECT_LT(below.sun_cloud_transmittance, 0.1);
+    EXPECT_EQ(above.sun_cloud_transmittance, 1.0);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(below.sun_illuminance[c],
+                    clear_low.sun_illuminance[c] * below.sun_cloud_transmittance,
+                    1e-9 * clear_low.sun_illuminance[c]);
+        EXPECT_EQ(above.sun_illuminance[c], clear_high.sun_illuminance[c]);
+    }
 }
 
 TEST_F(SkySystemTest, TimeWarpAndEcefPositions) {

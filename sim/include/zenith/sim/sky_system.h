@@ -57,9 +57,14 @@ struct SkyLighting {
     glm::dvec3 sun_direction_ecef{0.0, 0.0, 1.0};
     glm::dvec3 moon_direction_enu{0.0, 0.0, 1.0};
     glm::dvec3 moon_direction_ecef{0.0, 0.0, 1.0};
-    // Illuminance on a surface facing the light, after the atmosphere (lux, RGB).
+    // Illuminance on a surface facing the light, after the atmosphere and the clouds between
+    // the aircraft and the light (lux, RGB).
     glm::dvec3 sun_illuminance{0.0};
     glm::dvec3 moon_illuminance{0.0};
+    // The clouds' part of that: their transmittance toward the light from the aircraft
+    // (sky::AtmosphereRenderer::CloudTransmittance; 1 without weather or below the horizon).
+    double sun_cloud_transmittance = 1.0;
+    double moon_cloud_transmittance = 1.0;
     // Sky (not Sun or Moon) illuminance on a horizontal surface (lux, RGB), from the
     // ground-irradiance LUT: exact at the ground, an overestimate at altitude.
     glm::dvec3 sky_irradiance{0.0};
