@@ -138,11 +138,11 @@ struct CpuClouds {
     std::vector<double> tops;  // clouds::CloudTopFraction of each map
     ref::Texture3D shape, detail;
 
-    CpuClouds(const clouds::Weather& w, const CloudSettings& s, const clouds::CloudNoise& noise)
+    CpuClouds(const clouds::Weather& w, const CloudSettings& s,
+              const std::vector<clouds::WeatherMap>& weather_maps, const clouds::CloudNoise& noise)
         : weather(w), settings(s), shape(ref::ToTexture(noise.shape)),
           detail(ref::ToTexture(noise.detail)) {
-        for (const clouds::CloudLayer& layer : weather.layers) {
-            const clouds::WeatherMap map = clouds::BuildWeatherMap(layer);
+        for (const clouds::WeatherMap& map : weather_maps) {
             maps.push_back(ref::ToTexture(map));
             tops.push_back(clouds::CloudTopFraction(map));
         }
@@ -408,10 +408,14 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     std::unique_ptr<CloudPasses> passes;
     std::unique_ptr<CpuClouds> cpu;
     if (!weather.layers.empty()) {
+        std::vector<clouds::WeatherMap> maps;
+        for (const clouds::CloudLayer& layer : weather.layers) {
+            maps.push_back(clouds::BuildWeatherMap(layer));
+        }
         const clouds::CloudNoiseLoad noise =
             clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory);
-        passes = std::make_unique<CloudPasses>(weather, settings, noise.noise);
-        cpu = std::make_unique<CpuClouds>(weather, settings, noise.noise);
+        passes = std::make_unique<CloudPasses>(weather, settings, maps, noise.noise);
+        cpu = std::make_unique<CpuClouds>(weather, settings, maps, noise.noise);
         if (d.cloud_composites.empty()) {
             for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
                 d.cloud_composites.push_back(Impl::Composite(static_cast<Pass>(pass), true));

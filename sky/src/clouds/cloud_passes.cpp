@@ -119,6 +119,7 @@ float VanDerCorput(unsigned long long n) {
 std::span<const std::string_view> CloudShaderParts() { return kCloudParts; }
 
 CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings,
+                         const std::vector<clouds::WeatherMap>& maps,
                          const clouds::CloudNoise& noise)
     : weather_(weather),
       settings_(settings),
@@ -135,8 +136,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
                                     " layers (the renderer draws at most " +
                                     std::to_string(gl::kCloudMaxLayers) + ")");
     }
-    for (const clouds::CloudLayer& layer : weather_.layers) {
-        const clouds::WeatherMap map = clouds::BuildWeatherMap(layer);
+    for (const clouds::WeatherMap& map : maps) {
         weather_maps_.push_back(UploadWeatherMap(map));
         cloud_tops_.push_back(clouds::CloudTopFraction(map));
     }
