@@ -3,7 +3,8 @@
 // clouds; glFinish) with the reduced-resolution trace and reprojection (block 4, the default,
 // and 8) and with every pixel traced each frame (block 1), beside the clear-sky frame as the
 // baseline; the converged image against a full-resolution render with four times the steps;
-// and the CPU march of the host's sunlight through the clouds.
+// the image after a fast turning flight against the converged truth; and the CPU march of the
+// host's sunlight through the clouds.
 #include <benchmark/benchmark.h>
 #include <glad/gl.h>
 
