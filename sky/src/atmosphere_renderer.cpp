@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "clouds/cloud_parameters.h"
 #include "clouds/cloud_passes.h"
@@ -132,23 +133,20 @@ glm::ivec4 Union(const glm::ivec4& a, const glm::ivec4& b) {
 
 // The weather's density on the CPU: its maps and the noise as the GPU samples them.
 struct CpuClouds {
-    clouds::Weather weather;
-    CloudSettings settings;
     std::vector<ref::RepeatTexture2D> maps;
     std::vector<double> tops;  // clouds::CloudTopFraction of each map
     ref::Texture3D shape, detail;
 
-    CpuClouds(const clouds::Weather& w, const CloudSettings& s,
-              const std::vector<clouds::WeatherMap>& weather_maps, const clouds::CloudNoise& noise)
-        : weather(w), settings(s), shape(ref::ToTexture(noise.shape)),
+    CpuClouds(const std::vector<clouds::WeatherMap>& weather_maps,
+              std::vector<double> top_fractions, const clouds::CloudNoise& noise)
+        : tops(std::move(top_fractions)), shape(ref::ToTexture(noise.shape)),
           detail(ref::ToTexture(noise.detail)) {
-        for (const clouds::WeatherMap& map : weather_maps) {
-            maps.push_back(ref::ToTexture(map));
-            tops.push_back(clouds::CloudTopFraction(map));
-        }
+        for (const clouds::WeatherMap& map : weather_maps) maps.push_back(ref::ToTexture(map));
     }
 
-    double Transmittance(double bottom_radius, const glm::dvec3& position,
+    // Through every layer of `weather` (the one these maps are of).
+    double Transmittance(const clouds::Weather& weather, const CloudSettings& settings,
+                         double bottom_radius, const glm::dvec3& position,
                          const glm::dvec3& direction, const CloudView& view, int steps) const {
         const glm::dvec3 origin = view.weather_from_world * (position / kKm);
         const glm::dvec3 toward = view.weather_from_world * glm::normalize(direction);
@@ -409,13 +407,15 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     std::unique_ptr<CpuClouds> cpu;
     if (!weather.layers.empty()) {
         std::vector<clouds::WeatherMap> maps;
+        std::vector<double> tops;
         for (const clouds::CloudLayer& layer : weather.layers) {
             maps.push_back(clouds::BuildWeatherMap(layer));
+            tops.push_back(clouds::CloudTopFraction(maps.back()));
         }
         const clouds::CloudNoiseLoad noise =
             clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory);
-        passes = std::make_unique<CloudPasses>(weather, settings, maps, noise.noise);
-        cpu = std::make_unique<CpuClouds>(weather, settings, maps, noise.noise);
+        passes = std::make_unique<CloudPasses>(weather, settings, maps, tops, noise.noise);
+        cpu = std::make_unique<CpuClouds>(maps, std::move(tops), noise.noise);
         if (d.cloud_composites.empty()) {
             for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
                 d.cloud_composites.push_back(Impl::Composite(static_cast<Pass>(pass), true));
@@ -606,8 +606,9 @@ double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,
                                     " is out of range (expected 1..4096)");
     }
     if (!impl_->cpu_clouds) return 1.0;
-    return impl_->cpu_clouds->Transmittance(impl_->atmosphere.bottom_radius, position, direction,
-                                            view, steps);
+    const Impl& d = *impl_;
+    return d.cpu_clouds->Transmittance(d.weather, d.cloud_settings, d.atmosphere.bottom_radius,
+                                       position, direction, view, steps);
 }
 
 LutImage AtmosphereRenderer::ReadCloudShadowMap() const {

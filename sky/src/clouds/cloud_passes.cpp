@@ -120,7 +120,7 @@ std::span<const std::string_view> CloudShaderParts() { return kCloudParts; }
 
 CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings,
                          const std::vector<clouds::WeatherMap>& maps,
-                         const clouds::CloudNoise& noise)
+                         const std::vector<double>& tops, const clouds::CloudNoise& noise)
     : weather_(weather),
       settings_(settings),
       trace_(gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts)),
@@ -128,7 +128,8 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
       shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)),
       shade_trace_pass_(gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts)),
       shade_pass_(gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts)),
-      ground_shadow_(gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts)) {
+      ground_shadow_(gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts)),
+      cloud_tops_(tops) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(gl::kCloudMaxLayers)) {
         throw std::invalid_argument("weather '" + weather_.name + "' has " +
@@ -136,10 +137,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
                                     " layers (the renderer draws at most " +
                                     std::to_string(gl::kCloudMaxLayers) + ")");
     }
-    for (const clouds::WeatherMap& map : maps) {
-        weather_maps_.push_back(UploadWeatherMap(map));
-        cloud_tops_.push_back(clouds::CloudTopFraction(map));
-    }
+    for (const clouds::WeatherMap& map : maps) weather_maps_.push_back(UploadWeatherMap(map));
     shape_ = UploadNoise(noise.shape);
     detail_ = UploadNoise(noise.detail);
     glCreateBuffers(1, &uniforms_);

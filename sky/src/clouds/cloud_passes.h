@@ -25,10 +25,11 @@ std::span<const std::string_view> CloudShaderParts();
 class CloudPasses {
   public:
     // For a validated weather with at least one layer, its maps (clouds::BuildWeatherMap of
-    // each layer), validated settings and the noise they give. Throws std::invalid_argument for
-    // more than 4 layers.
+    // each layer) and their clouds::CloudTopFraction, validated settings and the noise they
+    // give. Throws std::invalid_argument for more than 4 layers.
     CloudPasses(const clouds::Weather& weather, const CloudSettings& settings,
-                const std::vector<clouds::WeatherMap>& maps, const clouds::CloudNoise& noise);
+                const std::vector<clouds::WeatherMap>& maps, const std::vector<double>& tops,
+                const clouds::CloudNoise& noise);
     ~CloudPasses();
     CloudPasses(const CloudPasses&) = delete;
     CloudPasses& operator=(const CloudPasses&) = delete;

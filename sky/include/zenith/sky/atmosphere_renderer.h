@@ -76,9 +76,10 @@ struct CloudSettings {
 };
 
 // What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found by
-// UpdateFrameLuts with the shadow map (every shadow_map_interval frames): the air and the ground below base_altitude get each light's direct
-// part times direct_transmittance and the sky's part times sky_transmittance, and the clouds'
-// own light as a source of luminance `luminance` over the upper hemisphere.
+// UpdateFrameLuts with the shadow map (every shadow_map_interval frames): the air and the ground
+// below base_altitude get each light's direct part times direct_transmittance and the sky's part
+// times sky_transmittance, and the clouds' own light as a source of luminance `luminance` over
+// the upper hemisphere.
 struct CloudShade {
     double base_altitude = 0.0;         // m above the ground; 0: no clouds
     double direct_transmittance = 1.0;  // toward the Sun (Moon at night), mean over the shadow map
