@@ -3,8 +3,8 @@
 // clouds; glFinish) with the reduced-resolution trace and reprojection (block 4, the default,
 // and 8) and with every pixel traced each frame (block 1), beside the clear-sky frame as the
 // baseline; the converged image against a full-resolution render with four times the steps;
-// the image after a fast turning flight against the converged truth; and the CPU march of the
-// host's sunlight through the clouds.
+// the image after a fast turning flight against the converged truth; the CPU march of the
+// host's sunlight through the clouds; and the cost of setting the weather.
 #include <benchmark/benchmark.h>
 #include <glad/gl.h>
 
@@ -120,6 +120,27 @@ void BM_CloudTransmittanceCpu(benchmark::State& state) {
     state.SetLabel(kViews[state.range(0)].name);
 }
 BENCHMARK(BM_CloudTransmittanceCpu)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// SetWeather with scattered cumulus (noise from the cache, weather map, GL programs, the CPU
+// copy for CloudTransmittance): on a new renderer, which also compiles the six sky programs
+// that composite the clouds, and again on the same renderer.
+// args: 1 = a new renderer each time
+void BM_SetWeather(benchmark::State& state) {
+    Fixture& f = Shared();
+    std::unique_ptr<AtmosphereRenderer> fresh;
+    for (auto _ : state) {
+        state.PauseTiming();
+        if (state.range(0) == 1) fresh = std::make_unique<AtmosphereRenderer>(f.earth);
+        AtmosphereRenderer& renderer = state.range(0) == 1 ? *fresh : f.renderer;
+        renderer.SetWeather(clouds::Weather{}, Settings(4));
+        glFinish();
+        state.ResumeTiming();
+        renderer.SetWeather(f.weather, Settings(4));
+        glFinish();
+    }
+    state.SetLabel(state.range(0) == 1 ? "new renderer" : "same renderer");
+}
+BENCHMARK(BM_SetWeather)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 double MeanLuminance(const LutImage& image) {
     double sum = 0.0;
