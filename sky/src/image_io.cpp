@@ -10,20 +10,19 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
-#include <fcntl.h>
 #include <half.h>
 #include <png.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <system_error>
+
+#include "zenith/base/atomic_file.h"
 
 namespace zenith::sky {
 namespace {
@@ -45,8 +44,6 @@ std::string Quoted(const std::filesystem::path& path) {
 [[noreturn]] void FailRead(const std::filesystem::path& path, const std::string& cause) {
     throw ImageError("cannot read image " + Quoted(path) + ": " + cause);
 }
-
-std::string ErrnoText(int error) { return std::generic_category().message(error); }
 
 // Why `image` cannot be encoded (empty if it can): encoders must never read past the vector.
 std::string ImageProblem(const Image& image) {
@@ -74,82 +71,13 @@ void CheckEV100(double ev100) {
     }
 }
 
-// Closes fd on scope exit unless released; used so every error path closes the descriptor.
-class FileDescriptor {
-  public:
-    explicit FileDescriptor(int fd) : fd_(fd) {}
-    ~FileDescriptor() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    FileDescriptor(const FileDescriptor&) = delete;
-    FileDescriptor& operator=(const FileDescriptor&) = delete;
-    int get() const { return fd_; }
-    // Closes now and reports close()'s error: on NFS and some full disks it is the first to fail.
-    int Close() {
-        const int result = ::close(fd_);
-        fd_ = -1;
-        return result;
-    }
-
-  private:
-    int fd_;
-};
-
-// Writes `bytes` to `<path>.partial`, fsyncs it and renames it over `path`, so `path` is either
-// the old file or the complete new one, even after a crash or power loss. The partial file is
-// removed on any error (only if this call created it: a directory or file of that name that was
-// already there and could not be opened is left alone).
+// The bytes of an encoded image, written with zenith::WriteFileAtomically; its FileError
+// becomes the ImageError this file promises, naming the same path and cause.
 void WriteFileAtomically(const std::filesystem::path& path, const std::vector<char>& bytes) {
-    if (path.filename().empty()) Fail(path, "the path names no file");
-    std::filesystem::path partial = path;
-    partial += ".partial";
-
-    const int fd =
-        ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);  // umask applies
-    if (fd < 0) {
-        const int error = errno;
-        Fail(path, "cannot create " + Quoted(partial) + ": " + ErrnoText(error));
-    }
-    FileDescriptor file(fd);
-    auto fail_and_remove = [&](const std::string& cause) {
-        if (file.get() >= 0) file.Close();
-        std::error_code ignored;
-        std::filesystem::remove(partial, ignored);
-        Fail(path, cause);
-    };
-
-    std::size_t written = 0;
-    while (written < bytes.size()) {
-        const ssize_t n = ::write(file.get(), bytes.data() + written, bytes.size() - written);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            const int error = errno;
-            fail_and_remove("writing " + Quoted(partial) + " failed after " +
-                            std::to_string(written) + " of " + std::to_string(bytes.size()) +
-                            " bytes: " + ErrnoText(error));
-        }
-        written += static_cast<std::size_t>(n);
-    }
-    if (::fsync(file.get()) != 0) {
-        const int error = errno;
-        fail_and_remove("fsync of " + Quoted(partial) + " failed: " + ErrnoText(error));
-    }
-    if (file.Close() != 0) {
-        const int error = errno;
-        fail_and_remove("closing " + Quoted(partial) + " failed: " + ErrnoText(error));
-    }
-    if (::rename(partial.c_str(), path.c_str()) != 0) {
-        const int error = errno;
-        fail_and_remove("renaming " + Quoted(partial) + " to it failed: " + ErrnoText(error));
-    }
-    // Make the rename itself durable. Best effort: some file systems refuse fsync on directories,
-    // and by now the new file is complete under its final name either way.
-    const std::filesystem::path directory =
-        path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    const int dir_fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dir_fd >= 0) {
-        ::fsync(dir_fd);
-        ::close(dir_fd);
+    try {
+        zenith::WriteFileAtomically(path, std::string_view(bytes.data(), bytes.size()));
+    } catch (const zenith::FileError& error) {
+        throw ImageError(std::string("cannot write image: ") + error.what());
     }
 }
 

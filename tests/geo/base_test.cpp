@@ -1,0 +1,98 @@
+// zenith/base: the error family, range messages, atomic files.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+
+#include "zenith/base/atomic_file.h"
+#include "zenith/base/error.h"
+#include "zenith/base/units.h"
+
+namespace zenith {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(Range, ContainsRespectsOpenEndsAndRejectsNan) {
+    EXPECT_TRUE(Range::Closed(0, 1).Contains(0.0));
+    EXPECT_TRUE(Range::Closed(0, 1).Contains(1.0));
+    EXPECT_FALSE(Range::Open(0, 1).Contains(0.0));
+    EXPECT_FALSE(Range::Open(0, 1).Contains(1.0));
+    EXPECT_TRUE(Range::LeftOpen(0, 1).Contains(1.0));
+    EXPECT_FALSE(Range::RightOpen(0, 1).Contains(1.0));
+    EXPECT_FALSE(Range::Closed(0, 1).Contains(std::numeric_limits<double>::quiet_NaN()));
+    EXPECT_FALSE(Range::Closed(0, 1e300).Contains(std::numeric_limits<double>::infinity()));
+}
+
+TEST(Require, MessageNamesFieldValueUnitAndRange) {
+    EXPECT_EQ(Require("fov", 60.0, "deg", Range::Open(0, 180)), 60.0);
+    try {
+        Require("fov", 200.0, "deg", Range::Open(0, 180));
+        FAIL() << "no throw";
+    } catch (const ArgumentError& e) {
+        EXPECT_STREQ(e.what(), "fov = 200 deg is out of range (expected (0, 180) deg)");
+    }
+    try {
+        Require("coverage", std::numeric_limits<double>::quiet_NaN(), "", Range::Closed(0, 1));
+        FAIL() << "no throw";
+    } catch (const Error& e) {  // every zenith error is a zenith::Error
+        EXPECT_STREQ(e.what(), "coverage = nan is out of range (expected [0, 1])");
+    }
+}
+
+TEST(Require, ThrowsTheRequestedType) {
+    EXPECT_THROW(Require<InputError>("x", -1.0, "m", Range::Closed(0, 1)), InputError);
+}
+
+TEST(AtLocation, FileAndLine) {
+    EXPECT_EQ(AtLocation("a/b.csv", 12, "bad time"), "a/b.csv:12: bad time");
+    EXPECT_EQ(AtLocation("a/b.csv", std::nullopt, "empty"), "a/b.csv: empty");
+}
+
+TEST(Units, Conversions) {
+    EXPECT_DOUBLE_EQ(Radians(180.0), kPi);
+    EXPECT_DOUBLE_EQ(Degrees(kPi / 2.0), 90.0);
+    EXPECT_DOUBLE_EQ(3.0 * kMetresPerFoot, 0.9144);
+}
+
+class AtomicFileTest : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir_ =
+            std::filesystem::temp_directory_path() /
+            ("zenith_atomic_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+             "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        std::filesystem::remove_all(dir_);
+        std::filesystem::create_directories(dir_);
+    }
+    void TearDown() override { std::filesystem::remove_all(dir_); }
+    std::filesystem::path dir_;
+};
+
+TEST_F(AtomicFileTest, ReplacesTheFileWhole) {
+    const auto path = dir_ / "a.txt";
+    WriteFileAtomically(path, "first");
+    WriteFileAtomically(path, "second, longer");
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, "second, longer");
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "a.txt.partial"));
+}
+
+TEST_F(AtomicFileTest, FailureNamesThePathAndLeavesNothing) {
+    const auto path = dir_ / "missing" / "a.txt";
+    try {
+        WriteFileAtomically(path, "x");
+        FAIL() << "no throw";
+    } catch (const FileError& e) {
+        EXPECT_THAT(e.what(), HasSubstr(path.string()));
+        EXPECT_THAT(e.what(), HasSubstr("No such file"));
+    }
+    EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+}
+
+}  // namespace
+}  // namespace zenith
