@@ -24,6 +24,18 @@ constexpr double kMaxHeight = 1.0e8;                 // 100,000 km: beyond that 
 
 }  // namespace
 
+Observer Observer::FromEcef(const glm::dvec3& ecef) {
+    if (!(std::isfinite(ecef.x) && std::isfinite(ecef.y) && std::isfinite(ecef.z))) {
+        throw ObserverError("ecef = (" + std::to_string(ecef.x) + ", " + std::to_string(ecef.y) +
+                            ", " + std::to_string(ecef.z) + ") m is not a finite position");
+    }
+    double lat = 0.0, lon = 0.0, h = 0.0;
+    GeographicLib::Geocentric::WGS84().Reverse(ecef.x, ecef.y, ecef.z, lat, lon, h);
+    Observer observer(lat, lon, h);
+    observer.ecef_ = ecef;
+    return observer;
+}
+
 Horizontal HorizontalFromEnu(const glm::dvec3& enu) {
     Horizontal h;
     h.distance = glm::length(enu);

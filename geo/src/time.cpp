@@ -331,10 +331,40 @@ Time TimeFromIso8601(std::string_view text, const TimeOptions& options) {
 }
 
 Time TimeNow(const TimeOptions& options) {
-    // POSIX time counts UTC days of exactly 86400 s.
     const auto now = std::chrono::system_clock::now().time_since_epoch();
-    const double seconds = std::chrono::duration<double>(now).count();
-    return TimeFromUtc(CivilFromJulianDate(2440587.5 + seconds / kSecondsPerDay), options);
+    return TimeFromUnixSeconds(std::chrono::duration<double>(now).count(), options);
+}
+
+namespace {
+constexpr double kUnixEpochJd = 2440587.5;
+// JulianDate's proleptic Gregorian range: -4712-01-01 to 9999-12-31.
+constexpr double kMinUnixSeconds = (0.0 - kUnixEpochJd) * kSecondsPerDay;
+constexpr double kMaxUnixSeconds = (5373484.5 - kUnixEpochJd) * kSecondsPerDay;
+}  // namespace
+
+double UnixSecondsFromCivil(const CivilTime& utc) {
+    // Whole days and the time of day apart, so the result keeps microseconds.
+    const double jd_midnight = JulianDate(utc.year, utc.month, utc.day, 0, 0, 0.0);
+    return std::round((jd_midnight - kUnixEpochJd) * kSecondsPerDay) + utc.hour * 3600.0 +
+           utc.minute * 60.0 + utc.second;
+}
+
+CivilTime CivilFromUnixSeconds(double unix_s) {
+    const double days = std::floor(unix_s / kSecondsPerDay);
+    const double second_of_day = unix_s - days * kSecondsPerDay;
+    CivilTime t = CivilFromJulianDate(kUnixEpochJd + days);
+    t.hour = static_cast<int>(second_of_day / 3600.0);
+    t.minute = static_cast<int>((second_of_day - t.hour * 3600.0) / 60.0);
+    t.second = second_of_day - t.hour * 3600.0 - t.minute * 60.0;
+    return t;
+}
+
+Time TimeFromUnixSeconds(double unix_s, const TimeOptions& options) {
+    if (!(unix_s >= kMinUnixSeconds && unix_s < kMaxUnixSeconds)) {
+        throw TimeError("unix_s = " + std::to_string(unix_s) +
+                        " s is out of range (expected a time between the years -4712 and 9999)");
+    }
+    return TimeFromUtc(CivilFromUnixSeconds(unix_s), options);
 }
 
 }  // namespace zenith::geo

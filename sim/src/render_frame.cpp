@@ -70,7 +70,7 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     const geo::SkyEphemeris sky_ephemeris = ephemeris.Compute(time, observer, ephemeris_options);
 
     const double aspect = static_cast<double>(request.size.x) / request.size.y;
-    const sky::Attitude attitude{request.heading_deg * kDegToRad, request.pitch_deg * kDegToRad,
+    const geo::Attitude attitude{request.heading_deg * kDegToRad, request.pitch_deg * kDegToRad,
                                  request.roll_deg * kDegToRad};
     sky::SkyState state = sky::MakeSkyState(sky_ephemeris, observer, atmosphere, attitude,
                                             request.fov_deg * kDegToRad, aspect);

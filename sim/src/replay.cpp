@@ -7,14 +7,13 @@
 #include <stdexcept>
 #include <string>
 
-#include <GeographicLib/Geocentric.hpp>
 #include <fmt/format.h>
 #include <glm/gtc/quaternion.hpp>
 
 #include "zenith/geo/observer.h"
-#include "zenith/sim/flight_log.h"
+#include "zenith/track/flight_log.h"
 #include "zenith/sim/sky_system.h"
-#include "zenith/sim/trajectory.h"
+#include "zenith/track/trajectory.h"
 
 namespace zenith::sim {
 namespace {
@@ -96,8 +95,8 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
         throw std::invalid_argument("--format: choose png, exr or both");
     }
 
-    const FlightLog log = ReadFlightLog(r.flight);
-    const Trajectory trajectory(log);
+    const track::FlightLog log = track::ReadFlightLog(r.flight);
+    const track::Trajectory trajectory(log);
     ReplayResult result;
     result.log_summary = log.summary.ToString();
     for (const std::string& note : trajectory.notes()) result.log_summary += "\n" + note;
@@ -118,7 +117,7 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
     fs::create_directories(r.out_dir);
 
     // The ground observer stands under the first valid point.
-    const TrajectoryState first = trajectory.At(trajectory.start_time_s());
+    const track::TrajectoryState first = trajectory.At(trajectory.start_time_s());
     const geo::Observer ground(first.lat_deg, first.lon_deg, first.height + kGroundEyeHeight);
 
     SkySystemSettings settings;
@@ -127,7 +126,7 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
     settings.clouds.block = 1;
     auto sky = SkySystem::CreateHeadless(settings);
     sky->SetWeatherOrigin(first.lat_deg, first.lon_deg);
-    sky->SetWeatherEpoch(geo::TimeFromUtc(CivilFromUnixSeconds(
+    sky->SetWeatherEpoch(geo::TimeFromUtc(geo::CivilFromUnixSeconds(
         trajectory.start_time_s() + r.time_offset_s)));
     sky->SetProjection(r.fov_deg * 0.017453292519943295, double(r.size.x) / r.size.y);
     const auto started = std::chrono::steady_clock::now();
@@ -144,13 +143,13 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
         const fs::path exr = r.out_dir / ReplayFrameName(i, "exr");
         const bool done = (!r.write_png || CompleteFrame(png)) && (!r.write_exr || CompleteFrame(exr));
         const double t = begin + static_cast<double>(i) / r.fps;
-        const TrajectoryState aircraft = trajectory.At(t);
+        const track::TrajectoryState aircraft = trajectory.At(t);
         if (done) {
             ++progress.skipped;
         } else if (aircraft.valid) {
             const double sky_time = trajectory.start_time_s() + r.time_offset_s +
                                     (t - trajectory.start_time_s()) * r.time_warp;
-            sky->SetTime(geo::TimeFromUtc(CivilFromUnixSeconds(sky_time)));
+            sky->SetTime(geo::TimeFromUtc(geo::CivilFromUnixSeconds(sky_time)));
             glm::dvec3 camera_ecef = aircraft.ecef;
             glm::dmat3 ecef_from_view;
             if (r.camera == ReplayCamera::kCockpit) {
@@ -173,10 +172,7 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
                 ecef_from_view = LookAlong(aircraft.ecef - camera_ecef, ground.ecef_from_enu()[2]);
             }
             sky->SetEcef(camera_ecef);
-            double lat = 0.0, lon = 0.0, h = 0.0;
-            GeographicLib::Geocentric::WGS84().Reverse(camera_ecef.x, camera_ecef.y, camera_ecef.z,
-                                                       lat, lon, h);
-            const geo::Observer camera(lat, lon, h);
+            const geo::Observer camera = geo::Observer::FromEcef(camera_ecef);
             sky->SetViewFromEnu(camera.enu_from_ecef() * ecef_from_view);
             sky->ResetCloudHistory();
             sky->Update();

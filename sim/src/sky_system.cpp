@@ -3,7 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <GeographicLib/Geocentric.hpp>
 #include <glm/gtc/constants.hpp>
 
 #include "zenith/geo/earth_orientation.h"
@@ -48,7 +47,7 @@ struct SkySystem::Impl {
 
     geo::Time time = geo::TimeNow();
     geo::Observer observer{0.0, 0.0, 0.0};
-    std::optional<sky::Attitude> attitude = sky::Attitude{};
+    std::optional<geo::Attitude> attitude = geo::Attitude{};
     glm::dmat3 world_from_view{1.0};
     double vertical_fov = glm::radians(60.0);
     double aspect = 16.0 / 9.0;
@@ -126,13 +125,11 @@ void SkySystem::SetGeodetic(double lat_deg, double lon_deg, double height_m) {
 }
 
 void SkySystem::SetEcef(const glm::dvec3& p) {
-    double lat = 0.0, lon = 0.0, h = 0.0;
-    GeographicLib::Geocentric::WGS84().Reverse(p.x, p.y, p.z, lat, lon, h);
-    impl_->observer = geo::Observer(lat, lon, h);
+    impl_->observer = geo::Observer::FromEcef(p);
 }
 
 void SkySystem::SetAttitude(double heading, double pitch, double roll) {
-    impl_->attitude = sky::Attitude{heading, pitch, roll};
+    impl_->attitude = geo::Attitude{heading, pitch, roll};
 }
 
 void SkySystem::SetViewFromEnu(const glm::dmat3& world_from_view) {
@@ -199,7 +196,7 @@ void SkySystem::Update() {
     } else {
         d.ephemeris.stars = d.stars;
     }
-    const sky::Attitude attitude = d.attitude.value_or(sky::Attitude{});
+    const geo::Attitude attitude = d.attitude.value_or(geo::Attitude{});
     d.state = sky::MakeSkyState(d.ephemeris, d.observer, d.atmosphere, attitude, d.vertical_fov,
                                 d.aspect);
     if (!d.attitude) d.state.camera.world_from_view = d.world_from_view;

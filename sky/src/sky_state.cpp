@@ -38,26 +38,12 @@ double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double 
     return 2.0 / 3.0 * albedo * s * s * phi;
 }
 
-glm::dmat3 ViewFromAttitude(const Attitude& attitude) {
-    // ENU axes: x east, y north, z up. Forward from heading and pitch; right level at zero roll,
-    // then both turned about forward by the roll (right wing down for positive roll).
-    const double ch = std::cos(attitude.heading), sh = std::sin(attitude.heading);
-    const double cp = std::cos(attitude.pitch), sp = std::sin(attitude.pitch);
-    const glm::dvec3 forward{sh * cp, ch * cp, sp};
-    const glm::dvec3 level_right{ch, -sh, 0.0};
-    const glm::dvec3 level_up = glm::cross(level_right, forward);
-    const double cr = std::cos(attitude.roll), sr = std::sin(attitude.roll);
-    const glm::dvec3 right = level_right * cr - level_up * sr;
-    const glm::dvec3 up = level_up * cr + level_right * sr;
-    return glm::dmat3(right, up, -forward);
-}
-
 SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
-                      const Atmosphere& atmosphere, const Attitude& attitude,
+                      const Atmosphere& atmosphere, const geo::Attitude& attitude,
                       double vertical_fov, double aspect) {
     SkyState s;
     s.camera.position = glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + observer.height_m());
-    s.camera.world_from_view = ViewFromAttitude(attitude);
+    s.camera.world_from_view = geo::EnuFromView(attitude);
     s.camera.vertical_fov = vertical_fov;
     s.camera.aspect = aspect;
 

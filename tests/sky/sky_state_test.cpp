@@ -16,25 +16,6 @@ void ExpectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
     EXPECT_NEAR(glm::length(a - b), 0.0, tolerance) << a.x << " " << a.y << " " << a.z;
 }
 
-TEST(Attitude, HeadingPitchRollFollowAircraftConventions) {
-    // Columns: right, up, backward; ENU axes x east, y north, z up.
-    glm::dmat3 m = ViewFromAttitude({0.0, 0.0, 0.0});
-    ExpectNear(-m[2], {0, 1, 0}, 1e-12);  // looking north
-    ExpectNear(m[0], {1, 0, 0}, 1e-12);   // right wing east
-    ExpectNear(m[1], {0, 0, 1}, 1e-12);
-    m = ViewFromAttitude({90.0 * kDeg, 0.0, 0.0});
-    ExpectNear(-m[2], {1, 0, 0}, 1e-12);  // heading 090 looks east
-    m = ViewFromAttitude({0.0, 30.0 * kDeg, 0.0});
-    ExpectNear(-m[2], {0, std::cos(30 * kDeg), std::sin(30 * kDeg)}, 1e-12);  // nose up
-    m = ViewFromAttitude({0.0, 0.0, 20.0 * kDeg});
-    EXPECT_LT(m[0].z, 0.0);  // positive roll: right wing down
-    ExpectNear(-m[2], {0, 1, 0}, 1e-12);
-    // Always a rotation.
-    const glm::dmat3 r = ViewFromAttitude({1.0, -0.4, 2.5});
-    EXPECT_NEAR(glm::determinant(r), 1.0, 1e-12);
-    ExpectNear(glm::transpose(r) * r[0], {1, 0, 0}, 1e-12);
-}
-
 TEST(MoonLight, LambertSphereClosedForms) {
     const double s = std::sin(0.0045);
     // Full: (2/3) A sin^2(r); quarter (90 deg): Phi = 1 / pi; new: 0.

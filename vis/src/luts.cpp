@@ -113,7 +113,7 @@ Luts ComputeLuts(const Scene& scene) {
     const geo::Time time = geo::TimeFromIso8601(scene.utc);
     const geo::Observer observer(scene.lat_deg, scene.lon_deg, scene.height_m);
     const geo::SkyEphemeris ephemeris = geo::Ephemeris().Compute(time, observer);
-    const sky::Attitude attitude{scene.heading_deg * kDeg, scene.pitch_deg * kDeg,
+    const geo::Attitude attitude{scene.heading_deg * kDeg, scene.pitch_deg * kDeg,
                                  scene.roll_deg * kDeg};
     const sky::SkyState state = sky::MakeSkyState(ephemeris, observer, luts.atmosphere, attitude,
                                                   scene.fov_deg * kDeg, scene.aspect);

@@ -10,8 +10,8 @@
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/observer.h"
 #include "zenith/geo/time.h"
-#include "zenith/sim/flight_log.h"
-#include "zenith/sim/trajectory.h"
+#include "zenith/track/flight_log.h"
+#include "zenith/track/trajectory.h"
 
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
@@ -467,8 +467,8 @@ vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, dou
         throw std::invalid_argument(fmt::format("--step = {} s is out of range (expected > 0)",
                                                 step_s));
     }
-    const sim::FlightLog log = sim::ReadFlightLog(flight);
-    const sim::Trajectory trajectory(log);
+    const track::FlightLog log = track::ReadFlightLog(flight);
+    const track::Trajectory trajectory(log);
     auto points = vtkSmartPointer<vtkPoints>::New();
     points->SetDataTypeToDouble();
     auto lines = vtkSmartPointer<vtkCellArray>::New();
@@ -490,7 +490,7 @@ vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, dou
         std::vector<vtkIdType> ids;
         for (double t = begin;; t += step_s) {
             const double tt = std::min(t, end);
-            const sim::TrajectoryState s = trajectory.At(tt);
+            const track::TrajectoryState s = trajectory.At(tt);
             if (s.valid) {
                 ids.push_back(points->InsertNextPoint(s.ecef.x, s.ecef.y, s.ecef.z));
                 time->InsertNextValue(tt - t0);
@@ -499,7 +499,7 @@ vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, dou
                 lat->InsertNextValue(s.lat_deg);
                 lon->InsertNextValue(s.lon_deg);
                 const geo::SkyEphemeris e = ephemeris.Compute(
-                    geo::TimeFromUtc(sim::CivilFromUnixSeconds(tt)),
+                    geo::TimeFromUtc(geo::CivilFromUnixSeconds(tt)),
                     geo::Observer(s.lat_deg, s.lon_deg, s.height));
                 sun->InsertNextValue(e.sun.elevation / kDeg);
             }
@@ -591,7 +591,7 @@ vtkSmartPointer<vtkRenderer> MakeOverview(const sky::Atmosphere& a, const Scene&
         auto* height = flight->GetPointData()->GetArray("height_m");
         auto* unix_time = flight->GetPointData()->GetArray("unix_time_s");
         observer = geo::Observer(lat->GetTuple1(0), lon->GetTuple1(0), height->GetTuple1(0));
-        const geo::CivilTime civil = sim::CivilFromUnixSeconds(unix_time->GetTuple1(0));
+        const geo::CivilTime civil = geo::CivilFromUnixSeconds(unix_time->GetTuple1(0));
         time = geo::TimeFromUtc(civil);
         when = fmt::format("{:04d}-{:02d}-{:02d}T{:02d}:{:02d}:{:02.0f}Z", civil.year, civil.month,
                            civil.day, civil.hour, civil.minute, civil.second);

@@ -56,7 +56,7 @@ vtkSmartPointer<vtkImageData> SliceImage(const Slice& slice, bool log);
 vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind);
 void WriteVti(vtkImageData* image, const std::filesystem::path& path);
 
-// A flight log replayed through sim::Trajectory every step_s seconds: ECEF polylines (one per
+// A flight log replayed through track::Trajectory every step_s seconds: ECEF polylines (one per
 // valid stretch) with point data "time_s" (since the first fix), "unix_time_s", "height_m",
 // "lat_deg", "lon_deg" and "sun_elevation_deg" (geo ephemeris, geometric).
 vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, double step_s);

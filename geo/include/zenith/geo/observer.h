@@ -25,6 +25,10 @@ public:
     // outside [-90, 90], longitude outside [-540, 540] (wrapped to [-180, 180)), or a height
     // outside [-12000 m, 1e8 m], or any NaN/infinity.
     Observer(double lat_deg, double lon_deg, double height_m);
+    // The observer at an ECEF position (metres, WGS84), keeping that position exactly rather
+    // than the one its rounded geodetic coordinates would give back. Throws ObserverError for a
+    // non-finite position or a height outside the range above.
+    static Observer FromEcef(const glm::dvec3& ecef);
 
     double lat_deg() const { return lat_deg_; }
     double lon_deg() const { return lon_deg_; }

@@ -77,4 +77,11 @@ Time TimeFromIso8601(std::string_view text, const TimeOptions& options = {});
 // UTC now from the system clock.
 Time TimeNow(const TimeOptions& options = {});
 
+// POSIX ("Unix") time: seconds since 1970-01-01T00:00:00Z with every day 86400 s long, so a leap
+// second has no number of its own (as in flight logs, simulators and operating systems).
+double UnixSecondsFromCivil(const CivilTime& utc);
+CivilTime CivilFromUnixSeconds(double unix_s);
+// Throws TimeError for a non-finite value or one outside the years -4712..9999.
+Time TimeFromUnixSeconds(double unix_s, const TimeOptions& options = {});
+
 }  // namespace zenith::geo

@@ -16,18 +16,11 @@
 #include <glm/glm.hpp>
 
 #include "zenith/geo/ephemeris.h"
+#include "zenith/geo/frames.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/lut.h"
 
 namespace zenith::sky {
-
-// Heading from true north clockwise, pitch up positive, roll right wing down positive (aircraft
-// convention), radians.
-struct Attitude {
-    double heading = 0.0;
-    double pitch = 0.0;
-    double roll = 0.0;
-};
 
 struct SkyState {
     Camera camera;
@@ -41,9 +34,6 @@ struct SkyState {
 // the observer per unit solar illuminance, times the solid angle it subtends (Moon as a light).
 double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double angular_radius);
 
-// The world_from_view rotation for an attitude, in the ENU-aligned frame described above.
-glm::dmat3 ViewFromAttitude(const Attitude& attitude);
-
 // The rotation from the renderer's frame at `observer` (its ENU axes) to the weather frame of
 // a weather map whose origin is at (origin_lat_deg, origin_lon_deg): ENU axes there, so the map's
 // x runs east and y north at its origin (CloudView::weather_from_world). A host that moves keeps
@@ -54,7 +44,7 @@ glm::dmat3 WeatherFrame(const geo::Observer& observer, double origin_lat_deg,
 // Builds the renderer's view of the sky from an ephemeris computed for `observer`. Sun and Moon
 // illuminances scale with their distances (solar_illuminance is for 1 au).
 SkyState MakeSkyState(const geo::SkyEphemeris& ephemeris, const geo::Observer& observer,
-                      const Atmosphere& atmosphere, const Attitude& attitude,
+                      const Atmosphere& atmosphere, const geo::Attitude& attitude,
                       double vertical_fov, double aspect);
 
 }  // namespace zenith::sky

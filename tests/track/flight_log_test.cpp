@@ -1,6 +1,6 @@
 // Flight-log readers: the sample flights in data/flights, and malformed logs given inline, whose
 // messages must name the line.
-#include "zenith/sim/flight_log.h"
+#include "zenith/track/flight_log.h"
 
 #include <gtest/gtest.h>
 
@@ -9,13 +9,13 @@
 #include <numbers>
 #include <string>
 
-namespace zenith::sim {
+namespace zenith::track {
 namespace {
 
 const std::string kFlights = std::string(ZENITH_SOURCE_DIR) + "/data/flights/";
 constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 
-double Iso(const char* text) { return UnixSecondsFromCivil(geo::ParseIso8601(text)); }
+double Iso(const char* text) { return geo::UnixSecondsFromCivil(geo::ParseIso8601(text)); }
 
 bool AnySkippedContains(const FlightLog& log, const std::string& text) {
     return std::any_of(
@@ -35,18 +35,6 @@ std::string ThrownMessage(auto&& f) {
         return e.what();
     }
     return "(nothing thrown)";
-}
-
-TEST(UnixTime, RoundTripsCivil) {
-    EXPECT_DOUBLE_EQ(UnixSecondsFromCivil({1970, 1, 1, 0, 0, 0.0}), 0.0);
-    EXPECT_DOUBLE_EQ(UnixSecondsFromCivil({2024, 6, 22, 3, 30, 0.0}), 1719027000.0);
-    const geo::CivilTime t = CivilFromUnixSeconds(1719027000.25);
-    EXPECT_EQ(t.year, 2024);
-    EXPECT_EQ(t.month, 6);
-    EXPECT_EQ(t.day, 22);
-    EXPECT_EQ(t.hour, 3);
-    EXPECT_EQ(t.minute, 30);
-    EXPECT_NEAR(t.second, 0.25, 1e-6);
 }
 
 // --- sample flights ---------------------------------------------------------------------------
@@ -95,14 +83,14 @@ TEST(SampleFlights, SunsetApproachKmlHasAttitude) {
     EXPECT_TRUE(log.HasAttitude());
     EXPECT_EQ(log.AltitudeKinds(), std::vector<AltitudeKind>{AltitudeKind::kMsl});
     EXPECT_DOUBLE_EQ(log.samples.back().time_s, Iso("2024-06-22T03:30:00Z"));
-    const Attitude& a = *log.samples.back().attitude;
-    EXPECT_NEAR(a.heading, 298.0 * kRadPerDeg, 1e-9);
-    EXPECT_NEAR(a.roll, 0.0, 1e-9);
+    const geo::Attitude& a = *log.samples.back().attitude;
+    EXPECT_NEAR(a.heading_rad, 298.0 * kRadPerDeg, 1e-9);
+    EXPECT_NEAR(a.roll_rad, 0.0, 1e-9);
     // The base turn banks right.
     const double max_roll =
         std::max_element(log.samples.begin(), log.samples.end(), [](const auto& x, const auto& y) {
-            return x.attitude->roll < y.attitude->roll;
-        })->attitude->roll;
+            return x.attitude->roll_rad < y.attitude->roll_rad;
+        })->attitude->roll_rad;
     EXPECT_NEAR(max_roll, std::atan(80.0 * 3.0 * kRadPerDeg / 9.80665), 1e-3);
 }
 
@@ -324,9 +312,9 @@ TEST(KmlReader, ReadsWhenCoordAngles) {
     ASSERT_EQ(log.samples.size(), 2u) << log.summary.ToString();
     EXPECT_EQ(log.description, "K");
     EXPECT_EQ(*log.samples[0].msl_altitude, 1000.0);
-    EXPECT_NEAR(log.samples[0].attitude->heading, 270.0 * kRadPerDeg, 1e-12);
-    EXPECT_NEAR(log.samples[0].attitude->pitch, 2.0 * kRadPerDeg, 1e-12);
-    EXPECT_NEAR(log.samples[0].attitude->roll, -10.0 * kRadPerDeg, 1e-12);
+    EXPECT_NEAR(log.samples[0].attitude->heading_rad, 270.0 * kRadPerDeg, 1e-12);
+    EXPECT_NEAR(log.samples[0].attitude->pitch_rad, 2.0 * kRadPerDeg, 1e-12);
+    EXPECT_NEAR(log.samples[0].attitude->roll_rad, -10.0 * kRadPerDeg, 1e-12);
     EXPECT_EQ(log.samples[1].line, 13);
     EXPECT_TRUE(AnySkippedContains(log, "t.kml:12: bad <gx:coord>")) << log.summary.ToString();
     EXPECT_TRUE(AnySkippedContains(log, "t.kml:15: bad <gx:angles>")) << log.summary.ToString();
@@ -375,7 +363,7 @@ TEST(CsvReader, IsoAndUnixTimesUnitsAndAttitude) {
     EXPECT_DOUBLE_EQ(*log.samples[0].pressure_altitude, 900 * 0.3048);
     EXPECT_DOUBLE_EQ(*log.samples[0].ellipsoid_height, 320.5);
     EXPECT_FALSE(log.samples[1].ellipsoid_height);
-    EXPECT_NEAR(log.samples[0].attitude->heading, std::numbers::pi / 2, 1e-12);
+    EXPECT_NEAR(log.samples[0].attitude->heading_rad, std::numbers::pi / 2, 1e-12);
     EXPECT_EQ(log.samples[0].line, 3);
     EXPECT_TRUE(AnyNoteContains(log, "columns not used: note"));
 }
@@ -442,4 +430,4 @@ TEST(CsvReader, HeaderErrorsThrow) {
 }
 
 }  // namespace
-}  // namespace zenith::sim
+}  // namespace zenith::track

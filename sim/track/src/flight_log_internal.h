@@ -5,9 +5,9 @@
 #include <string>
 #include <string_view>
 
-#include "zenith/sim/flight_log.h"
+#include "zenith/track/flight_log.h"
 
-namespace zenith::sim::detail {
+namespace zenith::track::detail {
 
 // Collects samples, skipped records and notes while a reader runs, then checks the time order
 // and geometry of the whole track (Finish) the same way for every format.
@@ -45,4 +45,4 @@ std::string FormatClock(double time_s);
 
 std::string_view Trim(std::string_view text);
 
-}  // namespace zenith::sim::detail
+}  // namespace zenith::track::detail

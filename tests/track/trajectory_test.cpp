@@ -1,7 +1,7 @@
 // Trajectory: attitude derivation against analytic flight (coordinated turn, straight climb),
 // interpolation (exact at samples, smooth between, across 180 deg, over a pole, gaps), altitude
 // kinds and the geoid.
-#include "zenith/sim/trajectory.h"
+#include "zenith/track/trajectory.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <numbers>
 #include <optional>
 
-namespace zenith::sim {
+namespace zenith::track {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -78,11 +78,11 @@ TEST(AttitudeDerivation, CoordinatedTurnBankMatchesAnalytic) {
                 const TrajectoryState s = trajectory.At(kT0 + i * dt);
                 ASSERT_TRUE(s.valid);
                 EXPECT_FALSE(s.attitude_from_log);
-                EXPECT_NEAR(s.attitude.roll, bank, kAngleTolerance) << "sample " << i;
-                EXPECT_NEAR(s.attitude.pitch, 0.0, kAngleTolerance) << "sample " << i;
+                EXPECT_NEAR(s.attitude.roll_rad, bank, kAngleTolerance) << "sample " << i;
+                EXPECT_NEAR(s.attitude.pitch_rad, 0.0, kAngleTolerance) << "sample " << i;
                 // Heading is tangent to the circle: 90 deg right of the radius for a right turn.
                 const double expected_heading = sign * speed / radius * i * dt + sign * kPi / 2;
-                EXPECT_NEAR(AngleDiff(s.attitude.heading, expected_heading), 0.0, kAngleTolerance)
+                EXPECT_NEAR(AngleDiff(s.attitude.heading_rad, expected_heading), 0.0, kAngleTolerance)
                     << "sample " << i;
             }
         }
@@ -108,9 +108,9 @@ TEST(AttitudeDerivation, StraightClimbPitchIsFlightPathAngle) {
     const Trajectory trajectory(log);
     for (int i = 0; i < 30; ++i) {
         const TrajectoryState s = trajectory.At(kT0 + 2.0 * i);
-        EXPECT_NEAR(s.attitude.pitch, std::atan(climb / ground_speed), kAngleTolerance) << i;
-        EXPECT_NEAR(s.attitude.roll, 0.0, kAngleTolerance) << i;
-        EXPECT_NEAR(AngleDiff(s.attitude.heading, 0.0), 0.0, kAngleTolerance) << i;
+        EXPECT_NEAR(s.attitude.pitch_rad, std::atan(climb / ground_speed), kAngleTolerance) << i;
+        EXPECT_NEAR(s.attitude.roll_rad, 0.0, kAngleTolerance) << i;
+        EXPECT_NEAR(AngleDiff(s.attitude.heading_rad, 0.0), 0.0, kAngleTolerance) << i;
     }
 }
 
@@ -119,24 +119,8 @@ TEST(AttitudeDerivation, SlowSamplesHoldHeadingWingsLevel) {
     for (int i = 0; i < 5; ++i) log.samples.push_back(Sample(kT0 + i, 10.0, 20.0, 100.0 + i));
     const Trajectory trajectory(log);
     const TrajectoryState s = trajectory.At(kT0 + 2.0);
-    EXPECT_DOUBLE_EQ(s.attitude.roll, 0.0);
-    EXPECT_NEAR(s.attitude.pitch, 0.0, 1e-12);
-}
-
-TEST(Attitude, EulerRoundTripsThroughEcefQuaternion) {
-    for (double lat : {-89.0, -30.0, 0.0, 45.0, 90.0}) {
-        for (double lon : {-180.0, -60.0, 0.0, 179.5}) {
-            const Attitude a{1.2, -0.3, 0.7};
-            const Attitude b = AttitudeFromEcefFromBody(EcefFromBody(a, lat, lon), lat, lon);
-            EXPECT_NEAR(b.heading, a.heading, 1e-12);
-            EXPECT_NEAR(b.pitch, a.pitch, 1e-12);
-            EXPECT_NEAR(b.roll, a.roll, 1e-12);
-        }
-    }
-    // Body x (forward) at heading 90, level, on the equator at lon 0 points east: ECEF +y.
-    const glm::dvec3 forward =
-        glm::mat3_cast(EcefFromBody({kPi / 2, 0, 0}, 0.0, 0.0)) * glm::dvec3(1, 0, 0);
-    EXPECT_NEAR(forward.y, 1.0, 1e-12);
+    EXPECT_DOUBLE_EQ(s.attitude.roll_rad, 0.0);
+    EXPECT_NEAR(s.attitude.pitch_rad, 0.0, 1e-12);
 }
 
 TEST(Interpolation, ExactAtSamplesSmoothBetween) {
@@ -189,7 +173,7 @@ TEST(Interpolation, AcrossTheAntimeridian) {
         // Continuous in longitude modulo 360.
         const double expected_lon = 179.98 + deg_per_s * t;
         EXPECT_NEAR(std::remainder(s.lon_deg - expected_lon, 360.0), 0.0, 1e-8) << t;
-        EXPECT_NEAR(AngleDiff(s.attitude.heading, kPi / 2), 0.0, kAngleTolerance) << t;
+        EXPECT_NEAR(AngleDiff(s.attitude.heading_rad, kPi / 2), 0.0, kAngleTolerance) << t;
     }
 }
 
@@ -224,7 +208,7 @@ TEST(Interpolation, OverTheNorthPole) {
         }
         previous_q = s.ecef_from_body;
         if (t < 95.0) {
-            EXPECT_NEAR(AngleDiff(s.attitude.heading, 0.0), 0.0, 1e-3) << t;
+            EXPECT_NEAR(AngleDiff(s.attitude.heading_rad, 0.0), 0.0, 1e-3) << t;
         }
     }
 }
@@ -233,7 +217,7 @@ TEST(Interpolation, GapsAreInvalidAndLoggedAttitudeIsSlerped) {
     FlightLog log;
     for (double t : {0.0, 1.0, 2.0, 300.0, 301.0}) {
         FlightSample s = Sample(kT0 + t, 45.0, 7.0 + t * 1e-4, 1000.0);
-        s.attitude = Attitude{(t == 1.0 ? 10.0 : 350.0) * kRadPerDeg, 0.0, 0.0};
+        s.attitude = geo::Attitude{(t == 1.0 ? 10.0 : 350.0) * kRadPerDeg, 0.0, 0.0};
         log.samples.push_back(s);
     }
     const Trajectory trajectory(log, Options(std::nullopt, 60.0));
@@ -245,7 +229,7 @@ TEST(Interpolation, GapsAreInvalidAndLoggedAttitudeIsSlerped) {
     // Halfway between heading 350 and 10 is north, not south.
     const TrajectoryState mid = trajectory.At(kT0 + 0.5);
     EXPECT_TRUE(mid.attitude_from_log);
-    EXPECT_NEAR(AngleDiff(mid.attitude.heading, 0.0), 0.0, 1e-3);
+    EXPECT_NEAR(AngleDiff(mid.attitude.heading_rad, 0.0), 0.0, 1e-3);
     EXPECT_TRUE(std::any_of(
         trajectory.notes().begin(), trajectory.notes().end(),
         [](const std::string& n) { return n.find("gap of 298 s") != std::string::npos; }));
@@ -273,7 +257,7 @@ TEST(Altitude, KindsStayApartAndConvertAsDocumented) {
     EXPECT_NEAR(GeometricFromGeopotential(11000.0), 11019.07, 0.01);  // ISA tropopause
     EXPECT_THROW(Trajectory(log, Options(AltitudeKind::kEllipsoid)), FlightLogError);
 
-    const GeoidGrid* geoid = GeoidGrid::Default();
+    const geo::GeoidGrid* geoid = geo::GeoidGrid::Default();
     if (!geoid) GTEST_SKIP() << "no geoid grid (Debian proj-data): MSL conversion not checked";
     const Trajectory msl(log);
     const double n = geoid->UndulationAt(46.0, 8.0);
@@ -281,29 +265,6 @@ TEST(Altitude, KindsStayApartAndConvertAsDocumented) {
     EXPECT_NEAR(msl.At(kT0).height, 3000.0 + n, 1e-6);
     EXPECT_NEAR(Trajectory(log, Options(AltitudeKind::kPressure)).At(kT0).height,
                 GeometricFromGeopotential(2900.0) + n, 1e-6);
-}
-
-TEST(Geoid, Egm96GridMatchesNgaTestPoints) {
-    const GeoidGrid* geoid = GeoidGrid::Default();
-    if (!geoid) GTEST_SKIP() << "no geoid grid (Debian proj-data)";
-    // NGA's EGM96 test values (WW15MGH.GRD interpolation, metres).
-    struct Point {
-        double lat, lon, n;
-    };
-    for (const Point& p :
-         {Point{38.6281550, 269.7791550, -31.628}, Point{-14.6212170, 305.0211140, -2.969},
-          Point{46.8743190, 102.4487290, -43.575}, Point{-23.6174460, 133.8747120, 15.871},
-          Point{38.6254730, 359.9995000, 50.066}, Point{-0.4667440, 0.0023000, 17.329}}) {
-        // Bilinear on the 15' grid versus NGA's spline: a few centimetres.
-        EXPECT_NEAR(geoid->UndulationAt(p.lat, p.lon), p.n, 0.1) << p.lat << " " << p.lon;
-    }
-    EXPECT_NEAR(geoid->UndulationAt(90.0, 0.0), 13.6, 0.1);  // the grid's pole row
-}
-
-TEST(Geoid, BadGridFilesSayWhy) {
-    EXPECT_THROW(GeoidGrid::LoadGtx("/nonexistent.gtx"), FlightLogError);
-    EXPECT_THROW(GeoidGrid::LoadGtx(std::string(ZENITH_SOURCE_DIR) + "/data/flights/README.md"),
-                 FlightLogError);
 }
 
 TEST(SampleFlights, AllBecomeTrajectories) {
@@ -316,8 +277,8 @@ TEST(SampleFlights, AllBecomeTrajectories) {
         for (double t = trajectory.start_time_s(); t <= trajectory.end_time_s(); t += 7.3) {
             const TrajectoryState s = trajectory.At(t);
             ASSERT_TRUE(s.valid) << name;
-            ASSERT_TRUE(std::isfinite(s.attitude.heading) && std::isfinite(s.attitude.roll) &&
-                        std::isfinite(s.attitude.pitch))
+            ASSERT_TRUE(std::isfinite(s.attitude.heading_rad) && std::isfinite(s.attitude.roll_rad) &&
+                        std::isfinite(s.attitude.pitch_rad))
                 << name;
         }
     }
@@ -333,11 +294,11 @@ TEST(SampleFlights, GliderBankFromThermallingCircles) {
     double sum = 0.0;
     int n = 0;
     for (double t = 0; t < 60.0; t += 1.0) {
-        sum += trajectory.At(log.samples.front().time_s + 210.0 + t).attitude.roll;
+        sum += trajectory.At(log.samples.front().time_s + 210.0 + t).attitude.roll_rad;
         ++n;
     }
     EXPECT_NEAR(sum / n, 40.0 * kRadPerDeg, 4.0 * kRadPerDeg);
 }
 
 }  // namespace
-}  // namespace zenith::sim
+}  // namespace zenith::track

@@ -1,6 +1,6 @@
 // Trajectory: Hermite positions in ECEF, derived or logged attitude slerped between samples,
 // heights on the WGS84 ellipsoid. See trajectory.h for the method and its limits.
-#include "zenith/sim/trajectory.h"
+#include "zenith/track/trajectory.h"
 
 #include <fmt/format.h>
 
@@ -16,7 +16,7 @@
 #include <limits>
 #include <numbers>
 
-namespace zenith::sim {
+namespace zenith::track {
 
 namespace {
 
@@ -26,9 +26,6 @@ constexpr double kRadPerDeg = std::numbers::pi / 180.0;
 constexpr double kMinCourseSpeed = 1.0;  // m/s
 // Three points whose circle is wider than this are a straight line (curvature below GNSS noise).
 constexpr double kMaxTurnRadius = 1.0e7;  // m
-constexpr std::size_t kGtxHeaderBytes = 40;
-// GTX no-data value (NOAA VDatum).
-constexpr float kGtxNoData = -88.8888f;
 
 const GeographicLib::Geocentric& Wgs84() { return GeographicLib::Geocentric::WGS84(); }
 
@@ -36,35 +33,6 @@ glm::dvec3 EcefFromGeodetic(double lat_deg, double lon_deg, double height) {
     double x, y, z;
     Wgs84().Forward(lat_deg, lon_deg, height, x, y, z);
     return {x, y, z};
-}
-
-double ReadBigEndianDouble(const unsigned char* p) {
-    std::uint64_t u = 0;
-    for (int i = 0; i < 8; ++i) u = (u << 8) | p[i];
-    return std::bit_cast<double>(u);
-}
-
-std::int32_t ReadBigEndianInt32(const unsigned char* p) {
-    std::uint32_t u = 0;
-    for (int i = 0; i < 4; ++i) u = (u << 8) | p[i];
-    return std::bit_cast<std::int32_t>(u);
-}
-
-float ReadBigEndianFloat(const unsigned char* p) {
-    std::uint32_t u = 0;
-    for (int i = 0; i < 4; ++i) u = (u << 8) | p[i];
-    return std::bit_cast<float>(u);
-}
-
-// Rotation from body to NED for heading, pitch, roll (3-2-1).
-glm::dmat3 NedFromBody(const Attitude& a) {
-    const double cy = std::cos(a.heading), sy = std::sin(a.heading);
-    const double cp = std::cos(a.pitch), sp = std::sin(a.pitch);
-    const double cr = std::cos(a.roll), sr = std::sin(a.roll);
-    // glm is column-major: each glm::dvec3 below is one column (a body axis in NED).
-    return glm::dmat3(glm::dvec3(cp * cy, cp * sy, -sp),
-                      glm::dvec3(sr * sp * cy - cr * sy, sr * sp * sy + cr * cy, sr * cp),
-                      glm::dvec3(cr * sp * cy + sr * sy, cr * sp * sy - sr * cy, cr * cp));
 }
 
 struct Derived {
@@ -77,7 +45,7 @@ struct Derived {
 Derived DeriveAttitude(const std::array<glm::dvec3, 3>& ecef, const std::array<double, 3>& t,
                        const std::array<double, 3>& heights, std::size_t at, double lat_deg,
                        double lon_deg) {
-    const glm::dmat3 enu_from_ecef = glm::transpose(EcefFromNed(lat_deg, lon_deg));
+    const glm::dmat3 enu_from_ecef = glm::transpose(geo::EcefFromNed(lat_deg, lon_deg));
     // rows of enu_from_ecef as NED: use north (x) and east (y) as horizontal axes.
     std::array<glm::dvec2, 3> p;  // (north, east), metres, relative to the point `at`
     for (std::size_t k = 0; k < 3; ++k) {
@@ -125,35 +93,11 @@ Derived DeriveAttitude(const std::array<glm::dvec3, 3>& ecef, const std::array<d
 }
 
 std::string Clock(double time_s) {
-    const geo::CivilTime t = CivilFromUnixSeconds(time_s);
+    const geo::CivilTime t = geo::CivilFromUnixSeconds(time_s);
     return fmt::format("{:02}:{:02}:{:02.0f}", t.hour, t.minute, std::floor(t.second));
 }
 
 }  // namespace
-
-glm::dmat3 EcefFromNed(double lat_deg, double lon_deg) {
-    const double sphi = std::sin(lat_deg * kRadPerDeg), cphi = std::cos(lat_deg * kRadPerDeg);
-    const double slam = std::sin(lon_deg * kRadPerDeg), clam = std::cos(lon_deg * kRadPerDeg);
-    return glm::dmat3(glm::dvec3(-sphi * clam, -sphi * slam, cphi), glm::dvec3(-slam, clam, 0.0),
-                      glm::dvec3(-cphi * clam, -cphi * slam, -sphi));
-}
-
-glm::dquat EcefFromBody(const Attitude& attitude, double lat_deg, double lon_deg) {
-    return glm::normalize(glm::quat_cast(EcefFromNed(lat_deg, lon_deg) * NedFromBody(attitude)));
-}
-
-Attitude AttitudeFromEcefFromBody(const glm::dquat& ecef_from_body, double lat_deg,
-                                  double lon_deg) {
-    const glm::dmat3 m =
-        glm::transpose(EcefFromNed(lat_deg, lon_deg)) * glm::mat3_cast(ecef_from_body);
-    // m[col][row]: C31 = -sin(pitch), C21/C11 = tan(heading), C32/C33 = tan(roll).
-    Attitude a;
-    a.pitch = std::asin(std::clamp(-m[0][2], -1.0, 1.0));
-    a.heading = std::atan2(m[0][1], m[0][0]);
-    if (a.heading < 0.0) a.heading += 2.0 * std::numbers::pi;
-    a.roll = std::atan2(m[1][2], m[2][2]);
-    return a;
-}
 
 double CoordinatedTurnBank(double speed, double turn_rate) {
     return std::atan(speed * turn_rate / kStandardGravity);
@@ -161,77 +105,6 @@ double CoordinatedTurnBank(double speed, double turn_rate) {
 
 double GeometricFromGeopotential(double geopotential_height) {
     return kIsaEarthRadius * geopotential_height / (kIsaEarthRadius - geopotential_height);
-}
-
-GeoidGrid GeoidGrid::LoadGtx(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw FlightLogError(fmt::format("{}: cannot open geoid grid", path.string()));
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                     std::istreambuf_iterator<char>());
-    if (bytes.size() < kGtxHeaderBytes) {
-        throw FlightLogError(
-            fmt::format("{}: {} bytes, too short for a GTX header", path.string(), bytes.size()));
-    }
-    GeoidGrid g;
-    g.source_ = path.string();
-    g.lat0_deg_ = ReadBigEndianDouble(&bytes[0]);
-    g.lon0_deg_ = ReadBigEndianDouble(&bytes[8]);
-    g.dlat_deg_ = ReadBigEndianDouble(&bytes[16]);
-    g.dlon_deg_ = ReadBigEndianDouble(&bytes[24]);
-    g.rows_ = ReadBigEndianInt32(&bytes[32]);
-    g.cols_ = ReadBigEndianInt32(&bytes[36]);
-    if (!(g.dlat_deg_ > 0.0) || !(g.dlon_deg_ > 0.0) || !(g.rows_ > 1) || !(g.cols_ > 1) ||
-        !(std::abs(g.lat0_deg_) <= 90.0) ||
-        bytes.size() != kGtxHeaderBytes + std::size_t{4} * static_cast<std::size_t>(g.rows_) *
-                                              static_cast<std::size_t>(g.cols_)) {
-        throw FlightLogError(fmt::format(
-            "{}: not a GTX grid (header: lat0 {}, lon0 {}, spacing {} x {} deg, {} x {} values, "
-            "file {} bytes)",
-            path.string(), g.lat0_deg_, g.lon0_deg_, g.dlat_deg_, g.dlon_deg_, g.rows_, g.cols_,
-            bytes.size()));
-    }
-    g.wraps_ = g.cols_ * g.dlon_deg_ >= 360.0 - 1e-9;
-    g.values_.resize(static_cast<std::size_t>(g.rows_) * static_cast<std::size_t>(g.cols_));
-    for (std::size_t i = 0; i < g.values_.size(); ++i) {
-        g.values_[i] = ReadBigEndianFloat(&bytes[kGtxHeaderBytes + 4 * i]);
-    }
-    return g;
-}
-
-const GeoidGrid* GeoidGrid::Default() {
-    static const std::optional<GeoidGrid> grid = []() -> std::optional<GeoidGrid> {
-        const char* env = std::getenv("ZENITH_GEOID_GTX");
-        const std::filesystem::path path =
-            env && *env ? std::filesystem::path(env) : "/usr/share/proj/egm96_15.gtx";
-        try {
-            return LoadGtx(path);
-        } catch (const FlightLogError&) {
-            return std::nullopt;
-        }
-    }();
-    return grid ? &*grid : nullptr;
-}
-
-double GeoidGrid::UndulationAt(double lat_deg, double lon_deg) const {
-    const double r = std::clamp((lat_deg - lat0_deg_) / dlat_deg_, 0.0, rows_ - 1.0);
-    double c = (lon_deg - lon0_deg_) / dlon_deg_;
-    if (wraps_) {
-        c = std::fmod(c, static_cast<double>(cols_));
-        if (c < 0.0) c += cols_;
-    } else {
-        c = std::clamp(c, 0.0, cols_ - 1.0);
-    }
-    const int r0 = std::min(static_cast<int>(r), rows_ - 2);
-    const int c0 = std::min(static_cast<int>(c), wraps_ ? cols_ - 1 : cols_ - 2);
-    const int c1 = wraps_ ? (c0 + 1) % cols_ : c0 + 1;
-    const double fr = r - r0, fc = c - c0;
-    auto v = [&](int row, int col) {
-        const float x = values_[static_cast<std::size_t>(row) * static_cast<std::size_t>(cols_) +
-                                static_cast<std::size_t>(col)];
-        return x == kGtxNoData ? 0.0 : static_cast<double>(x);
-    };
-    return (1 - fr) * ((1 - fc) * v(r0, c0) + fc * v(r0, c1)) +
-           fr * ((1 - fc) * v(r0 + 1, c0) + fc * v(r0 + 1, c1));
 }
 
 Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
@@ -261,9 +134,9 @@ Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
         }
     }
     notes_.push_back(fmt::format("altitude used: {}", AltitudeKindName(altitude_kind_)));
-    const GeoidGrid* geoid = nullptr;
+    const geo::GeoidGrid* geoid = nullptr;
     if (altitude_kind_ != AltitudeKind::kEllipsoid) {
-        if (!options.ignore_geoid) geoid = options.geoid ? options.geoid : GeoidGrid::Default();
+        if (!options.ignore_geoid) geoid = options.geoid ? options.geoid : geo::GeoidGrid::Default();
         notes_.push_back(
             geoid ? fmt::format("MSL -> ellipsoid: geoid undulation from {}", geoid->source())
                   : std::string("no geoid grid (install Debian proj-data or set "
@@ -360,7 +233,7 @@ Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
     }
 
     // Attitude: logged, or derived from three points about attitude_half_window_s apart.
-    std::vector<std::optional<Attitude>> attitude(points.size());
+    std::vector<std::optional<geo::Attitude>> attitude(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
         const FlightSample& s = *points[i].sample;
         knots_[i].attitude_from_log = s.attitude.has_value();
@@ -405,7 +278,7 @@ Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
             h[j] = points[idx[j]].height;
         }
         const Derived d = DeriveAttitude(e, t, h, at, s.lat_deg, s.lon_deg);
-        if (d.has_course) attitude[i] = Attitude{d.heading, d.pitch, d.roll};
+        if (d.has_course) attitude[i] = geo::Attitude{d.heading, d.pitch, d.roll};
     }
     if (derived > 0) {
         notes_.push_back(fmt::format(
@@ -415,12 +288,12 @@ Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
     }
     // Where no course could be had (slower than kMinCourseSpeed, lone points), hold the nearest
     // known heading, wings level.
-    std::optional<Attitude> last;
+    std::optional<geo::Attitude> last;
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (attitude[i]) {
             last = attitude[i];
         } else if (last) {
-            attitude[i] = Attitude{last->heading, 0.0, 0.0};
+            attitude[i] = geo::Attitude{last->heading_rad, 0.0, 0.0};
         }
     }
     last.reset();
@@ -428,12 +301,12 @@ Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
         if (attitude[i]) {
             last = attitude[i];
         } else {
-            attitude[i] = Attitude{last ? last->heading : 0.0, 0.0, 0.0};
+            attitude[i] = geo::Attitude{last ? last->heading_rad : 0.0, 0.0, 0.0};
         }
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
         knots_[i].ecef_from_body =
-            EcefFromBody(*attitude[i], points[i].sample->lat_deg, points[i].sample->lon_deg);
+            geo::EcefFromBody(*attitude[i], points[i].sample->lat_deg, points[i].sample->lon_deg);
     }
 }
 
@@ -474,7 +347,7 @@ TrajectoryState Trajectory::At(double time_s) const {
     }
     Wgs84().Reverse(state.ecef.x, state.ecef.y, state.ecef.z, state.lat_deg, state.lon_deg,
                     state.height);
-    state.attitude = AttitudeFromEcefFromBody(state.ecef_from_body, state.lat_deg, state.lon_deg);
+    state.attitude = geo::AttitudeFromEcefFromBody(state.ecef_from_body, state.lat_deg, state.lon_deg);
     state.valid = true;
     return state;
 }
@@ -491,4 +364,4 @@ std::vector<std::pair<double, double>> Trajectory::ValidIntervals() const {
     return out;
 }
 
-}  // namespace zenith::sim
+}  // namespace zenith::track

@@ -26,7 +26,6 @@
 // hundreds of metres at altitude).
 #pragma once
 
-#include <filesystem>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <optional>
@@ -34,36 +33,13 @@
 #include <utility>
 #include <vector>
 
-#include "zenith/sim/flight_log.h"
+#include "zenith/geo/geoid.h"
+#include "zenith/track/flight_log.h"
 
-namespace zenith::sim {
+namespace zenith::track {
 
 inline constexpr double kStandardGravity = 9.80665;   // m/s^2 (ISA, CGPM 1901)
 inline constexpr double kIsaEarthRadius = 6356766.0;  // m, for geopotential height (ISO 2533)
-
-// Geoid undulation N (geoid above WGS84 ellipsoid, metres) from a grid in NOAA's GTX format:
-// big-endian header (lower-left lat, lon, spacing lat, lon in degrees; rows, columns), then
-// rows x columns big-endian float32 from south-west, row by row. Bilinear interpolation; on
-// the 15' EGM96 grid that is within a few centimetres of the grid's own model except in steep
-// mountains (decimetres).
-class GeoidGrid {
-  public:
-    // Throws FlightLogError naming the file and what is wrong with it.
-    static GeoidGrid LoadGtx(const std::filesystem::path& path);
-    // $ZENITH_GEOID_GTX if set, else /usr/share/proj/egm96_15.gtx; loaded once; nullptr when
-    // neither can be read.
-    static const GeoidGrid* Default();
-
-    double UndulationAt(double lat_deg, double lon_deg) const;
-    const std::string& source() const { return source_; }
-
-  private:
-    std::string source_;
-    double lat0_deg_ = 0.0, lon0_deg_ = 0.0, dlat_deg_ = 0.0, dlon_deg_ = 0.0;
-    int rows_ = 0, cols_ = 0;
-    bool wraps_ = false;  // columns span 360 degrees
-    std::vector<float> values_;
-};
 
 // ISA pressure altitude (geopotential metres) -> geometric height above MSL, metres:
 // z = R H / (R - H), R = kIsaEarthRadius. Valid where ISA is defined (up to 80 km).
@@ -76,7 +52,7 @@ struct TrajectoryOptions {
     double max_gap_s = 120.0;
     double attitude_half_window_s = 1.0;
     // Geoid for MSL -> ellipsoid; nullptr: GeoidGrid::Default(). ignore_geoid: use N = 0.
-    const GeoidGrid* geoid = nullptr;
+    const geo::GeoidGrid* geoid = nullptr;
     bool ignore_geoid = false;
 };
 
@@ -88,7 +64,7 @@ struct TrajectoryState {
     double lat_deg = 0.0;
     double lon_deg = 0.0;
     double height = 0.0;  // m above the WGS84 ellipsoid
-    Attitude attitude;    // in the local NED frame at this position
+    geo::Attitude attitude;  // in the local NED frame at this position
     glm::dquat ecef_from_body{1.0, 0.0, 0.0, 0.0};
     bool attitude_from_log = false;  // both neighbouring samples carried a logged attitude
 };
@@ -124,15 +100,8 @@ class Trajectory {
     std::vector<std::string> notes_;
 };
 
-// Rotation from the body axes (x forward, y right, z down) to ECEF, for an attitude given in
-// the NED frame at (lat, lon); and back.
-glm::dquat EcefFromBody(const Attitude& attitude, double lat_deg, double lon_deg);
-Attitude AttitudeFromEcefFromBody(const glm::dquat& ecef_from_body, double lat_deg, double lon_deg);
-// Columns north, east, down in ECEF.
-glm::dmat3 EcefFromNed(double lat_deg, double lon_deg);
-
 // Bank angle (radians, right wing down for a right turn) of a coordinated level turn at
 // ground speed V (m/s) and turn rate omega (rad/s, clockwise from above positive).
 double CoordinatedTurnBank(double speed, double turn_rate);
 
-}  // namespace zenith::sim
+}  // namespace zenith::track

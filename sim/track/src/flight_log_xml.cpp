@@ -26,7 +26,7 @@
 
 #include "flight_log_internal.h"
 
-namespace zenith::sim {
+namespace zenith::track {
 
 namespace {
 
@@ -295,7 +295,7 @@ FlightLog ParseKml(std::string_view text, std::string source) {
                     continue;
                 }
                 s.attitude =
-                    Attitude{hpr[0] * kRadPerDeg, hpr[1] * kRadPerDeg, hpr[2] * kRadPerDeg};
+                    geo::Attitude{hpr[0] * kRadPerDeg, hpr[1] * kRadPerDeg, hpr[2] * kRadPerDeg};
             }
             out.Add(std::move(s));
         }
@@ -303,4 +303,4 @@ FlightLog ParseKml(std::string_view text, std::string source) {
     return out.Finish();
 }
 
-}  // namespace zenith::sim
+}  // namespace zenith::track

@@ -16,21 +16,22 @@
 
 #include <filesystem>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "zenith/base/error.h"
+#include "zenith/geo/frames.h"
 #include "zenith/geo/time.h"
 
-namespace zenith::sim {
+namespace zenith::track {
 
 // Thrown when a log cannot be read at all (unreadable file, unknown format, no usable sample,
 // IGC without HFDTE date, CSV without the needed columns). The message names the source and,
 // where there is one, the line.
-class FlightLogError : public std::runtime_error {
+class FlightLogError : public InputError {
   public:
-    using std::runtime_error::runtime_error;
+    using InputError::InputError;
 };
 
 enum class LogFormat { kIgc, kGpx, kKml, kCsv };
@@ -44,14 +45,6 @@ enum class AltitudeKind {
 };
 std::string_view AltitudeKindName(AltitudeKind kind);
 
-// Attitude of the body axes (x forward, y right, z down) in the local north-east-down frame,
-// rotated heading, then pitch, then roll (aerospace 3-2-1 Euler angles). Radians.
-struct Attitude {
-    double heading = 0.0;  // from true north, clockwise
-    double pitch = 0.0;    // nose up positive
-    double roll = 0.0;     // right wing down positive
-};
-
 struct FlightSample {
     double time_s = 0.0;  // UTC, POSIX seconds
     double lat_deg = 0.0;
@@ -61,7 +54,7 @@ struct FlightSample {
     std::optional<double> pressure_altitude;
     std::optional<double> msl_altitude;
     std::optional<double> ellipsoid_height;
-    std::optional<Attitude> attitude;  // only when the log records it
+    std::optional<geo::Attitude> attitude;  // only when the log records it
     int line = 0;                      // 1-based source line of the record
 
     std::optional<double> Altitude(AltitudeKind kind) const;
@@ -109,8 +102,4 @@ FlightLog ParseKml(std::string_view text, std::string source = "<kml>");
 FlightLog ParseCsv(std::string_view text, std::string source = "<csv>");
 FlightLog ParseFlightLog(std::string_view text, LogFormat format, std::string source);
 
-// Conversions between the POSIX time scale used here and the geo civil time.
-double UnixSecondsFromCivil(const geo::CivilTime& utc);
-geo::CivilTime CivilFromUnixSeconds(double time_s);
-
-}  // namespace zenith::sim
+}  // namespace zenith::track

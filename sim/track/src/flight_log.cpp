@@ -1,5 +1,5 @@
 // Flight logs: what every reader shares (summary, time-order checks, format dispatch).
-#include "zenith/sim/flight_log.h"
+#include "zenith/track/flight_log.h"
 
 #include <fmt/format.h>
 
@@ -12,11 +12,10 @@
 
 #include "flight_log_internal.h"
 
-namespace zenith::sim {
+namespace zenith::track {
 
 namespace {
 
-constexpr double kUnixEpochJd = 2440587.5;
 // A fix this close to a pole gets a note: heading and longitude lose meaning there.
 constexpr double kPoleNoteLatDeg = 89.99;
 // A gap is noted when it is this many times the median interval and at least kMinGapNoteS.
@@ -94,23 +93,6 @@ bool FlightLog::HasAttitude() const {
                                            [](const auto& s) { return s.attitude.has_value(); });
 }
 
-double UnixSecondsFromCivil(const geo::CivilTime& utc) {
-    // Whole days and the time of day apart, so the result keeps microseconds.
-    const double jd_midnight = geo::JulianDate(utc.year, utc.month, utc.day, 0, 0, 0.0);
-    return std::round((jd_midnight - kUnixEpochJd) * geo::kSecondsPerDay) + utc.hour * 3600.0 +
-           utc.minute * 60.0 + utc.second;
-}
-
-geo::CivilTime CivilFromUnixSeconds(double time_s) {
-    const double days = std::floor(time_s / geo::kSecondsPerDay);
-    const double second_of_day = time_s - days * geo::kSecondsPerDay;
-    geo::CivilTime t = geo::CivilFromJulianDate(kUnixEpochJd + days);
-    t.hour = static_cast<int>(second_of_day / 3600.0);
-    t.minute = static_cast<int>((second_of_day - t.hour * 3600.0) / 60.0);
-    t.second = second_of_day - t.hour * 3600.0 - t.minute * 60.0;
-    return t;
-}
-
 namespace detail {
 
 std::string Where(std::string_view source, int line) {
@@ -143,11 +125,11 @@ double UnixSecondsFromIso8601(std::string_view text) {
     const geo::CivilTime t = geo::ParseIso8601(Trim(text));
     geo::ValidateCivilTime(t);
     // ParseIso8601 folds a "+02:00" offset into the fields, so t is UTC.
-    return UnixSecondsFromCivil(t);
+    return geo::UnixSecondsFromCivil(t);
 }
 
 std::string FormatClock(double time_s) {
-    const geo::CivilTime t = CivilFromUnixSeconds(time_s);
+    const geo::CivilTime t = geo::CivilFromUnixSeconds(time_s);
     return fmt::format("{:02}:{:02}:{:06.3f}", t.hour, t.minute, t.second);
 }
 
@@ -300,4 +282,4 @@ FlightLog ReadFlightLog(const std::filesystem::path& path) {
     return ParseFlightLog(buffer.str(), format, path.string());
 }
 
-}  // namespace zenith::sim
+}  // namespace zenith::track

@@ -17,7 +17,7 @@
 
 #include "flight_log_internal.h"
 
-namespace zenith::sim {
+namespace zenith::track {
 
 namespace {
 
@@ -124,7 +124,7 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
                                      detail::Where(out.source(), l.number), date_line));
                 continue;
             }
-            midnight_s = UnixSecondsFromCivil(date);
+            midnight_s = geo::UnixSecondsFromCivil(date);
             date_line = l.number;
         } else if (StartsWith(upper, "HFALG") || StartsWith(upper, "HOALG")) {
             const std::string v = Upper(HeaderValue(l.text));
@@ -292,4 +292,4 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
     return out.Finish();
 }
 
-}  // namespace zenith::sim
+}  // namespace zenith::track

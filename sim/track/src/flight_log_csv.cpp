@@ -17,7 +17,7 @@
 
 #include "flight_log_internal.h"
 
-namespace zenith::sim {
+namespace zenith::track {
 
 namespace {
 
@@ -259,7 +259,7 @@ FlightLog ParseCsv(std::string_view text, std::string source) {
                 const auto p = detail::ParseDouble(fields[*attitude_cols[1]]);
                 const auto r = detail::ParseDouble(fields[*attitude_cols[2]]);
                 if (h && p && r) {
-                    s.attitude = Attitude{*h * kRadPerDeg, *p * kRadPerDeg, *r * kRadPerDeg};
+                    s.attitude = geo::Attitude{*h * kRadPerDeg, *p * kRadPerDeg, *r * kRadPerDeg};
                 }
             } catch (const std::exception& e) {
                 out.Skip(line_number, fmt::format("bad attitude: {}", e.what()));
@@ -272,4 +272,4 @@ FlightLog ParseCsv(std::string_view text, std::string source) {
     return out.Finish();
 }
 
-}  // namespace zenith::sim
+}  // namespace zenith::track
