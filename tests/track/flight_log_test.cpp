@@ -2,6 +2,7 @@
 // messages must name the line.
 #include "zenith/track/flight_log.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -193,7 +194,8 @@ TEST(IgcReader, DuplicateAndBackwardTimesNameTheLine) {
                              "B1200014418018N00557011EA0174101800\n";  // 7
     const FlightLog log = ParseIgc(text, "t.igc");
     EXPECT_EQ(log.samples.size(), 2u);
-    EXPECT_TRUE(AnySkippedContains(log, "t.igc:5: duplicate time 12:00:00.000 (also at line 4)"))
+    EXPECT_TRUE(AnySkippedContains(
+        log, "t.igc:5: duplicate time 12:00:00.000 (also at line 4; the first is kept)"))
         << log.summary.ToString();
     EXPECT_TRUE(AnySkippedContains(log, "t.igc:6: time goes backwards")) << log.summary.ToString();
 }
@@ -327,8 +329,10 @@ TEST(KmlReader, UnpairedWhenAndRelativeAltitudes) {
     const FlightLog log = ParseKml(text, "t.kml");
     EXPECT_TRUE(AnySkippedContains(log, "t.kml:10: <when> #5 has no matching <gx:coord>"))
         << log.summary.ToString();
-    EXPECT_TRUE(AnyNoteContains(log, "relativeToGround"));
-    EXPECT_FALSE(log.samples[0].msl_altitude);
+    // Above terrain zenith does not know: taken as above sea level, and said so.
+    EXPECT_TRUE(AnyNoteContains(log, "relativeToGround (given by the gx:Track)"));
+    EXPECT_TRUE(AnyNoteContains(log, "taken as above sea level"));
+    EXPECT_EQ(log.samples[0].msl_altitude, 1000.0);
 }
 
 TEST(KmlReader, TruncatedFileKeepsCompleteSamples) {
@@ -429,5 +433,274 @@ TEST(CsvReader, HeaderErrorsThrow) {
               std::string::npos);
 }
 
+// --- what a careful user and the fuzzers found (issue 13) --------------------------------------
+namespace robustness {
+
+// A minimal IGC with n B records a second apart from 12:00:00, at 45 N 6 E, GNSS and pressure
+// altitude 1000 m ('A' fixes).
+std::string IgcWithFixes(int n, const std::string& line_end = "\n") {
+    std::string text = "AXXX001" + line_end + "HFDTE010624" + line_end;
+    for (int i = 0; i < n; ++i) {
+        text +=
+            fmt::format("B12{:02}{:02}4500000N00600000EA0100001000{}", i / 60, i % 60, line_end);
+    }
+    return text;
+}
+
+TEST(ReaderLimits, OutOfRangeTimesAndAltitudesAreSkippedWithTheirLine) {
+    const std::string csv =
+        "time,lat,lon,alt_msl_m\n"
+        "1719025200,45,6,1000\n"
+        "1719025201,45,6,1000\n"
+        "1e18,45,6,1000\n"        // line 4: the year 3e10
+        "-1e12,45,6,1000\n"       // line 5: 30,000 years ago
+        "1719025202,45,6,1e12\n"  // line 6
+        "1719025203,45,6,-7e6\n"  // line 7
+        "1719025204,45,6,1000\n";
+    const FlightLog log = ParseCsv(csv, "big.csv");
+    EXPECT_EQ(log.samples.size(), 3u) << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "big.csv:4: time 1e+18 s since 1970 is out of range"))
+        << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "big.csv:5: time -1000000000000 s"));
+    EXPECT_TRUE(
+        AnySkippedContains(log,
+                           "big.csv:6: height above mean sea level (geoid) 1000000000000 m is "
+                           "out of range (expected [-1000, 200000] m)"))
+        << log.summary.ToString();
+    EXPECT_TRUE(
+        AnySkippedContains(log, "big.csv:7: height above mean sea level (geoid) -7000000 m"));
+}
+
+TEST(ReaderLimits, AColdStartFixYearsBeforeTheFlightIsDroppedAsIsolated) {
+    const std::string csv =
+        "time,lat,lon,alt_msl_m\n"
+        "1980-01-06T00:00:00Z,45,6,1000\n"  // line 2: GPS epoch, a receiver's default
+        "2024-06-22T03:00:00Z,45,6,1000\n"
+        "2024-06-22T03:00:01Z,45,6.0001,1000\n"
+        "2024-06-22T03:00:02Z,45,6.0002,1000\n"
+        "2024-06-22T03:00:03Z,45,6.0003,1000\n";
+    const FlightLog log = ParseCsv(csv, "cold.csv");
+    ASSERT_EQ(log.samples.size(), 4u) << log.summary.ToString();
+    EXPECT_EQ(log.samples.front().line, 3);
+    EXPECT_TRUE(AnySkippedContains(log, "cold.csv:2: fix at 1980-01-06 00:00:00 is isolated"))
+        << log.summary.ToString();
+}
+
+TEST(ReaderLimits, ALogLongerThanTheLimitIsRefusedNamingItsEnds) {
+    std::string csv = "time,lat,lon,alt_msl_m\n";
+    // Fixes every 12 h for 410 days: no isolated fix, but longer than kMaxLogSpan.
+    for (int i = 0; i <= 820; ++i) {
+        csv += fmt::format("{},45,6,1000\n", 1.6e9 + i * 43200.0);
+    }
+    const std::string message = ThrownMessage([&] { ParseCsv(csv, "long.csv"); });
+    EXPECT_NE(message.find("long.csv: the log spans 410 days (line 2 at"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("at most 400 days"), std::string::npos) << message;
+}
+
+TEST(ReaderLimits, EmptyCoordinatesAreSkippedNotRead) {
+    const std::string gpx = R"(<gpx><trk><trkseg>
+<trkpt lat="" lon=" "><time>2024-06-22T03:00:00Z</time></trkpt>
+<trkpt lat="45" lon="6"><ele>100</ele><time>2024-06-22T03:00:01Z</time></trkpt>
+</trkseg></trk></gpx>)";
+    const FlightLog log = ParseGpx(gpx, "e.gpx");
+    ASSERT_EQ(log.samples.size(), 1u);
+    EXPECT_TRUE(AnySkippedContains(log, "e.gpx:2: trkpt with an empty lat or lon attribute"))
+        << log.summary.ToString();
+}
+
+constexpr const char* kMultiTrack = R"(<?xml version="1.0" encoding="UTF-8"?>
+<kml xmlns="http://www.opengis.net/kml/2.2" xmlns:gx="http://www.google.com/kml/ext/2.2">
+<Document><Placemark><gx:MultiTrack>
+MODE
+<gx:Track>
+  <when>2024-06-22T03:00:00Z</when><when>2024-06-22T03:00:01Z</when>
+  <gx:coord>6.0 45.0 1500</gx:coord><gx:coord>6.0001 45.0 1501</gx:coord>
+</gx:Track>
+</gx:MultiTrack></Placemark></Document></kml>)";
+
+std::string MultiTrack(const std::string& mode) {
+    std::string text = kMultiTrack;
+    text.replace(text.find("MODE"), 4, mode);
+    return text;
+}
+
+TEST(ReaderLimits, KmlTracksInheritTheirMultiTracksAltitudeMode) {
+    const FlightLog log = ParseKml(MultiTrack("<altitudeMode>absolute</altitudeMode>"), "m.kml");
+    ASSERT_EQ(log.samples.size(), 2u);
+    EXPECT_EQ(log.samples[1].msl_altitude, 1501.0);
+    const FlightLog gx =
+        ParseKml(MultiTrack("<gx:altitudeMode>absolute</gx:altitudeMode>"), "g.kml");
+    EXPECT_EQ(gx.samples[0].msl_altitude, 1500.0);
+}
+
+TEST(ReaderLimits, KmlClampToGroundPutsTheTrackOnTheGroundAndSaysSo) {
+    const FlightLog log = ParseKml(MultiTrack(""), "c.kml");
+    ASSERT_EQ(log.samples.size(), 2u);
+    EXPECT_EQ(log.samples[0].msl_altitude, 0.0);
+    EXPECT_TRUE(AnyNoteContains(log,
+                                "altitudeMode clampToGround (KML's default when none is "
+                                "given): the track is on the terrain"))
+        << log.summary.ToString();
+}
+
+constexpr const char* kTwoAircraft =
+    "time,icao24,lat,lon,velocity,heading,vertrate,callsign,onground,alert,spi,squawk,"
+    "baroaltitude,geoaltitude,lastposupdate,lastcontact\n"
+    "1719025200,4b1805,47.0,8.0,200,90,0,SWR123  ,false,false,false,1000,3000,3050,1,1\n"
+    "1719025200,3c6444,50.0,8.5,220,10,0,DLH9U   ,false,false,false,1000,9000,9050,1,1\n"
+    "1719025201,4b1805,47.0,8.003,200,90,0,SWR123  ,false,false,false,1000,3000,3050,1,1\n"
+    "1719025201,3c6444,50.002,8.5,220,10,0,DLH9U   ,false,false,false,1000,9000,9050,1,1\n"
+    "1719025202,4b1805,47.0,8.006,200,90,0,SWR123  ,false,false,false,1000,3000,3050,1,1\n";
+
+TEST(ReaderLimits, SeveralAircraftAreRefusedWithAListUnlessOneIsChosen) {
+    const std::string message = ThrownMessage([] { ParseCsv(kTwoAircraft, "os.csv"); });
+    EXPECT_NE(message.find("os.csv: 2 aircraft in one log; choose one by icao24 or callsign"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("4b1805 swr123 (3 rows), 3c6444 dlh9u (2 rows)"), std::string::npos)
+        << message;
+
+    ReadOptions by_address;
+    by_address.icao24 = "4B1805";
+    const FlightLog swiss = ParseCsv(kTwoAircraft, "os.csv", by_address);
+    EXPECT_EQ(swiss.samples.size(), 3u);
+    EXPECT_EQ(swiss.summary.records, 3);
+    ReadOptions by_callsign;
+    by_callsign.callsign = "dlh9u";
+    const FlightLog lufthansa = ParseCsv(kTwoAircraft, "os.csv", by_callsign);
+    ASSERT_EQ(lufthansa.samples.size(), 2u);
+    EXPECT_EQ(lufthansa.samples[0].lat_deg, 50.0);
+
+    ReadOptions absent;
+    absent.icao24 = "abcdef";
+    EXPECT_NE(ThrownMessage([&] {
+                  ParseCsv(kTwoAircraft, "os.csv", absent);
+              }).find("no row of icao24 abcdef"),
+              std::string::npos);
+}
+
+TEST(ReaderLimits, ImpossibleJumpsAreDroppedOrBreakTheTrack) {
+    // Line 4 is 563 km away for one second (spoofing); from line 7 on the track goes on 500 km
+    // east and stays there.
+    const std::string csv =
+        "time,lat,lon,alt_msl_m\n"
+        "1719025200,45,6.000,1000\n"
+        "1719025201,45,6.001,1000\n"
+        "1719025202,45,13.15,1000\n"
+        "1719025203,45,6.003,1000\n"
+        "1719025204,45,6.004,1000\n"
+        "1719025205,45,12.400,1000\n"
+        "1719025206,45,12.401,1000\n";
+    const FlightLog log = ParseCsv(csv, "jump.csv");
+    ASSERT_EQ(log.samples.size(), 6u) << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "jump.csv:4: position jumps 56")) << log.summary.ToString();
+    EXPECT_TRUE(AnySkippedContains(log, "and comes back at the next fix: dropped"));
+    EXPECT_TRUE(log.samples[4].discontinuity);
+    EXPECT_EQ(log.samples[4].line, 7);
+    EXPECT_TRUE(AnyNoteContains(log, "jump.csv:7: position jumps")) << log.summary.ToString();
+}
+
+TEST(ReaderLimits, EqualTimesKeepTheFirstFixUnderItsOwnMessage) {
+    const std::string csv =
+        "time,lat,lon,alt_msl_m\n"
+        "1719025200,45,6.000,1000\n"
+        "1719025201,45,6.001,1000\n"
+        "1719025201,45,6.002,1000\n"
+        "1719025202,45,6.003,1000\n";
+    const FlightLog log = ParseCsv(csv, "eq.csv");
+    ASSERT_EQ(log.samples.size(), 3u);
+    EXPECT_EQ(log.samples[1].line, 3);
+    EXPECT_TRUE(AnySkippedContains(log, "eq.csv:4: duplicate time")) << log.summary.ToString();
+    EXPECT_FALSE(AnySkippedContains(log, "jumps ahead"));
+}
+
+TEST(ReaderLimits, Utf8ByteOrderMarkIsNotPartOfTheFirstColumn) {
+    const FlightLog log =
+        ParseCsv("\xEF\xBB\xBFtime,lat,lon,alt_msl_m\n1719025200,45,6,1000\n", "bom.csv");
+    EXPECT_EQ(log.samples.size(), 1u);
+}
+
+// The GPX text as UTF-16 with a byte-order mark, as Windows tools write it.
+std::string Utf16(const std::string& ascii, bool little_endian) {
+    std::string out = little_endian ? "\xFF\xFE" : "\xFE\xFF";
+    for (const char c : ascii) {
+        out += little_endian ? std::string{c, '\0'} : std::string{'\0', c};
+    }
+    return out;
+}
+
+TEST(ReaderLimits, Utf16GpxIsRead) {
+    const std::string gpx = R"(<?xml version="1.0" encoding="UTF-16"?>
+<gpx><trk><name>W</name><trkseg>
+<trkpt lat="45" lon="6"><ele>100</ele><time>2024-06-22T03:00:00Z</time></trkpt>
+</trkseg></trk></gpx>)";
+    for (const bool little : {true, false}) {
+        const FlightLog log = ParseGpx(Utf16(gpx, little), "w.gpx");
+        ASSERT_EQ(log.samples.size(), 1u) << little;
+        EXPECT_EQ(log.description, "W");
+        EXPECT_EQ(log.samples[0].msl_altitude, 100.0);
+    }
+}
+
+TEST(ReaderLimits, XmlErrorsNameALineOrNone) {
+    const std::string empty = ThrownMessage([] { ParseGpx("", "empty.gpx"); });
+    EXPECT_EQ(empty, "empty.gpx: XML not well-formed: the document is empty");
+    const std::string broken =
+        ThrownMessage([] { ParseKml("<kml>\n<Document>\n<x></y></Document></kml>", "b.kml"); });
+    EXPECT_EQ(broken.rfind("b.kml:3: XML not well-formed: ", 0), 0u) << broken;
+    EXPECT_EQ(broken.find("line 0"), std::string::npos) << broken;
+}
+
+TEST(ReaderLimits, AnIgcOfOnlyVFixesSaysSo) {
+    std::string text = IgcWithFixes(3);
+    for (std::size_t at = text.find("EA"); at != std::string::npos; at = text.find("EA", at)) {
+        text[at + 1] = 'V';
+    }
+    const FlightLog log = ParseIgc(text, "v.igc");
+    EXPECT_TRUE(AnyNoteContains(log,
+                                "all 3 fixes are flagged V (2-D or no GNSS fix): no GNSS "
+                                "altitude"))
+        << log.summary.ToString();
+    EXPECT_FALSE(AnyNoteContains(log, "GNSS altitude is 0"));
+    EXPECT_FALSE(log.samples[0].msl_altitude);
+    EXPECT_EQ(log.samples[0].pressure_altitude, 1000.0);
+}
+
+TEST(ReaderLimits, CarriageReturnLineEndingsAreLineEndings) {
+    for (const char* end : {"\r", "\r\n", "\n"}) {
+        const FlightLog log = ParseIgc(IgcWithFixes(4, end), "cr.igc");
+        EXPECT_EQ(log.samples.size(), 4u) << log.summary.ToString();
+        EXPECT_EQ(log.samples[3].line, 6);
+    }
+}
+
+TEST(ReaderLimits, LongLogsAreThinnedEvenly) {
+    ReadOptions options;
+    options.max_samples = 100;
+    const FlightLog log = ParseIgc(IgcWithFixes(1000), "long.igc", options);
+    // 1000 fixes, at most 100 kept: 1 in 16 (63 kept: every 16th second from 12:00:00).
+    ASSERT_EQ(log.samples.size(), 63u) << log.summary.ToString();
+    for (std::size_t i = 1; i < log.samples.size(); ++i) {
+        EXPECT_EQ(log.samples[i].time_s - log.samples[i - 1].time_s, 16.0);
+    }
+    EXPECT_TRUE(AnyNoteContains(log,
+                                "1000 valid fixes: 1 in 16 kept, evenly (at most 100 are "
+                                "read)"))
+        << log.summary.ToString();
+    options.max_samples = 1;
+    EXPECT_THROW(ParseIgc(IgcWithFixes(3), "x.igc", options), ArgumentError);
+}
+
+TEST(ReaderLimits, OverlongLinesAreSkipped) {
+    std::string csv = "time,lat,lon\n1719025200,45,6\n";
+    csv += "1719025201,45," + std::string(kMaxLineBytes, '6') + "\n";
+    const FlightLog log = ParseCsv(csv, "wide.csv");
+    EXPECT_EQ(log.samples.size(), 1u);
+    EXPECT_TRUE(AnySkippedContains(log, "wide.csv:3: row of 65550 characters (at most 65536)"))
+        << log.summary.ToString();
+}
+
+}  // namespace robustness
 }  // namespace
 }  // namespace zenith::track

@@ -82,7 +82,8 @@ TEST(AttitudeDerivation, CoordinatedTurnBankMatchesAnalytic) {
                 EXPECT_NEAR(s.attitude.pitch_rad, 0.0, kAngleTolerance) << "sample " << i;
                 // Heading is tangent to the circle: 90 deg right of the radius for a right turn.
                 const double expected_heading = sign * speed / radius * i * dt + sign * kPi / 2;
-                EXPECT_NEAR(AngleDiff(s.attitude.heading_rad, expected_heading), 0.0, kAngleTolerance)
+                EXPECT_NEAR(AngleDiff(s.attitude.heading_rad, expected_heading), 0.0,
+                            kAngleTolerance)
                     << "sample " << i;
             }
         }
@@ -119,7 +120,8 @@ TEST(AttitudeDerivation, SlowSamplesHoldHeadingWingsLevel) {
     for (int i = 0; i < 5; ++i) log.samples.push_back(Sample(kT0 + i, 10.0, 20.0, 100.0 + i));
     const Trajectory trajectory(log);
     const TrajectoryState s = trajectory.At(kT0 + 2.0);
-    EXPECT_DOUBLE_EQ(s.attitude.roll_rad, 0.0);
+    // Wings level (to rounding: the attitude goes through an ECEF quaternion).
+    EXPECT_NEAR(s.attitude.roll_rad, 0.0, 1e-12);
     EXPECT_NEAR(s.attitude.pitch_rad, 0.0, 1e-12);
 }
 
@@ -277,8 +279,8 @@ TEST(SampleFlights, AllBecomeTrajectories) {
         for (double t = trajectory.start_time_s(); t <= trajectory.end_time_s(); t += 7.3) {
             const TrajectoryState s = trajectory.At(t);
             ASSERT_TRUE(s.valid) << name;
-            ASSERT_TRUE(std::isfinite(s.attitude.heading_rad) && std::isfinite(s.attitude.roll_rad) &&
-                        std::isfinite(s.attitude.pitch_rad))
+            ASSERT_TRUE(std::isfinite(s.attitude.heading_rad) &&
+                        std::isfinite(s.attitude.roll_rad) && std::isfinite(s.attitude.pitch_rad))
                 << name;
         }
     }
@@ -298,6 +300,71 @@ TEST(SampleFlights, GliderBankFromThermallingCircles) {
         ++n;
     }
     EXPECT_NEAR(sum / n, 40.0 * kRadPerDeg, 4.0 * kRadPerDeg);
+}
+
+// --- issue 13 ------------------------------------------------------------------------------
+
+TEST(Heights, OneFixWithoutGnssCannotChangeHowTheOthersAreRead) {
+    // A paraglider: 199 fixes with GNSS height above the geoid 1500 m and pressure altitude
+    // 1340 m (a QNH far from standard); one 'V' fix in the middle has the pressure altitude only.
+    FlightLog log;
+    log.source = "pg";
+    for (int i = 0; i < 199; ++i) {
+        FlightSample s;
+        s.time_s = kT0 + i;
+        s.lat_deg = 45.0;
+        s.lon_deg = 6.0 + 1e-4 * i;
+        s.pressure_altitude = 1340.0;
+        if (i != 100) s.msl_altitude = 1500.0;
+        log.samples.push_back(s);
+    }
+    const Trajectory trajectory(log, Options(std::nullopt, 120.0, 1.0, true));
+    EXPECT_EQ(trajectory.altitude_kind(), AltitudeKind::kMsl);
+    // The V fix sits on the GNSS track: its pressure height plus its neighbours' offset.
+    EXPECT_NEAR(trajectory.At(kT0 + 100.0).height, 1500.0, 1e-6);
+    EXPECT_NEAR(trajectory.At(kT0 + 99.5).height, 1500.0, 1e-6);
+    bool noted = false;
+    for (const std::string& note : trajectory.notes()) {
+        noted = noted || note.find("1 fixes without a GNSS height use pressure altitude") !=
+                             std::string::npos;
+    }
+    EXPECT_TRUE(noted);
+    // Forcing pressure altitude still reads pure ISA everywhere.
+    const Trajectory isa(log, Options(AltitudeKind::kPressure, 120.0, 1.0, true));
+    EXPECT_NEAR(isa.At(kT0).height, GeometricFromGeopotential(1340.0), 1e-6);
+}
+
+TEST(Interpolation, ALoneFixIsValidAtItsTime) {
+    FlightLog log;
+    log.source = "one";
+    log.samples.push_back(Sample(kT0, 45.0, 6.0, 1000.0));
+    const Trajectory lone(log);
+    const TrajectoryState s = lone.At(kT0);
+    ASSERT_TRUE(s.valid);
+    EXPECT_NEAR(s.lat_deg, 45.0, 1e-9);
+    EXPECT_NEAR(s.height, 1000.0, 1e-6);
+
+    // The first fix alone before a gap: valid at its time, never a fallback position.
+    for (int i = 0; i < 5; ++i) log.samples.push_back(Sample(kT0 + 600.0 + i, 45.0, 6.001, 1000.0));
+    const Trajectory gapped(log);
+    const TrajectoryState first = gapped.At(kT0);
+    ASSERT_TRUE(first.valid);
+    EXPECT_NEAR(first.lon_deg, 6.0, 1e-9);
+    EXPECT_FALSE(gapped.At(kT0 + 1.0).valid);  // inside the gap
+}
+
+TEST(Interpolation, NotAcrossADiscontinuity) {
+    FlightLog log;
+    log.source = "jump";
+    for (int i = 0; i < 6; ++i) {
+        log.samples.push_back(
+            Sample(kT0 + i, 45.0, i < 3 ? 6.0 + 1e-4 * i : 12.0 + 1e-4 * i, 1000.0));
+    }
+    log.samples[3].discontinuity = true;
+    const Trajectory trajectory(log);
+    EXPECT_EQ(trajectory.ValidIntervals().size(), 2u);
+    EXPECT_FALSE(trajectory.At(kT0 + 2.5).valid);
+    EXPECT_TRUE(trajectory.At(kT0 + 3.5).valid);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "flight_log_internal.h"
@@ -95,10 +96,82 @@ std::optional<AltitudeColumn> AltitudeColumnFromName(const std::string& name, st
     return std::nullopt;
 }
 
+// Which aircraft rows belong to, in a log of several (OpenSky: icao24 and callsign columns).
+class AircraftFilter {
+  public:
+    AircraftFilter(const ReadOptions& options)
+        : icao24_(Lower(options.icao24.value_or(""))),
+          callsign_(Lower(options.callsign.value_or(""))) {}
+
+    void SetColumns(std::optional<std::size_t> icao24, std::optional<std::size_t> callsign) {
+        icao24_col_ = icao24;
+        callsign_col_ = callsign;
+    }
+    bool has_columns() const { return icao24_col_ || callsign_col_; }
+    bool chosen() const { return !icao24_.empty() || !callsign_.empty(); }
+
+    // Whether the row is of the chosen aircraft (every row when none is chosen); counts rows
+    // per aircraft either way, up to kMaxListedAircraft distinct ones.
+    bool Accept(const std::vector<std::string>& fields) {
+        const std::string icao24 = icao24_col_ ? Lower(fields[*icao24_col_]) : std::string();
+        const std::string callsign = callsign_col_ ? Lower(fields[*callsign_col_]) : std::string();
+        const std::string key = icao24_col_ ? icao24 : callsign;
+        if (auto it = counts_.find(key); it != counts_.end()) {
+            ++it->second.rows;
+            if (it->second.callsign.empty()) it->second.callsign = callsign;
+        } else if (counts_.size() < kMaxCountedAircraft) {
+            counts_.emplace(key, Count{callsign, 1});
+        } else {
+            ++uncounted_rows_;
+        }
+        if (!chosen()) return true;
+        return (icao24_.empty() || icao24 == icao24_) &&
+               (callsign_.empty() || callsign == callsign_);
+    }
+
+    std::size_t aircraft() const { return counts_.size(); }
+
+    // "3c6444 (DLH9U, 120 rows), ..." the aircraft with most rows first.
+    std::string List(std::size_t at_most) const {
+        std::vector<std::pair<std::string, Count>> sorted(counts_.begin(), counts_.end());
+        std::sort(sorted.begin(), sorted.end(),
+                  [](const auto& a, const auto& b) { return a.second.rows > b.second.rows; });
+        std::string out;
+        for (std::size_t i = 0; i < sorted.size() && i < at_most; ++i) {
+            const auto& [key, count] = sorted[i];
+            out += fmt::format("{}{}{} ({} rows)", i > 0 ? ", " : "", key.empty() ? "(none)" : key,
+                               count.callsign.empty() || !icao24_col_ ? "" : " " + count.callsign,
+                               count.rows);
+        }
+        if (sorted.size() > at_most) out += fmt::format(", ... {} more", sorted.size() - at_most);
+        return out;
+    }
+
+    std::string Chosen() const {
+        if (!icao24_.empty() && !callsign_.empty())
+            return "icao24 " + icao24_ + " callsign " + callsign_;
+        return !icao24_.empty() ? "icao24 " + icao24_ : "callsign " + callsign_;
+    }
+
+  private:
+    static constexpr std::size_t kMaxCountedAircraft = 100000;
+    struct Count {
+        std::string callsign;
+        std::size_t rows;
+    };
+    std::string icao24_, callsign_;
+    std::optional<std::size_t> icao24_col_, callsign_col_;
+    std::map<std::string, Count> counts_;
+    std::size_t uncounted_rows_ = 0;
+};
+
 }  // namespace
 
-FlightLog ParseCsv(std::string_view text, std::string source) {
-    LogBuilder out(std::move(source), LogFormat::kCsv);
+FlightLog ParseCsv(std::string_view text, std::string source, const ReadOptions& options) {
+    LogBuilder out(std::move(source), LogFormat::kCsv, options);
+    AircraftFilter aircraft(options);
+    // A UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name.
+    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
     std::vector<std::string> header;
     std::vector<std::string> fields;
     std::optional<std::size_t> time_col, lat_col, lon_col;
@@ -106,14 +179,24 @@ FlightLog ParseCsv(std::string_view text, std::string source) {
     std::vector<AltitudeColumn> altitude_cols;
     int line_number = 0;
     bool have_header = false;
+    std::optional<std::size_t> icao24_col, callsign_col;
+    std::size_t rows = 0;  // of the chosen aircraft
     while (!text.empty()) {
-        const auto end = text.find('\n');
-        std::string_view line = text.substr(0, end);
-        text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+        const std::string_view line = detail::NextLine(text);
         ++line_number;
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         const std::string_view trimmed = detail::Trim(line);
         if (trimmed.empty() || trimmed.front() == '#') continue;
+        if (line.size() > kMaxLineBytes) {
+            if (!have_header) {
+                throw FlightLogError(fmt::format("{}header of {} characters (at most {})",
+                                                 detail::Where(out.source(), line_number),
+                                                 line.size(), kMaxLineBytes));
+            }
+            out.CountRecord();
+            out.Skip(line_number,
+                     fmt::format("row of {} characters (at most {})", line.size(), kMaxLineBytes));
+            continue;
+        }
 
         if (!SplitCsv(line, fields)) {
             if (!have_header) {
@@ -142,6 +225,10 @@ FlightLog ParseCsv(std::string_view text, std::string source) {
                     attitude_cols[1] = i;
                 } else if (name == "roll_deg") {
                     attitude_cols[2] = i;
+                } else if (name == "icao24") {
+                    icao24_col = i;
+                } else if (name == "callsign") {
+                    callsign_col = i;
                 } else if (auto alt = AltitudeColumnFromName(name, i)) {
                     altitude_cols.push_back(*alt);
                 } else if (name == "alt" || name == "altitude" || name == "ele" ||
@@ -180,16 +267,27 @@ FlightLog ParseCsv(std::string_view text, std::string source) {
             if (!ignored.empty()) {
                 out.Note(fmt::format("columns not used: {}", fmt::join(ignored, ", ")));
             }
+            aircraft.SetColumns(icao24_col, callsign_col);
+            if (aircraft.chosen() && !aircraft.has_columns()) {
+                throw FlightLogError(
+                    fmt::format("{}an aircraft was chosen ({}) but the header "
+                                "has no icao24 or callsign column",
+                                detail::Where(out.source(), line_number), aircraft.Chosen()));
+            }
             continue;
         }
 
-        out.CountRecord();
         if (fields.size() != header.size()) {
+            out.CountRecord();
             out.Skip(line_number,
                      fmt::format("{} fields for {} columns{}", fields.size(), header.size(),
                                  fields.size() < header.size() ? " (truncated row?)" : ""));
             continue;
         }
+        // Rows of other aircraft are not this log's records.
+        if (aircraft.has_columns() && !aircraft.Accept(fields)) continue;
+        out.CountRecord();
+        ++rows;
         FlightSample s;
         s.line = line_number;
         const std::string_view time_text = detail::Trim(fields[*time_col]);
@@ -222,13 +320,6 @@ FlightLog ParseCsv(std::string_view text, std::string source) {
             out.Skip(line_number, fmt::format("bad lat/lon: {}", e.what()));
             continue;
         }
-        if (!(std::abs(s.lat_deg) <= 90.0) || !(std::abs(s.lon_deg) <= 180.0)) {
-            out.Skip(line_number, fmt::format("position out of range: lat {}, lon {} deg (allowed "
-                                              "[-90, 90], [-180, 180])",
-                                              s.lat_deg, s.lon_deg));
-            continue;
-        }
-        if (s.lon_deg >= 180.0) s.lon_deg -= 360.0;
         bool bad = false;
         for (const AltitudeColumn& c : altitude_cols) {
             try {
@@ -269,6 +360,16 @@ FlightLog ParseCsv(std::string_view text, std::string source) {
         out.Add(std::move(s));
     }
     if (!have_header) throw FlightLogError(out.source() + ": empty CSV (no header row)");
+    if (!aircraft.chosen() && aircraft.aircraft() > 1) {
+        throw FlightLogError(fmt::format(
+            "{}: {} aircraft in one log; choose one by icao24 or callsign (zenith replay "
+            "--icao24/--callsign): {}",
+            out.source(), aircraft.aircraft(), aircraft.List(10)));
+    }
+    if (aircraft.chosen() && rows == 0) {
+        throw FlightLogError(fmt::format("{}: no row of {} (aircraft in the log: {})", out.source(),
+                                         aircraft.Chosen(), aircraft.List(10)));
+    }
     return out.Finish();
 }
 

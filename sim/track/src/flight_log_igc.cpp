@@ -71,25 +71,22 @@ struct Line {
     int number;
 };
 
-std::vector<Line> SplitLines(std::string_view text) {
-    std::vector<Line> lines;
+// Calls f(Line) for each line of the text, without storing them: a log of millions of B records
+// is read through once per pass. Lines end in LF, CRLF or a lone CR; trailing blanks go.
+template <class F>
+void ForEachLine(std::string_view text, F&& f) {
     int number = 0;
     while (!text.empty()) {
-        const auto end = text.find('\n');
-        std::string_view line = text.substr(0, end);
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
-        lines.push_back({line, ++number});
-        if (end == std::string_view::npos) break;
-        text.remove_prefix(end + 1);
+        std::string_view line = detail::NextLine(text);
+        while (!line.empty() && line.back() == ' ') line.remove_suffix(1);
+        f(Line{line, ++number});
     }
-    return lines;
 }
 
 }  // namespace
 
-FlightLog ParseIgc(std::string_view text, std::string source) {
-    LogBuilder out(std::move(source), LogFormat::kIgc);
-    const std::vector<Line> lines = SplitLines(text);
+FlightLog ParseIgc(std::string_view text, std::string source, const ReadOptions& options) {
+    LogBuilder out(std::move(source), LogFormat::kIgc, options);
 
     // Headers first: some recorders write HFDTE after the first fixes.
     std::optional<double> midnight_s;
@@ -98,7 +95,7 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
     bool gnss_datum_given = false;
     std::size_t b_length = kBRecordLength;
     std::string pilot, glider;
-    for (const Line& l : lines) {
+    ForEachLine(text, [&](const Line& l) {
         const std::string upper = Upper(l.text.substr(0, std::min<std::size_t>(l.text.size(), 24)));
         if (StartsWith(upper, "HFDTE") || StartsWith(upper, "HODTE")) {
             std::size_t pos = 5;
@@ -108,7 +105,7 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
             const auto yy = Digits(l.text, pos + 4, 2);
             if (!dd || !mm || !yy) {
                 out.Skip(l.number, fmt::format("HFDTE date '{}' is not ddmmyy", l.text));
-                continue;
+                return;
             }
             // IGC files exist from 1990 on.
             const geo::CivilTime date{*yy < 80 ? 2000 + *yy : 1900 + *yy, *mm, *dd, 0, 0, 0.0};
@@ -117,12 +114,12 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
             } catch (const geo::TimeError& e) {
                 out.Skip(l.number,
                          fmt::format("HFDTE date '{}' does not exist: {}", l.text, e.what()));
-                continue;
+                return;
             }
             if (midnight_s) {
                 out.Note(fmt::format("{}second HFDTE record ignored (date taken from line {})",
                                      detail::Where(out.source(), l.number), date_line));
-                continue;
+                return;
             }
             midnight_s = geo::UnixSecondsFromCivil(date);
             date_line = l.number;
@@ -145,14 +142,14 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
                 out.Skip(l.number,
                          "I record truncated or malformed; B-record extensions "
                          "are not checked");
-                continue;
+                return;
             }
             for (int i = 0; i < *count; ++i) {
                 const auto finish = Digits(l.text, 3 + 7 * static_cast<std::size_t>(i) + 2, 2);
                 if (finish) b_length = std::max(b_length, static_cast<std::size_t>(*finish));
             }
         }
-    }
+    });
     if (!midnight_s) {
         throw FlightLogError(
             fmt::format("{}: no valid HFDTE date record (expected 'HFDTEddmmyy' "
@@ -175,10 +172,10 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
     std::optional<double> previous_clock_s;
     int v_fixes = 0;
     int short_extensions = 0;
+    int fixes = 0;
     bool any_pressure = false, any_gnss = false;
-    std::vector<FlightSample> samples;
-    for (const Line& l : lines) {
-        if (l.text.empty()) continue;
+    ForEachLine(text, [&](const Line& l) {
+        if (l.text.empty()) return;
         const char type = l.text[0];
         if (type != 'B') {
             if (!std::isupper(static_cast<unsigned char>(type))) {
@@ -186,20 +183,25 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
                 out.Skip(l.number,
                          fmt::format("not an IGC record (starts with '{}')", l.text.substr(0, 12)));
             }
-            continue;
+            return;
         }
         out.CountRecord();
         const std::string_view b = l.text;
         if (b.size() < kBRecordLength) {
             out.Skip(l.number, fmt::format("B record truncated: {} of {} characters", b.size(),
                                            kBRecordLength));
-            continue;
+            return;
+        }
+        if (b.size() > kMaxLineBytes) {
+            out.Skip(l.number, fmt::format("B record of {} characters (at most {})", b.size(),
+                                           kMaxLineBytes));
+            return;
         }
         if (b.size() < b_length) ++short_extensions;
         const auto hh = Digits(b, 1, 2), mi = Digits(b, 3, 2), ss = Digits(b, 5, 2);
         if (!hh || !mi || !ss || *hh > 23 || *mi > 59 || *ss > 59) {
             out.Skip(l.number, fmt::format("bad time '{}' (hhmmss)", b.substr(1, 6)));
-            continue;
+            return;
         }
         const auto lat_d = Digits(b, 7, 2), lat_m = Digits(b, 9, 5);
         const auto lon_d = Digits(b, 15, 3), lon_m = Digits(b, 18, 5);
@@ -207,36 +209,36 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
         if (!lat_d || !lat_m || (ns != 'N' && ns != 'S') || *lat_m >= 60000) {
             out.Skip(l.number,
                      fmt::format("bad latitude '{}' (ddmmmmm then N or S)", b.substr(7, 8)));
-            continue;
+            return;
         }
         if (!lon_d || !lon_m || (ew != 'E' && ew != 'W') || *lon_m >= 60000) {
             out.Skip(l.number,
                      fmt::format("bad longitude '{}' (dddmmmmm then E or W)", b.substr(15, 9)));
-            continue;
+            return;
         }
         double lat_deg = *lat_d + *lat_m / 60000.0;
         double lon_deg = *lon_d + *lon_m / 60000.0;
         if (!(lat_deg <= 90.0) || !(lon_deg <= 180.0)) {
             out.Skip(l.number, fmt::format("position out of range: lat {:.5f}, lon {:.5f} deg",
                                            lat_deg, lon_deg));
-            continue;
+            return;
         }
         if (ns == 'S') lat_deg = -lat_deg;
         if (ew == 'W') lon_deg = -lon_deg;
         if (lon_deg >= 180.0) lon_deg -= 360.0;
         if (validity != 'A' && validity != 'V') {
             out.Skip(l.number, fmt::format("bad fix validity '{}' (A or V)", validity));
-            continue;
+            return;
         }
         const auto pressure = AltitudeField(b, 25), gnss = AltitudeField(b, 30);
         if (!pressure || !gnss) {
             out.Skip(l.number, fmt::format("bad altitude fields '{}' (two 5-digit metres)",
                                            b.substr(25, 10)));
-            continue;
+            return;
         }
         if (validity == 'V' && lat_deg == 0.0 && lon_deg == 0.0) {
             out.Skip(l.number, "V fix with no position (0, 0)");
-            continue;
+            return;
         }
 
         const double clock_s = *hh * 3600.0 + *mi * 60.0 + *ss;
@@ -262,25 +264,34 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
         } else {
             ++v_fixes;
         }
-        samples.push_back(s);
-    }
+        ++fixes;
+        out.Add(std::move(s));
+    });
     // A recorder without a pressure sensor (or without GNSS altitude) writes 00000 throughout.
     if (!any_pressure) {
-        if (!samples.empty()) {
+        if (fixes > 0) {
             out.Note("pressure altitude is 0 in every fix (no pressure sensor): not used");
         }
-        for (FlightSample& s : samples) s.pressure_altitude.reset();
+        for (FlightSample& s : out.samples()) s.pressure_altitude.reset();
     }
     if (!any_gnss) {
-        if (!samples.empty()) out.Note("GNSS altitude is 0 in every fix: not used");
-        for (FlightSample& s : samples) {
+        if (fixes > 0 && v_fixes == fixes) {
+            out.Note(
+                fmt::format("all {} fixes are flagged V (2-D or no GNSS fix): no GNSS "
+                            "altitude",
+                            fixes));
+        } else if (fixes > 0) {
+            out.Note("GNSS altitude is 0 in every fix: not used");
+        }
+        for (FlightSample& s : out.samples()) {
             s.msl_altitude.reset();
             s.ellipsoid_height.reset();
         }
-    }
-    if (v_fixes > 0) {
-        out.Note(fmt::format("{} fixes flagged V (2D or no GNSS): their GNSS altitude is not used",
-                             v_fixes));
+    } else if (v_fixes > 0) {
+        out.Note(
+            fmt::format("{} fixes flagged V (2-D or no GNSS fix): their GNSS altitude is not "
+                        "used",
+                        v_fixes));
     }
     if (short_extensions > 0) {
         out.Note(
@@ -288,7 +299,6 @@ FlightLog ParseIgc(std::string_view text, std::string source) {
                         "characters); the extensions are not used anyway",
                         short_extensions, b_length));
     }
-    for (FlightSample& s : samples) out.Add(std::move(s));
     return out.Finish();
 }
 

@@ -69,6 +69,93 @@ int LineAt(std::string_view text, std::size_t offset) {
                    std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n'));
 }
 
+// tinyxml2's error, in words, with the line when it has one.
+std::string XmlError(const tinyxml2::XMLDocument& doc, std::string_view source) {
+    std::string what;
+    switch (doc.ErrorID()) {
+        case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
+            what = "the document is empty";
+            break;
+        case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+            what = "an element is closed by another's tag";
+            break;
+        case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+            what = "an element is malformed or not closed";
+            break;
+        case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+            what = "an attribute is malformed";
+            break;
+        case tinyxml2::XML_ERROR_PARSING_TEXT:
+            what = "text is malformed";
+            break;
+        case tinyxml2::XML_ERROR_PARSING_COMMENT:
+            what = "a comment is not closed";
+            break;
+        case tinyxml2::XML_ERROR_PARSING_DECLARATION:
+            what = "a declaration is malformed";
+            break;
+        case tinyxml2::XML_ERROR_PARSING_CDATA:
+            what = "a CDATA section is not closed";
+            break;
+        case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
+            what = "elements are nested too deeply";
+            break;
+        default:
+            what = doc.ErrorName();
+            break;
+    }
+    const int line = doc.ErrorLineNum();
+    return line > 0 ? fmt::format("{}:{}: XML not well-formed: {}", source, line, what)
+                    : fmt::format("{}: XML not well-formed: {}", source, what);
+}
+
+// XML that declares itself UTF-16 by its byte-order mark (Windows tools write it), as UTF-8;
+// tinyxml2 reads UTF-8 only. Unpaired surrogates become U+FFFD. Other text is returned as it is.
+std::string_view AsUtf8(std::string_view text, std::string& storage) {
+    if (text.size() < 2) return text;
+    const auto b0 = static_cast<unsigned char>(text[0]), b1 = static_cast<unsigned char>(text[1]);
+    const bool little = b0 == 0xFF && b1 == 0xFE, big = b0 == 0xFE && b1 == 0xFF;
+    if (!little && !big) return text;
+    storage.clear();
+    storage.reserve(text.size());
+    const auto unit = [&](std::size_t i) -> std::uint32_t {
+        const auto lo = static_cast<unsigned char>(text[i + (little ? 0 : 1)]);
+        const auto hi = static_cast<unsigned char>(text[i + (little ? 1 : 0)]);
+        return static_cast<std::uint32_t>(hi << 8 | lo);
+    };
+    const auto put = [&](std::uint32_t c) {
+        if (c < 0x80) {
+            storage += static_cast<char>(c);
+        } else if (c < 0x800) {
+            storage += static_cast<char>(0xC0 | c >> 6);
+            storage += static_cast<char>(0x80 | (c & 0x3F));
+        } else if (c < 0x10000) {
+            storage += static_cast<char>(0xE0 | c >> 12);
+            storage += static_cast<char>(0x80 | (c >> 6 & 0x3F));
+            storage += static_cast<char>(0x80 | (c & 0x3F));
+        } else {
+            storage += static_cast<char>(0xF0 | c >> 18);
+            storage += static_cast<char>(0x80 | (c >> 12 & 0x3F));
+            storage += static_cast<char>(0x80 | (c >> 6 & 0x3F));
+            storage += static_cast<char>(0x80 | (c & 0x3F));
+        }
+    };
+    for (std::size_t i = 2; i + 1 < text.size(); i += 2) {
+        const std::uint32_t u = unit(i);
+        if (u >= 0xD800 && u < 0xDC00 && i + 3 < text.size()) {
+            const std::uint32_t v = unit(i + 2);
+            if (v >= 0xDC00 && v < 0xE000) {
+                put(0x10000 + ((u - 0xD800) << 10) + (v - 0xDC00));
+                i += 2;
+                continue;
+            }
+        }
+        put(u >= 0xD800 && u < 0xE000 ? 0xFFFD : u);
+    }
+    // The declaration may still say encoding="UTF-16"; tinyxml2 ignores it.
+    return storage;
+}
+
 // Parses text; when it is not well-formed, retries with the text cut after the last complete
 // sample element (last_sample_end, e.g. "</trkpt>") and closed by one of the given tails.
 void ParseWithRecovery(tinyxml2::XMLDocument& doc, std::string_view text,
@@ -76,7 +163,7 @@ void ParseWithRecovery(tinyxml2::XMLDocument& doc, std::string_view text,
                        LogBuilder& out) {
     if (doc.Parse(text.data(), text.size()) == tinyxml2::XML_SUCCESS) return;
     const int error_line = doc.ErrorLineNum();
-    const std::string error = doc.ErrorStr();
+    const std::string error = XmlError(doc, out.source());
     const auto cut = text.rfind(last_sample_end);
     if (cut != std::string_view::npos) {
         const std::size_t end = cut + last_sample_end.size();
@@ -84,22 +171,64 @@ void ParseWithRecovery(tinyxml2::XMLDocument& doc, std::string_view text,
             std::string repaired(text.substr(0, end));
             repaired += tail;
             if (doc.Parse(repaired.data(), repaired.size()) == tinyxml2::XML_SUCCESS) {
-                out.Skip(error_line,
-                         fmt::format("XML not well-formed ({}); read up to line {}, the last "
-                                     "complete {}",
-                                     error, LineAt(text, end), last_sample_end));
+                out.Skip(error_line, fmt::format("{}; read up to line {}, the last complete {}",
+                                                 error, LineAt(text, end), last_sample_end));
                 return;
             }
         }
     }
-    throw FlightLogError(
-        fmt::format("{}:{}: XML not well-formed: {}", out.source(), error_line, error));
+    throw FlightLogError(error);
+}
+
+// How a gx:Track's altitudes are meant (KML 2.2 §9.1.2 and the gx extensions): its own
+// altitudeMode or gx:altitudeMode, else that of the gx:MultiTrack holding it, else KML's default,
+// clampToGround.
+struct AltitudeMode {
+    enum Kind { kAbsolute, kRelative, kClamped } kind = kClamped;
+    std::string name = "clampToGround";
+    std::string where = "KML's default when none is given";
+    int line = 0;
+};
+
+std::optional<AltitudeMode> OwnAltitudeMode(const XMLElement& element, const char* where) {
+    for (const XMLElement* c = element.FirstChildElement(); c; c = c->NextSiblingElement()) {
+        if (LocalName(*c) != "altitudeMode") continue;  // altitudeMode and gx:altitudeMode
+        AltitudeMode mode;
+        mode.name = std::string(TextOf(*c));
+        mode.where = where;
+        mode.line = c->GetLineNum();
+        if (mode.name == "absolute") {
+            mode.kind = AltitudeMode::kAbsolute;
+        } else if (mode.name == "relativeToGround" || mode.name == "relativeToSeaFloor") {
+            mode.kind = AltitudeMode::kRelative;
+        } else {
+            mode.kind = AltitudeMode::kClamped;  // clampToGround, clampToSeaFloor, unknown
+        }
+        return mode;
+    }
+    return std::nullopt;
+}
+
+AltitudeMode TrackAltitudeMode(const XMLElement& track) {
+    if (auto own = OwnAltitudeMode(track, "given by the gx:Track")) return *own;
+    const tinyxml2::XMLNode* parent = track.Parent();
+    const XMLElement* multi = parent ? parent->ToElement() : nullptr;
+    if (multi && LocalName(*multi) == "MultiTrack") {
+        if (auto inherited = OwnAltitudeMode(*multi, "inherited from its gx:MultiTrack")) {
+            return *inherited;
+        }
+    }
+    AltitudeMode mode;
+    mode.line = track.GetLineNum();
+    return mode;
 }
 
 }  // namespace
 
-FlightLog ParseGpx(std::string_view text, std::string source) {
-    LogBuilder out(std::move(source), LogFormat::kGpx);
+FlightLog ParseGpx(std::string_view text, std::string source, const ReadOptions& options) {
+    LogBuilder out(std::move(source), LogFormat::kGpx, options);
+    std::string utf8;
+    text = AsUtf8(text, utf8);
     tinyxml2::XMLDocument doc;
     ParseWithRecovery(doc, text, "</trkpt>", {"</trkseg></trk></gpx>"}, out);
     const XMLElement* root = doc.RootElement();
@@ -132,19 +261,18 @@ FlightLog ParseGpx(std::string_view text, std::string source) {
                     out.Skip(line, "trkpt without lat/lon attributes");
                     continue;
                 }
-                s.lat_deg = *detail::ParseDouble(lat);
-                s.lon_deg = *detail::ParseDouble(lon);
+                const std::optional<double> lat_deg = detail::ParseDouble(lat);
+                const std::optional<double> lon_deg = detail::ParseDouble(lon);
+                if (!lat_deg || !lon_deg) {
+                    out.Skip(line, "trkpt with an empty lat or lon attribute");
+                    continue;
+                }
+                s.lat_deg = *lat_deg;
+                s.lon_deg = *lon_deg;
             } catch (const std::exception& e) {
                 out.Skip(line, fmt::format("trkpt lat/lon: {}", e.what()));
                 continue;
             }
-            if (!(std::abs(s.lat_deg) <= 90.0) || !(std::abs(s.lon_deg) <= 180.0)) {
-                out.Skip(line, fmt::format("position out of range: lat {}, lon {} deg (allowed "
-                                           "[-90, 90], [-180, 180])",
-                                           s.lat_deg, s.lon_deg));
-                continue;
-            }
-            if (s.lon_deg >= 180.0) s.lon_deg -= 360.0;
             const XMLElement* time = ChildByLocalName(*p, "time");
             if (!time) {
                 out.Skip(line, "trkpt without <time>");
@@ -172,8 +300,10 @@ FlightLog ParseGpx(std::string_view text, std::string source) {
     return out.Finish();
 }
 
-FlightLog ParseKml(std::string_view text, std::string source) {
-    LogBuilder out(std::move(source), LogFormat::kKml);
+FlightLog ParseKml(std::string_view text, std::string source, const ReadOptions& options) {
+    LogBuilder out(std::move(source), LogFormat::kKml, options);
+    std::string utf8;
+    text = AsUtf8(text, utf8);
     tinyxml2::XMLDocument doc;
     // gx:Track lists all <when> first, then the coordinates, then the angles.
     const std::string_view last_end = text.rfind("</gx:angles>") != std::string_view::npos &&
@@ -204,8 +334,6 @@ FlightLog ParseKml(std::string_view text, std::string source) {
 
     for (const XMLElement* track : tracks) {
         std::vector<const XMLElement*> whens, coords, angles;
-        std::string mode = "clampToGround";
-        int mode_line = track->GetLineNum();
         for (const XMLElement* c = track->FirstChildElement(); c; c = c->NextSiblingElement()) {
             const std::string_view name = LocalName(*c);
             if (name == "when") {
@@ -214,17 +342,17 @@ FlightLog ParseKml(std::string_view text, std::string source) {
                 coords.push_back(c);
             } else if (name == "angles") {
                 angles.push_back(c);
-            } else if (name == "altitudeMode") {
-                mode = std::string(TextOf(*c));
-                mode_line = c->GetLineNum();
             }
         }
-        const bool absolute = mode == "absolute";
-        if (!absolute) {
-            out.Note(
-                fmt::format("{}altitudeMode {}: altitudes are relative to terrain zenith "
-                            "does not know (or clamped to it) and are not used",
-                            detail::Where(out.source(), mode_line), mode));
+        const AltitudeMode mode = TrackAltitudeMode(*track);
+        if (mode.kind != AltitudeMode::kAbsolute) {
+            out.Note(fmt::format("{}altitudeMode {} ({}): {}",
+                                 detail::Where(out.source(), mode.line), mode.name, mode.where,
+                                 mode.kind == AltitudeMode::kClamped
+                                     ? "the track is on the terrain, which zenith does not know: "
+                                       "heights are taken as 0 m above sea level"
+                                     : "heights are above the terrain, which zenith does not "
+                                       "know: they are taken as above sea level"));
         }
         const std::size_t n = std::max(whens.size(), coords.size());
         if (whens.size() != coords.size()) {
@@ -272,13 +400,11 @@ FlightLog ParseKml(std::string_view text, std::string source) {
             }
             s.lon_deg = v[0];
             s.lat_deg = v[1];
-            if (!(std::abs(s.lat_deg) <= 90.0) || !(std::abs(s.lon_deg) <= 180.0)) {
-                out.Skip(s.line, fmt::format("position out of range: lon {}, lat {} deg", s.lon_deg,
-                                             s.lat_deg));
-                continue;
+            if (mode.kind == AltitudeMode::kClamped) {
+                s.msl_altitude = 0.0;
+            } else if (v.size() == 3) {
+                s.msl_altitude = v[2];
             }
-            if (s.lon_deg >= 180.0) s.lon_deg -= 360.0;
-            if (absolute && v.size() == 3) s.msl_altitude = v[2];
             if (use_angles && i < angles.size()) {
                 std::istringstream a{std::string(TextOf(*angles[i]))};
                 std::array<double, 3> hpr{};

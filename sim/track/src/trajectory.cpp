@@ -107,6 +107,125 @@ double GeometricFromGeopotential(double geopotential_height) {
     return kIsaEarthRadius * geopotential_height / (kIsaEarthRadius - geopotential_height);
 }
 
+// Ellipsoidal height of every sample (nullopt: none can be had), per fix: the requested kind
+// only; or by default each fix's best measurement: GNSS ellipsoidal height, else GNSS height
+// above the geoid plus the undulation, else pressure altitude through ISA plus the undulation
+// plus the offset between GNSS and pressure heights measured at the nearest fixes that have
+// both (interpolated in time), so a fix without GNSS (an IGC 'V' fix) stays on the track its
+// neighbours draw. Notes say what each fix used.
+std::vector<std::optional<double>> Trajectory::Heights(const FlightLog& log,
+                                                       const TrajectoryOptions& options) {
+    const std::vector<FlightSample>& samples = log.samples;
+    const std::size_t n = samples.size();
+    const bool any_below_ellipsoid =
+        std::any_of(samples.begin(), samples.end(), [&](const auto& x) {
+            return !x.ellipsoid_height && (x.msl_altitude || x.pressure_altitude);
+        });
+    const geo::GeoidGrid* geoid = nullptr;
+    if (any_below_ellipsoid && options.altitude != AltitudeKind::kEllipsoid) {
+        if (!options.ignore_geoid)
+            geoid = options.geoid ? options.geoid : geo::GeoidGrid::Default();
+        notes_.push_back(
+            geoid ? fmt::format("MSL -> ellipsoid: geoid undulation from {}", geoid->source())
+                  : std::string("no geoid grid (install Debian proj-data or set "
+                                "ZENITH_GEOID_GTX): MSL heights are used as ellipsoidal "
+                                "heights, off by the geoid undulation (-107..+85 m)"));
+    }
+    const auto undulation = [&](const FlightSample& x) {
+        return geoid ? geoid->UndulationAt(x.lat_deg, x.lon_deg) : 0.0;
+    };
+    const auto geometric = [&](const FlightSample& x) -> std::optional<double> {
+        if (x.ellipsoid_height) return *x.ellipsoid_height;
+        if (x.msl_altitude) return *x.msl_altitude + undulation(x);
+        return std::nullopt;
+    };
+    const auto from_pressure = [&](const FlightSample& x) {
+        return GeometricFromGeopotential(*x.pressure_altitude) + undulation(x);
+    };
+    std::vector<std::optional<double>> heights(n);
+    std::array<std::size_t, 3> used{};  // ellipsoid, MSL, pressure
+    if (options.altitude) {
+        altitude_kind_ = *options.altitude;
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::optional<double> h = samples[i].Altitude(altitude_kind_);
+            if (!h) continue;
+            heights[i] = altitude_kind_ == AltitudeKind::kEllipsoid ? *h
+                         : altitude_kind_ == AltitudeKind::kMsl     ? *h + undulation(samples[i])
+                                                                    : from_pressure(samples[i]);
+            ++used[static_cast<std::size_t>(altitude_kind_ == AltitudeKind::kEllipsoid ? 0
+                                            : altitude_kind_ == AltitudeKind::kMsl     ? 1
+                                                                                       : 2)];
+        }
+    } else {
+        // GNSS minus pressure height where a fix has both, carried to the fixes with pressure
+        // only: linear in time between the nearest two, held beyond them.
+        std::vector<std::optional<double>> offset(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::optional<double> g = geometric(samples[i]);
+            if (g && samples[i].pressure_altitude) offset[i] = *g - from_pressure(samples[i]);
+        }
+        std::vector<std::size_t> previous(n, n), next(n, n);
+        for (std::size_t i = 0, last = n; i < n; ++i) {
+            if (offset[i]) last = i;
+            previous[i] = last;
+        }
+        for (std::size_t i = n, last = n; i-- > 0;) {
+            if (offset[i]) last = i;
+            next[i] = last;
+        }
+        bool pressure_only_log = true;
+        for (std::size_t i = 0; i < n; ++i) {
+            const FlightSample& x = samples[i];
+            if (x.ellipsoid_height) {
+                heights[i] = *x.ellipsoid_height;
+                ++used[0];
+                pressure_only_log = false;
+            } else if (x.msl_altitude) {
+                heights[i] = *x.msl_altitude + undulation(x);
+                ++used[1];
+                pressure_only_log = false;
+            } else if (x.pressure_altitude) {
+                double correction = 0.0;
+                const std::size_t p = previous[i], q = next[i];
+                if (p < n && q < n && samples[q].time_s > samples[p].time_s) {
+                    const double f =
+                        (x.time_s - samples[p].time_s) / (samples[q].time_s - samples[p].time_s);
+                    correction = *offset[p] + f * (*offset[q] - *offset[p]);
+                } else if (p < n || q < n) {
+                    correction = *offset[p < n ? p : q];
+                }
+                heights[i] = from_pressure(x) + correction;
+                ++used[2];
+            }
+        }
+        altitude_kind_ = used[0] >= std::max(used[1], used[2]) ? AltitudeKind::kEllipsoid
+                         : used[1] >= used[2]                  ? AltitudeKind::kMsl
+                                                               : AltitudeKind::kPressure;
+        if (used[2] > 0 && !pressure_only_log) {
+            notes_.push_back(fmt::format(
+                "{} fixes without a GNSS height use pressure altitude through ISA plus the "
+                "GNSS - pressure difference of the nearest fixes that have both",
+                used[2]));
+        }
+    }
+    std::string what;
+    constexpr std::array<AltitudeKind, 3> kKinds = {AltitudeKind::kEllipsoid, AltitudeKind::kMsl,
+                                                    AltitudeKind::kPressure};
+    for (std::size_t k = 0; k < 3; ++k) {
+        if (used[k] == 0) continue;
+        what += fmt::format("{}{} for {} fixes", what.empty() ? "" : ", ",
+                            AltitudeKindName(kKinds[k]), used[k]);
+    }
+    if (!what.empty()) notes_.push_back("altitude used: " + what);
+    if (used[2] > 0 && used[0] + used[1] == 0) {
+        notes_.push_back(
+            "pressure altitude -> height: ISA (1013.25 hPa, 15 C at MSL) with no QNH "
+            "or temperature known; off by ~30 ft per hPa of QNH near the ground and "
+            "by 4% per 10 K of temperature deviation aloft");
+    }
+    return heights;
+}
+
 Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
     if (!(options.max_gap_s > 0.0) || !(options.attitude_half_window_s >= 0.0)) {
         throw FlightLogError(
@@ -114,43 +233,6 @@ Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
                         "attitude_half_window_s {} >= 0",
                         options.max_gap_s, options.attitude_half_window_s));
     }
-    // Altitude kind.
-    if (options.altitude) {
-        altitude_kind_ = *options.altitude;
-    } else {
-        std::size_t best = 0;
-        for (AltitudeKind k :
-             {AltitudeKind::kEllipsoid, AltitudeKind::kMsl, AltitudeKind::kPressure}) {
-            const auto n = static_cast<std::size_t>(
-                std::count_if(log.samples.begin(), log.samples.end(),
-                              [k](const FlightSample& s) { return s.Altitude(k).has_value(); }));
-            if (n > best) {
-                best = n;
-                altitude_kind_ = k;
-            }
-        }
-        if (best == 0) {
-            throw FlightLogError(fmt::format("{}: no sample has an altitude", log.source));
-        }
-    }
-    notes_.push_back(fmt::format("altitude used: {}", AltitudeKindName(altitude_kind_)));
-    const geo::GeoidGrid* geoid = nullptr;
-    if (altitude_kind_ != AltitudeKind::kEllipsoid) {
-        if (!options.ignore_geoid) geoid = options.geoid ? options.geoid : geo::GeoidGrid::Default();
-        notes_.push_back(
-            geoid ? fmt::format("MSL -> ellipsoid: geoid undulation from {}", geoid->source())
-                  : std::string("no geoid grid (install Debian proj-data or set "
-                                "ZENITH_GEOID_GTX): MSL heights are used as ellipsoidal "
-                                "heights, off by the geoid undulation (-107..+85 m)"));
-    }
-    if (altitude_kind_ == AltitudeKind::kPressure) {
-        notes_.push_back(
-            "pressure altitude -> height: ISA (1013.25 hPa, 15 C at MSL) with no QNH "
-            "or temperature known; off by ~30 ft per hPa of QNH near the ground and "
-            "by 4% per 10 K of temperature deviation aloft");
-    }
-
-    // Heights and ECEF positions of the samples that have the chosen altitude.
     struct Point {
         const FlightSample* sample;
         double height;
@@ -158,31 +240,29 @@ Trajectory::Trajectory(const FlightLog& log, const TrajectoryOptions& options) {
     };
     std::vector<Point> points;
     points.reserve(log.samples.size());
-    for (const FlightSample& s : log.samples) {
-        const auto alt = s.Altitude(altitude_kind_);
-        if (!alt) continue;
-        double h = *alt;
-        if (altitude_kind_ == AltitudeKind::kPressure) h = GeometricFromGeopotential(h);
-        if (altitude_kind_ != AltitudeKind::kEllipsoid && geoid) {
-            h += geoid->UndulationAt(s.lat_deg, s.lon_deg);
-        }
-        points.push_back({&s, h, EcefFromGeodetic(s.lat_deg, s.lon_deg, h)});
+    const std::vector<std::optional<double>> heights = Heights(log, options);
+    for (std::size_t i = 0; i < log.samples.size(); ++i) {
+        if (!heights[i]) continue;
+        const FlightSample& s = log.samples[i];
+        points.push_back({&s, *heights[i], EcefFromGeodetic(s.lat_deg, s.lon_deg, *heights[i])});
     }
     if (points.empty()) {
         throw FlightLogError(
-            fmt::format("{}: no sample has {}", log.source, AltitudeKindName(altitude_kind_)));
+            fmt::format("{}: no sample has {}", log.source,
+                        options.altitude ? AltitudeKindName(*options.altitude) : "an altitude"));
     }
     if (points.size() < log.samples.size()) {
-        notes_.push_back(fmt::format("{} of {} samples have no {} and are not used",
-                                     log.samples.size() - points.size(), log.samples.size(),
-                                     AltitudeKindName(altitude_kind_)));
+        notes_.push_back(
+            fmt::format("{} of {} samples have no {} and are not used",
+                        log.samples.size() - points.size(), log.samples.size(),
+                        options.altitude ? AltitudeKindName(*options.altitude) : "altitude"));
     }
 
     // Segments split at gaps.
     std::vector<int> segment(points.size(), 0);
     for (std::size_t i = 1; i < points.size(); ++i) {
         const double dt = points[i].sample->time_s - points[i - 1].sample->time_s;
-        segment[i] = segment[i - 1] + (dt > options.max_gap_s ? 1 : 0);
+        segment[i] = segment[i - 1] + (dt > options.max_gap_s || points[i].sample->discontinuity);
         if (dt > options.max_gap_s) {
             notes_.push_back(
                 fmt::format("{}:{}: gap of {:.0f} s > {:.0f} s: not interpolated "
@@ -314,13 +394,12 @@ TrajectoryState Trajectory::At(double time_s) const {
     TrajectoryState state;
     state.time_s = time_s;
     if (!(time_s >= start_time_s()) || !(time_s <= end_time_s())) return state;
-    // First knot after time_s (or the last knot).
-    auto it = std::upper_bound(knots_.begin(), knots_.end(), time_s,
-                               [](double t, const Knot& k) { return t < k.time_s; });
-    std::size_t i1 =
-        it == knots_.end() ? knots_.size() - 1 : static_cast<std::size_t>(it - knots_.begin());
-    std::size_t i0 = i1 > 0 ? i1 - 1 : 0;
-    if (knots_[i1].time_s == time_s || i0 == i1) i0 = i1;
+    // The first knot at or after time_s; at a knot's own time that knot alone, so a lone sample
+    // (a segment of one) is valid at its time.
+    const auto it = std::lower_bound(knots_.begin(), knots_.end(), time_s,
+                                     [](const Knot& k, double t) { return k.time_s < t; });
+    const auto i1 = static_cast<std::size_t>(it - knots_.begin());
+    const std::size_t i0 = knots_[i1].time_s == time_s ? i1 : i1 - 1;
     const Knot& k0 = knots_[i0];
     const Knot& k1 = knots_[i1];
     if (k0.segment != k1.segment) return state;  // inside a gap
@@ -347,7 +426,8 @@ TrajectoryState Trajectory::At(double time_s) const {
     }
     Wgs84().Reverse(state.ecef.x, state.ecef.y, state.ecef.z, state.lat_deg, state.lon_deg,
                     state.height);
-    state.attitude = geo::AttitudeFromEcefFromBody(state.ecef_from_body, state.lat_deg, state.lon_deg);
+    state.attitude =
+        geo::AttitudeFromEcefFromBody(state.ecef_from_body, state.lat_deg, state.lon_deg);
     state.valid = true;
     return state;
 }

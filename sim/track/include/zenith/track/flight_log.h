@@ -12,8 +12,18 @@
 //
 // Times are UTC seconds since 1970-01-01T00:00:00Z on the POSIX scale (every day 86400 s, so a
 // leap second has no number of its own, as in every log format read here).
+//
+// What a log may cost is bounded, whatever it holds (the limits below): a record outside the
+// sane ranges of time, position and altitude is skipped with its line; a fix isolated from the
+// rest by more than a day (a receiver's cold-start date) is skipped; a position that jumps
+// faster than any aircraft flies and comes back is skipped, one that jumps and stays breaks the
+// track there; a log longer than kMaxLogSpan is refused; more than kMaxSamples fixes are thinned
+// evenly (1 in 2, 1 in 4, ...) while reading, so memory stays bounded for any file size. Line
+// formats (IGC, CSV) are read through a memory map, line by line; XML (GPX, KML) is parsed whole
+// and refused above kMaxXmlBytes.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -33,6 +43,18 @@ class FlightLogError : public InputError {
   public:
     using InputError::InputError;
 };
+
+// Sane limits of a flight log (see the file comment).
+inline constexpr double kMinLogTime = -2208988800.0;    // 1900-01-01T00:00:00Z, POSIX s
+inline constexpr double kMaxLogTime = 7258118400.0;     // 2200-01-01T00:00:00Z
+inline constexpr double kMinLogAltitude = -1000.0;      // m, below the Dead Sea shore
+inline constexpr double kMaxLogAltitude = 200000.0;     // m, twice the Karman line
+inline constexpr double kIsolatedFixGap = 86400.0;      // s
+inline constexpr double kMaxLogSpan = 400.0 * 86400.0;  // s: long-duration balloons fly months
+inline constexpr double kMaxSpeed = 2000.0;             // m/s, Mach 6 at altitude
+inline constexpr std::size_t kMaxSamples = 4'000'000;
+inline constexpr std::uintmax_t kMaxXmlBytes = 256ull << 20;
+inline constexpr std::size_t kMaxLineBytes = 1u << 16;  // longer lines are skipped
 
 enum class LogFormat { kIgc, kGpx, kKml, kCsv };
 std::string_view LogFormatName(LogFormat format);
@@ -55,7 +77,10 @@ struct FlightSample {
     std::optional<double> msl_altitude;
     std::optional<double> ellipsoid_height;
     std::optional<geo::Attitude> attitude;  // only when the log records it
-    int line = 0;                      // 1-based source line of the record
+    int line = 0;                           // 1-based source line of the record
+    // The position jumps here from the previous sample faster than kMaxSpeed and stays: the
+    // track is not interpolated across (GNSS spoofing, a spliced log).
+    bool discontinuity = false;
 
     std::optional<double> Altitude(AltitudeKind kind) const;
 };
@@ -93,13 +118,28 @@ struct FlightLog {
     bool HasAttitude() const;  // every sample has one
 };
 
+struct ReadOptions {
+    // Logs of several aircraft (a CSV with an icao24 or callsign column: OpenSky state
+    // vectors): the one to read, case-insensitive. Without a choice such a log is refused with
+    // a list of the aircraft in it.
+    std::optional<std::string> icao24;
+    std::optional<std::string> callsign;
+    // Fixes kept at most; more are thinned evenly (1 in 2, 1 in 4, ...). >= 2.
+    std::size_t max_samples = kMaxSamples;
+};
+
 // Reads a file, choosing the reader by extension (.igc .gpx .kml .csv, any case).
-FlightLog ReadFlightLog(const std::filesystem::path& path);
+FlightLog ReadFlightLog(const std::filesystem::path& path, const ReadOptions& options = {});
 // Readers over text already in memory; source names it in messages.
-FlightLog ParseIgc(std::string_view text, std::string source = "<igc>");
-FlightLog ParseGpx(std::string_view text, std::string source = "<gpx>");
-FlightLog ParseKml(std::string_view text, std::string source = "<kml>");
-FlightLog ParseCsv(std::string_view text, std::string source = "<csv>");
-FlightLog ParseFlightLog(std::string_view text, LogFormat format, std::string source);
+FlightLog ParseIgc(std::string_view text, std::string source = "<igc>",
+                   const ReadOptions& options = {});
+FlightLog ParseGpx(std::string_view text, std::string source = "<gpx>",
+                   const ReadOptions& options = {});
+FlightLog ParseKml(std::string_view text, std::string source = "<kml>",
+                   const ReadOptions& options = {});
+FlightLog ParseCsv(std::string_view text, std::string source = "<csv>",
+                   const ReadOptions& options = {});
+FlightLog ParseFlightLog(std::string_view text, LogFormat format, std::string source,
+                         const ReadOptions& options = {});
 
 }  // namespace zenith::track

@@ -14,16 +14,19 @@
 // constant-speed turn. Between samples the ECEF-from-body rotation is slerped, so the attitude
 // stays continuous over a pole where heading is not.
 //
-// Gaps: samples more than max_gap_s apart start a new segment; At() is invalid inside a gap
-// and outside [start_time_s(), end_time_s()].
+// Gaps: samples more than max_gap_s apart, or across a discontinuity the reader found (a jump
+// faster than any aircraft), start a new segment; At() is invalid inside a gap and outside
+// [start_time_s(), end_time_s()], and valid at the time of every sample, even a lone one.
 //
-// Heights: one altitude kind is used for the whole trajectory (altitude_kind()); samples
-// without it are dropped with a note. MSL heights get the geoid undulation N from a GTX grid
-// (EGM96 15' from Debian's proj-data, /usr/share/proj/egm96_15.gtx, or $ZENITH_GEOID_GTX);
-// without one, MSL is used as ellipsoidal height and notes() says so (error |N| <= ~107 m).
-// Pressure altitude is taken as ISA geopotential height with no QNH and no temperature known,
-// converted to geometric height above MSL (notes() says so; the real atmosphere can differ by
-// hundreds of metres at altitude).
+// Heights, chosen per fix (a single fix cannot change how the others are read): GNSS height
+// above the ellipsoid, else GNSS height above the geoid plus the undulation N from a GTX grid
+// (EGM96 15' from Debian's proj-data, /usr/share/proj/egm96_15.gtx, or $ZENITH_GEOID_GTX;
+// without one N = 0 and notes() says so, |N| <= ~107 m), else pressure altitude as ISA
+// geopotential height converted to geometric height above MSL, plus N, plus the GNSS - pressure
+// difference measured at the nearest fixes that have both (so an IGC 'V' fix among 'A' fixes
+// stays on the GNSS track). A log of pressure altitudes only is pure ISA with no QNH and no
+// temperature known (notes() says so; off by hundreds of metres aloft). TrajectoryOptions::
+// altitude forces one kind, dropping the fixes without it.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -46,8 +49,7 @@ inline constexpr double kIsaEarthRadius = 6356766.0;  // m, for geopotential hei
 double GeometricFromGeopotential(double geopotential_height);
 
 struct TrajectoryOptions {
-    // Which altitude to use; default: the kind most samples have, ties going to ellipsoid,
-    // then MSL, then pressure (geometric beats pressure when QNH is unknown).
+    // Use only this kind of altitude; default: each fix's best (see the file comment).
     std::optional<AltitudeKind> altitude;
     double max_gap_s = 120.0;
     double attitude_half_window_s = 1.0;
@@ -63,7 +65,7 @@ struct TrajectoryState {
     glm::dvec3 velocity_ecef{0.0};  // m/s
     double lat_deg = 0.0;
     double lon_deg = 0.0;
-    double height = 0.0;  // m above the WGS84 ellipsoid
+    double height = 0.0;     // m above the WGS84 ellipsoid
     geo::Attitude attitude;  // in the local NED frame at this position
     glm::dquat ecef_from_body{1.0, 0.0, 0.0, 0.0};
     bool attitude_from_log = false;  // both neighbouring samples carried a logged attitude
@@ -78,6 +80,7 @@ class Trajectory {
 
     double start_time_s() const { return knots_.front().time_s; }
     double end_time_s() const { return knots_.back().time_s; }
+    // The kind most fixes use.
     AltitudeKind altitude_kind() const { return altitude_kind_; }
     // How the heights and attitudes were made (altitude kind, geoid, ISA, derived attitude).
     const std::vector<std::string>& notes() const { return notes_; }
@@ -96,6 +99,9 @@ class Trajectory {
         int segment;
     };
     std::vector<Knot> knots_;
+    std::vector<std::optional<double>> Heights(const FlightLog& log,
+                                               const TrajectoryOptions& options);
+
     AltitudeKind altitude_kind_ = AltitudeKind::kEllipsoid;
     std::vector<std::string> notes_;
 };
