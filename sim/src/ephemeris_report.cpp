@@ -1,12 +1,15 @@
 #include "zenith/sim/ephemeris_report.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <istream>
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
+#include "zenith/base/json_text.h"
+#include "zenith/base/json_value.h"
 
 namespace zenith::sim {
 namespace {
@@ -20,6 +23,23 @@ std::string FormatLatLon(double lat_deg, double lon_deg) {
                        std::abs(lon_deg), lon_deg >= 0 ? 'E' : 'W');
 }
 
+constexpr std::size_t kMaxBatchLineBytes = 1u << 16;
+constexpr int kMaxBatchDepth = 8;
+
+// Reads one line (up to '\n', which is dropped) keeping at most kMaxBatchLineBytes of it; a
+// longer line is read to its end all the same and reported by its length. False at the end.
+bool ReadLine(std::istream& in, std::string& text, std::size_t& length) {
+    text.clear();
+    length = 0;
+    std::streambuf& buffer = *in.rdbuf();
+    for (int c = buffer.sbumpc(); c != std::char_traits<char>::eof(); c = buffer.sbumpc()) {
+        if (c == '\n') return true;
+        if (length++ < kMaxBatchLineBytes) text += static_cast<char>(c);
+    }
+    in.setstate(std::ios::eofbit);
+    return length > 0;
+}
+
 // Reads a required finite number; the message names the key and what was found.
 double RequireNumber(const nlohmann::json& j, const char* key, const char* unit) {
     const auto it = j.find(key);
@@ -28,7 +48,7 @@ double RequireNumber(const nlohmann::json& j, const char* key, const char* unit)
     }
     if (!it->is_number()) {
         throw std::invalid_argument(
-            fmt::format("\"{}\" must be a number ({}), got {}", key, unit, it->dump()));
+            fmt::format("\"{}\" must be a number ({}), got {}", key, unit, DescribeJsonValue(*it)));
     }
     return it->get<double>();
 }
@@ -64,9 +84,8 @@ std::string EphemerisTable(const geo::SkyEphemeris& e, const geo::Observer& obse
                            std::size_t max_stars) {
     std::string out;
     auto line = [&out](const std::string& s) { out += s + '\n'; };
-    line(fmt::format("UTC {}   TT-UT1 {:.3f} s", geo::FormatIso8601(geo::CivilFromJulianDate(
-                                                     e.time.jd_utc)),
-                     e.time.DeltaT()));
+    line(fmt::format("UTC {}   TT-UT1 {:.3f} s",
+                     geo::FormatIso8601(geo::CivilFromJulianDate(e.time.jd_utc)), e.time.DeltaT()));
     line(fmt::format("observer {}   height {:.1f} m above the WGS84 ellipsoid",
                      FormatLatLon(observer.lat_deg(), observer.lon_deg()), observer.height_m()));
     line("");
@@ -81,10 +100,11 @@ std::string EphemerisTable(const geo::SkyEphemeris& e, const geo::Observer& obse
     body("Moon", e.moon);
     line("");
     const auto& p = e.moon_phase;
-    line(fmt::format("Moon: {:.1f}% illuminated ({}), phase angle {:.2f}°, bright limb at "
-                     "position angle {:.2f}° (from north), {:.2f}° from the zenith direction",
-                     100.0 * p.illuminated_fraction, p.waxing ? "waxing" : "waning",
-                     Deg(p.phase_angle), Deg(p.bright_limb_angle), Deg(p.bright_limb_from_zenith)));
+    line(
+        fmt::format("Moon: {:.1f}% illuminated ({}), phase angle {:.2f}°, bright limb at "
+                    "position angle {:.2f}° (from north), {:.2f}° from the zenith direction",
+                    100.0 * p.illuminated_fraction, p.waxing ? "waxing" : "waning",
+                    Deg(p.phase_angle), Deg(p.bright_limb_angle), Deg(p.bright_limb_from_zenith)));
     if (max_stars > 0 && !e.stars.empty()) {
         line("");
         // Civil twilight ends at -6 deg: before that the eye sees at most the brightest planets.
@@ -110,10 +130,22 @@ BatchSummary RunEphemerisBatch(std::istream& in, std::ostream& out) {
     BatchSummary summary;
     const geo::Ephemeris ephemeris;
     std::string text;
-    while (std::getline(in, text)) {
+    std::size_t length = 0;
+    while (ReadLine(in, text, length)) {
         ++summary.lines;
         nlohmann::json record;
         try {
+            // A line is one small object: bound what it may cost before parsing it.
+            if (length > kMaxBatchLineBytes) {
+                throw std::invalid_argument(
+                    fmt::format("line of {} bytes (at most {})", length, kMaxBatchLineBytes));
+            }
+            if (const auto at = FindJsonNestingBeyond(text, kMaxBatchDepth)) {
+                throw std::invalid_argument(
+                    fmt::format("JSON nested deeper than {} levels at "
+                                "byte {}",
+                                kMaxBatchDepth, *at + 1));
+            }
             const nlohmann::json j = nlohmann::json::parse(text);
             if (!j.is_object()) throw std::invalid_argument("expected a JSON object");
             const auto utc = j.find("utc");

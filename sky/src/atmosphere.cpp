@@ -24,7 +24,6 @@
 namespace zenith::sky {
 namespace {
 
-using data_files::Describe;
 using data_files::Quote;
 
 using Json = nlohmann::json;
@@ -294,12 +293,12 @@ class Reader : public data_files::JsonReader<AtmosphereError> {
 
     const Json& Group(const Json& root, const char* key) const {
         const Json& group = Required(root, "", key);
-        if (!group.is_object()) Fail(key, "expected an object, got " + Describe(group));
+        if (!group.is_object()) Fail(key, "expected an object, got " + DescribeJsonValue(group));
         return group;
     }
 
     double Number(const Json& value, const std::string& path, Unit unit) const {
-        if (!value.is_number()) Fail(path, "expected a number, got " + Describe(value));
+        if (!value.is_number()) Fail(path, "expected a number, got " + DescribeJsonValue(value));
         const auto text = number_text_.find(path);
         return text != number_text_.end() ? SiFromText(text->second, unit)
                                           : SiFromText(Shortest(value.get<double>()), unit);
@@ -315,8 +314,8 @@ class Reader : public data_files::JsonReader<AtmosphereError> {
         const std::string path = FilePath(field);
         if (value.is_number()) return glm::dvec3(Number(value, path, field.unit));
         if (!value.is_array() || value.size() != 3) {
-            Fail(path,
-                 "expected a number or an array of 3 numbers (R, G, B), got " + Describe(value));
+            Fail(path, "expected a number or an array of 3 numbers (R, G, B), got " +
+                           DescribeJsonValue(value));
         }
         glm::dvec3 rgb;
         for (int i = 0; i < 3; ++i) {
@@ -437,8 +436,14 @@ class DocumentBuilder final : public nlohmann::json_sax<Json> {
 };
 
 Document ParseStrict(std::string_view text, const std::string& source) {
+    data_files::CheckJsonDepth<AtmosphereError>(source, text);
     DocumentBuilder builder(text, source);
-    Json::sax_parse(text.begin(), text.end(), &builder);
+    try {
+        Json::sax_parse(text.begin(), text.end(), &builder);
+    } catch (const Json::exception& e) {
+        // What the SAX events cannot see: "1e309" overflows while parsing.
+        throw AtmosphereError(data_files::JsonExceptionMessage(source, e.what()));
+    }
     return builder.Take();
 }
 
@@ -453,7 +458,8 @@ Atmosphere ParseAtmosphereJson(std::string_view json_text, std::string_view sour
     const Document document = ParseStrict(json_text, source);
     const Json& root = document.root;
     const Reader read(source, document.number_text);
-    if (!root.is_object()) read.Fail("(top level)", "expected an object, got " + Describe(root));
+    if (!root.is_object())
+        read.Fail("(top level)", "expected an object, got " + DescribeJsonValue(root));
     read.RejectUnknownKeys(root, "", kTopLevelKeys);
 
     Atmosphere a;
@@ -461,12 +467,12 @@ Atmosphere ParseAtmosphereJson(std::string_view json_text, std::string_view sour
     a.name = std::filesystem::path(source).stem().string();
     if (const auto it = root.find("name"); it != root.end()) {
         if (!it->is_string() || it->get<std::string>().empty()) {
-            read.Fail("name", "expected a non-empty string, got " + Describe(*it));
+            read.Fail("name", "expected a non-empty string, got " + DescribeJsonValue(*it));
         }
         a.name = it->get<std::string>();
     }
     if (const auto it = root.find("description"); it != root.end() && !it->is_string()) {
-        read.Fail("description", "expected a string, got " + Describe(*it));
+        read.Fail("description", "expected a string, got " + DescribeJsonValue(*it));
     }
     if (a.name.empty()) a.name = "atmosphere";
 

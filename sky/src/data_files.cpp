@@ -7,6 +7,8 @@
 #include <system_error>
 #include <vector>
 
+#include "zenith/base/json_text.h"
+
 namespace zenith::sky::data_files {
 
 std::string Quote(std::string_view text) {
@@ -35,6 +37,20 @@ std::string JsonSyntaxMessage(std::string_view source, std::string_view text, st
     message.append(":").append(LineColumn(text, position == 0 ? 0 : position - 1));
     message.append(": JSON syntax: ").append(what);
     return message;
+}
+
+std::string JsonExceptionMessage(std::string_view source, std::string what) {
+    if (const std::size_t at = what.find("] "); at != std::string::npos) {
+        what = what.substr(at + 2);
+    }
+    return std::string(source) + ": " + what;
+}
+
+std::string JsonDepthProblem(std::string_view source, std::string_view text) {
+    const std::optional<std::size_t> at = FindJsonNestingBeyond(text, kMaxJsonDepth);
+    if (!at) return {};
+    return std::string(source) + ":" + LineColumn(text, *at) + ": JSON nested deeper than " +
+           std::to_string(kMaxJsonDepth) + " levels (a data file needs a few)";
 }
 
 bool ReadNamedJsonFile(std::string_view name_or_path, const std::filesystem::path& directory,
@@ -66,6 +82,14 @@ bool ReadNamedJsonFile(std::string_view name_or_path, const std::filesystem::pat
                      (directory_note.empty() ? "" : ", " + std::string(directory_note)) +
                      ") or a path to a .json file";
         }
+        return false;
+    }
+    std::error_code size_error;
+    const std::uintmax_t size = std::filesystem::file_size(file.path, size_error);
+    if (!size_error && size > kMaxJsonBytes) {
+        error = std::string(kind) + " file " + Quote(file.path.string()) + " has " +
+                std::to_string(size) + " bytes (a data file has at most " +
+                std::to_string(kMaxJsonBytes) + ")";
         return false;
     }
     std::ostringstream contents;

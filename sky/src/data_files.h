@@ -11,6 +11,8 @@
 #include <string_view>
 #include <utility>
 
+#include "zenith/base/json_value.h"
+
 namespace zenith::sky::data_files {
 
 // 'text' in quotes. Built by appending: "'" + std::string + "'" trips GCC 12's false
@@ -38,11 +40,24 @@ bool ReadNamedJsonFile(std::string_view name_or_path, const std::filesystem::pat
                        std::string_view kind, std::string_view directory_note, NamedFile& file,
                        std::string& error);
 
-// A JSON value as an error message shows it: its type and its text, cut at 40 characters.
-inline std::string Describe(const nlohmann::json& value) {
-    std::string text = value.dump();
-    if (text.size() > 40) text = text.substr(0, 37) + "...";
-    return std::string(value.type_name()) + " " + text;
+// Data files are small; a larger file or a deeper nesting is refused before it can cost much
+// (a deep nesting would overflow the stack of any recursive walk).
+inline constexpr std::size_t kMaxJsonBytes = 16u << 20;
+inline constexpr int kMaxJsonDepth = 32;
+
+// "source: <what>" for a JSON exception, without nlohmann's "[json.exception...]" prefix: for
+// the errors a reader's own checks do not catch first (a number too large for a double).
+std::string JsonExceptionMessage(std::string_view source, std::string what);
+
+// Throws Error("source:line:column: JSON nested deeper than kMaxJsonDepth levels") when the text
+// nests arrays and objects deeper than that (a linear scan that knows strings, before any parser
+// recurses or builds anything).
+std::string JsonDepthProblem(std::string_view source, std::string_view text);
+template <class Error>
+void CheckJsonDepth(std::string_view source, std::string_view text) {
+    if (std::string problem = JsonDepthProblem(source, text); !problem.empty()) {
+        throw Error(problem);
+    }
 }
 
 // The checks every data file makes on its JSON, failing with `Error` as

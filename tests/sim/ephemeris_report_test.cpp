@@ -1,11 +1,11 @@
 #include "zenith/sim/ephemeris_report.h"
 
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 namespace zenith::sim {
 namespace {
@@ -16,6 +16,22 @@ std::vector<nlohmann::json> Lines(const std::string& text) {
     std::string line;
     while (std::getline(in, line)) out.push_back(nlohmann::json::parse(line));
     return out;
+}
+
+TEST(EphemerisBatch, HostileLinesCostLittleAndAreReportedInPlace) {
+    const std::string good =
+        R"({"utc": "2024-04-08T18:18:00Z", "lat_deg": 31.0, "lon_deg": -104.0, "height_m": 1000})";
+    std::istringstream in(good + "\n" + std::string(40, '[') + std::string(40, ']') + "\n" +
+                          "{\"utc\": \"" + std::string(200000, 'x') + "\"}\n" + good);
+    std::ostringstream out;
+    const BatchSummary summary = RunEphemerisBatch(in, out);
+    EXPECT_EQ(summary.lines, 4u);
+    EXPECT_EQ(summary.failed, 2u);
+    const auto lines = Lines(out.str());
+    ASSERT_EQ(lines.size(), 4u);
+    EXPECT_EQ(lines[1]["error"], "JSON nested deeper than 8 levels at byte 9");
+    EXPECT_EQ(lines[2]["error"], "line of 200011 bytes (at most 65536)");
+    EXPECT_TRUE(lines[3].contains("sun_az_deg"));
 }
 
 TEST(EphemerisBatch, KeepsOrderAndReportsBadLinesInPlace) {
@@ -41,10 +57,10 @@ TEST(EphemerisBatch, KeepsOrderAndReportsBadLinesInPlace) {
 
     const auto lines = Lines(out.str());
     ASSERT_EQ(lines.size(), 7u);
-    for (const char* key : {"sun_az_deg", "sun_el_deg", "sun_dist_km", "sun_diameter_deg",
-                            "moon_az_deg", "moon_el_deg", "moon_dist_km", "moon_diameter_deg",
-                            "moon_illum_fraction", "moon_phase_angle_deg",
-                            "moon_bright_limb_deg"}) {
+    for (const char* key :
+         {"sun_az_deg", "sun_el_deg", "sun_dist_km", "sun_diameter_deg", "moon_az_deg",
+          "moon_el_deg", "moon_dist_km", "moon_diameter_deg", "moon_illum_fraction",
+          "moon_phase_angle_deg", "moon_bright_limb_deg"}) {
         EXPECT_TRUE(lines[0].contains(key)) << key;
         EXPECT_TRUE(lines[6].contains(key)) << key;
     }

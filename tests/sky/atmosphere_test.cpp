@@ -253,6 +253,16 @@ TEST(AtmosphereJson, SyntaxErrorGivesLineAndColumn) {
     EXPECT_NE(overflow.find("1e999"), std::string::npos) << overflow;
 }
 
+TEST(AtmosphereJson, DeepNestingIsRefusedBeforeParsing) {
+    const std::string message =
+        ParseError("{\n  \"name\": " + std::string(100000, '[') + std::string(100000, ']') + "}");
+    EXPECT_NE(message.find("test.json:2:42: JSON nested deeper than 32 levels"), std::string::npos)
+        << message;
+    // Brackets inside strings are text, not nesting.
+    EXPECT_NO_THROW(ParseAtmosphereJson(
+        EarthWith("\"name\": \"earth\"", "\"name\": \"" + std::string(100, '[') + "\""), "a.json"));
+}
+
 TEST(AtmosphereJson, UnknownKeyIsRejected) {
     const std::string top = ParseError(EarthWith("\"ground_albedo\"", "\"ground_albedeo\""));
     EXPECT_NE(top.find("ground_albedeo"), std::string::npos) << top;

@@ -10,9 +10,9 @@
 #include <limits>
 #include <numbers>
 
+#include "cloud_test_support.h"
 #include "zenith/sky/clouds/weather.h"
 #include "zenith/sky/image_io.h"
-#include "cloud_test_support.h"
 
 namespace zenith::sky::clouds {
 namespace {
@@ -124,6 +124,24 @@ TEST(CloudWeatherPresets, JsonSyntaxErrorsGiveFileLineAndColumn) {
     // The same file:line:column as atmosphere presets (sky/src/data_files.h).
     ExpectMentions(ErrorOf([] { ParseWeatherJson("{\n  \"name\": \"x\",\n  oops\n}", "w.json"); }),
                    {"w.json:3:", "JSON syntax"});
+}
+
+TEST(CloudWeatherPresets, HostileJsonIsAWeatherErrorNamingTheFile) {
+    // 100,000 nested arrays overflowed the stack (exit 139) before any check.
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    ExpectMentions(ErrorOf([&] { ParseWeatherJson(deep, "d.json"); }),
+                   {"d.json:1:33: JSON nested deeper than 32 levels"});
+    // A value nested deep inside a valid layout is refused the same way, not dumped.
+    ExpectMentions(ErrorOf([] {
+                       ParseWeatherJson(R"({"layers": [{"name": )" + std::string(40, '[') +
+                                            std::string(40, ']') + "}]}",
+                                        "n.json");
+                   }),
+                   {"n.json:1:", "nested deeper"});
+    // A number beyond double escaped as nlohmann's out_of_range (171 fuzz crashes, one bug).
+    ExpectMentions(
+        ErrorOf([] { ParseWeatherJson(R"({"layers": [{"base_altitude_m": 1e309}]})", "o.json"); }),
+        {"o.json: ", "1e309"});
 }
 
 TEST(CloudWeatherMaps, ProceduralMapsAreDeterministicInRangeAndTile) {

@@ -18,16 +18,15 @@
 #include <span>
 #include <sstream>
 
+#include "data_files.h"
+#include "reference/cloud_functions.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/clouds/noise.h"
-#include "data_files.h"
 #include "zenith/sky/image_io.h"
-#include "reference/cloud_functions.h"
 
 namespace zenith::sky::clouds {
 namespace {
 
-using data_files::Describe;
 using data_files::Quote;
 
 using Json = nlohmann::json;
@@ -161,7 +160,7 @@ class Reader : public data_files::JsonReader<WeatherError> {
     using JsonReader::JsonReader;
 
     double Number(const Json& value, const std::string& path) const {
-        if (!value.is_number()) Fail(path, "expected a number, got " + Describe(value));
+        if (!value.is_number()) Fail(path, "expected a number, got " + DescribeJsonValue(value));
         return value.get<double>();
     }
     double Number(const Json& object, const std::string& prefix, const char* key) const {
@@ -178,12 +177,12 @@ class Reader : public data_files::JsonReader<WeatherError> {
         if (it == object.end()) return fallback;
         if (!it->is_number_integer() || it->get<long long>() < 0 ||
             it->get<long long>() > 1'000'000'000) {
-            Fail(prefix + key, "expected a non-negative integer, got " + Describe(*it));
+            Fail(prefix + key, "expected a non-negative integer, got " + DescribeJsonValue(*it));
         }
         return static_cast<int>(it->get<long long>());
     }
     std::string String(const Json& value, const std::string& path) const {
-        if (!value.is_string()) Fail(path, "expected a string, got " + Describe(value));
+        if (!value.is_string()) Fail(path, "expected a string, got " + DescribeJsonValue(value));
         return value.get<std::string>();
     }
 };
@@ -198,7 +197,7 @@ constexpr const char* kFileKeys[] = {"file"};
 
 WeatherMapSource ReadMap(const Reader& read, const Json& map, const std::string& prefix,
                          const std::filesystem::path& base_directory) {
-    if (!map.is_object()) read.Fail(prefix, "expected an object, got " + Describe(map));
+    if (!map.is_object()) read.Fail(prefix, "expected an object, got " + DescribeJsonValue(map));
     WeatherMapSource source;
     if (map.contains("file")) {
         read.RejectUnknownKeys(map, prefix + ".", kFileKeys);
@@ -252,9 +251,11 @@ void Validate(const Weather& weather) {
     Check(weather, Checker("weather " + Quote(weather.name), false));
 }
 
-Weather ParseWeatherJson(std::string_view json_text, std::string_view source_name) {
-    const std::string source(source_name);
+namespace {
+
+Weather ParseWeatherDocument(std::string_view json_text, const std::string& source) {
     const Reader read(source);
+    data_files::CheckJsonDepth<WeatherError>(source, json_text);
     Json root;
     try {
         root = Json::parse(json_text);
@@ -262,7 +263,7 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
         throw WeatherError(data_files::JsonSyntaxMessage(source, json_text, e.byte, e.what()));
     }
     if (!root.is_object())
-        read.Fail("(top level)", "expected an object, got " + Describe(root));
+        read.Fail("(top level)", "expected an object, got " + DescribeJsonValue(root));
     read.RejectUnknownKeys(root, "", kTopKeys);
 
     Weather weather;
@@ -276,12 +277,12 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
     }
     const Json& layers = read.Required(root, "", "layers");
     if (!layers.is_array())
-        read.Fail("layers", "expected an array, got " + Describe(layers));
+        read.Fail("layers", "expected an array, got " + DescribeJsonValue(layers));
     const std::filesystem::path base_directory = std::filesystem::path(source).parent_path();
     for (std::size_t i = 0; i < layers.size(); ++i) {
         const std::string prefix = "layers[" + std::to_string(i) + "].";
         const Json& l = layers[i];
-        if (!l.is_object()) read.Fail(prefix, "expected an object, got " + Describe(l));
+        if (!l.is_object()) read.Fail(prefix, "expected an object, got " + DescribeJsonValue(l));
         read.RejectUnknownKeys(l, prefix, kLayerKeys);
         CloudLayer layer;
         if (const auto it = l.find("name"); it != l.end())
@@ -300,6 +301,18 @@ Weather ParseWeatherJson(std::string_view json_text, std::string_view source_nam
     }
     Check(weather, Checker(source, true));
     return weather;
+}
+
+}  // namespace
+
+Weather ParseWeatherJson(std::string_view json_text, std::string_view source_name) {
+    const std::string source(source_name);
+    try {
+        return ParseWeatherDocument(json_text, source);
+    } catch (const Json::exception& e) {
+        // What the reader's own checks cannot see first: "1e309" overflows while parsing.
+        throw WeatherError(data_files::JsonExceptionMessage(source, e.what()));
+    }
 }
 
 std::filesystem::path WeatherDirectory() {
@@ -403,9 +416,9 @@ double CloudTopFraction(const WeatherMap& map) {
                 height = std::max(height, double(t.a));
             }
             if (coverage > 0.0) {
-                top = std::max(top, ref::CloudTypeHeightFraction(type) *
-                                        ref::CloudSaturate(height) * 0.5 *
-                                        (1.0 + std::sqrt(std::min(coverage, 1.0))));
+                top =
+                    std::max(top, ref::CloudTypeHeightFraction(type) * ref::CloudSaturate(height) *
+                                      0.5 * (1.0 + std::sqrt(std::min(coverage, 1.0))));
             }
         }
     }
