@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "zenith/base/error.h"
 #include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
 #include "zenith/geo/moon.h"
@@ -63,6 +64,11 @@ MoonPhase ComputeMoonPhase(const glm::dvec3& sun_tod, const glm::dvec3& moon_tod
     return phase;
 }
 
+Ephemeris::Ephemeris(const StarCatalog* catalog, double star_epoch_s)
+    : catalog_(catalog), star_epoch_s_(star_epoch_s) {
+    Require("star_epoch_s", star_epoch_s, "s", Range::Closed(0.0, 86400.0));
+}
+
 SkyEphemeris Ephemeris::Compute(const Time& t, const Observer& observer,
                                 const EphemerisOptions& options) const {
     SkyEphemeris result;
@@ -77,7 +83,19 @@ SkyEphemeris Ephemeris::Compute(const Time& t, const Observer& observer,
     result.moon_phase = ComputeMoonPhase(sun_tod, moon_tod, zenith_tod);
 
     if (catalog_ != nullptr) {
-        const std::vector<glm::dvec3> directions = catalog_->ApparentTod(t.jd_tt);
+        std::vector<glm::dvec3> exact;
+        if (star_epoch_s_ > 0.0) {
+            const double step_days = star_epoch_s_ / kSecondsPerDay;
+            const double epoch = std::floor(t.jd_tt / step_days) * step_days;
+            if (epoch != cached_epoch_jd_tt_) {
+                cached_directions_ = catalog_->ApparentTod(epoch);
+                cached_epoch_jd_tt_ = epoch;
+            }
+        } else {
+            exact = catalog_->ApparentTod(t.jd_tt);
+        }
+        const std::vector<glm::dvec3>& directions =
+            star_epoch_s_ > 0.0 ? cached_directions_ : exact;
         const glm::dmat3 enu_from_tod = observer.enu_from_ecef() * EcefFromTod(t);
         const auto& stars = catalog_->stars();
         for (std::size_t i = 0; i < stars.size(); ++i) {

@@ -52,10 +52,10 @@ struct SkySystem::Impl {
     double vertical_fov = glm::radians(60.0);
     double aspect = 16.0 / 9.0;
 
+    // Stars' apparent places at whole multiples of star_refresh_s (geo::Ephemeris), so that a
+    // frame depends only on its own time and place.
+    std::optional<geo::Ephemeris> calculator;
     geo::SkyEphemeris ephemeris;
-    std::vector<geo::StarState> stars;  // refreshed every star_refresh_s of simulation time
-    double stars_jd_utc = -1e300;
-    glm::dvec3 stars_observer_ecef{1e300};
     sky::SkyState state;
     SkyLighting lighting;
     std::optional<sky::SceneDepth> scene_depth;
@@ -81,6 +81,7 @@ struct SkySystem::Impl {
         } catch (const geo::CatalogError&) {
             // Without kstars-data the sky has no stars; everything else works.
         }
+        calculator.emplace(catalog ? &*catalog : nullptr, s.star_refresh_s);
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
         ground_irradiance = renderer->ReadGroundIrradiance();
         renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
@@ -165,6 +166,8 @@ void SkySystem::SetWeatherOrigin(double lat_deg, double lon_deg) {
 void SkySystem::SetWeatherEpoch(const geo::Time& utc) { impl_->weather_epoch_jd = utc.jd_utc; }
 
 bool SkySystem::has_clouds() const { return !impl_->renderer->weather().layers.empty(); }
+const sky::Atmosphere& SkySystem::atmosphere() const { return impl_->atmosphere; }
+const sky::clouds::Weather& SkySystem::weather() const { return impl_->renderer->weather(); }
 
 void SkySystem::ResetCloudHistory() { impl_->cloud_view.reset_history = true; }
 
@@ -179,23 +182,9 @@ void SkySystem::ClearSceneDepth() { impl_->scene_depth.reset(); }
 
 void SkySystem::Update() {
     Impl& d = *impl_;
-    // Stars move slowly on the sky; their apparent places (0.9 ms for 8,400 stars) are refreshed
-    // only when time or place has moved enough, the Sun and Moon every frame.
-    const bool refresh_stars =
-        d.catalog && (std::abs(d.time.jd_utc - d.stars_jd_utc) * geo::kSecondsPerDay >=
-                          d.settings.star_refresh_s ||
-                      glm::length(d.observer.ecef() - d.stars_observer_ecef) > 1000.0);
     geo::EphemerisOptions options;
     options.star_min_elevation = -0.1;
-    d.ephemeris = geo::Ephemeris(refresh_stars ? &*d.catalog : nullptr)
-                      .Compute(d.time, d.observer, options);
-    if (refresh_stars) {
-        d.stars = d.ephemeris.stars;
-        d.stars_jd_utc = d.time.jd_utc;
-        d.stars_observer_ecef = d.observer.ecef();
-    } else {
-        d.ephemeris.stars = d.stars;
-    }
+    d.ephemeris = d.calculator->Compute(d.time, d.observer, options);
     const geo::Attitude attitude = d.attitude.value_or(geo::Attitude{});
     d.state = sky::MakeSkyState(d.ephemeris, d.observer, d.atmosphere, attitude, d.vertical_fov,
                                 d.aspect);
