@@ -16,10 +16,14 @@ packages=(
     libopenexr-dev libpng-dev
     # sim: flight logs (GPX/KML XML), EGM96 geoid grid for MSL -> WGS84 heights (egm96_15.gtx)
     libtinyxml2-dev proj-data
+    # sim: replay's manifest hashes the log (xxHash); replay --video spawns ffmpeg
+    libxxhash-dev ffmpeg
     # vis: zenith-plot (Debian's VTK 9 is X11-only: Xvfb + xauth for headless plots, xvfb-run)
     libvtk9-dev xvfb xauth
     # tests and benchmarks
     libgtest-dev libgmock-dev libbenchmark-dev
+    # fuzzing the readers (ZENITH_FUZZ=ON, .ci/run's fuzz stage): clang's libFuzzer
+    clang libclang-rt-14-dev
 )
 
 missing=()

@@ -3,8 +3,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -15,12 +17,14 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "zenith/base/error.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/sim/ephemeris_report.h"
 #include "zenith/sim/render_frame.h"
 #include "zenith/sim/replay.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/error.h"
+#include "zenith/version.h"
 
 namespace {
 
@@ -132,25 +136,14 @@ int RunSingle(const EphemerisArgs& a) {
     return 0;
 }
 
-// "WxH" -> size; the message names --size, the text and the expected form.
-glm::ivec2 ParseSize(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X')) {
-        throw std::invalid_argument("--size = " + text +
-                                    " is not a size (expected WxH, e.g. 1280x720)");
-    }
-    return {w, h};
-}
-
 int RunRender(sim::FrameRequest request, const std::string& size, const std::string& exposure,
               const std::string& quality) {
-    request.size = ParseSize(size);
+    request.size = sim::ParseFrameSize(size);
     request.exposure = sky::ExposureFromString(exposure);
     if (quality == "mobile") {
         request.lut_settings = sky::LutSettings::Mobile();
     } else if (quality != "pc") {
-        throw std::invalid_argument("--quality = " + quality + " is not known (expected pc|mobile)");
+        throw ArgumentError("quality", "quality = " + quality + " is not known (expected pc or mobile)");
     }
     std::string warning;
     const sim::FrameResult result = sim::RenderFrame(request, &warning);
@@ -163,18 +156,47 @@ int RunRender(sim::FrameRequest request, const std::string& size, const std::str
     return 0;
 }
 
+// The command-line option of a library field named in an ArgumentError ("" if none).
+std::string FlagForField(const std::string& field) {
+    static const std::map<std::string, std::string> kFlags = {
+        {"size", "--size"},
+        {"fps", "--fps"},
+        {"fov_deg", "--fov"},
+        {"time_warp", "--time-warp"},
+        {"time_offset_s", "--time-offset"},
+        {"start_s", "--start"},
+        {"end_s", "--end"},
+        {"camera", "--camera"},
+        {"format", "--format"},
+        {"video", "--video"},
+        {"shard", "--shard"},
+        {"cloud_passes", "--cloud-passes"},
+        {"exposure", "--exposure"},
+        {"quality", "--quality"},
+        {"lat_deg", "--lat"},
+        {"lon_deg", "--lon"},
+        {"height_m", "--height"},
+    };
+    const auto it = kFlags.find(field);
+    return it == kFlags.end() ? std::string() : it->second;
+}
+
 std::atomic<bool> g_stop{false};
-extern "C" void OnInterrupt(int) { g_stop.store(true); }
+std::atomic<int> g_signal{0};
+extern "C" void OnInterrupt(int signal) {
+    g_signal.store(signal);
+    g_stop.store(true);
+}
 
 int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
                      const std::string& exposure, const std::string& format,
                      const std::string& camera, const std::string& shard) {
-    request.size = ParseSize(size);
+    request.size = sim::ParseFrameSize(size);
     request.exposure = sky::ExposureFromString(exposure);
     request.camera = sim::ParseReplayCamera(camera);
     if (format != "png" && format != "exr" && format != "both") {
-        throw std::invalid_argument("--format = " + format + " is not known (expected png, exr "
-                                    "or both)");
+        throw ArgumentError("format", "format = " + format +
+                                          " is not known (expected png, exr or both)");
     }
     request.write_png = format != "exr";
     request.write_exr = format != "png";
@@ -211,11 +233,13 @@ int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
     fmt::print(stderr, "zenith replay: rendered {}, skipped {} of this shard's {} frames ({} in "
                "the flight) into {}\n", result.progress.rendered, result.progress.skipped,
                result.progress.total, result.frames_in_flight, request.out_dir.string());
+    if (!result.notes.empty()) fmt::print(stderr, "{}", result.notes);
     if (!result.video_status.empty()) fmt::print(stderr, "zenith replay: {}\n", result.video_status);
     if (result.interrupted) {
         fmt::print(stderr, "zenith replay: stopped; every written frame is complete; run the same "
                    "command again to resume\n");
-        return 130;
+        // The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
+        return 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
     }
     return 0;
 }
@@ -225,7 +249,7 @@ int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
 int main(int argc, char** argv) {
     CLI::App app{"zenith — flight-simulator sky: ephemeris, atmosphere, clouds"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "zenith 0.1.0");
+    app.set_version_flag("--version", std::string("zenith ") + kVersion);
 
     EphemerisArgs eph;
     CLI::App* ephemeris = app.add_subcommand(
@@ -337,6 +361,17 @@ int main(int argc, char** argv) {
                            "K/N: render frames i with i mod N = K (default: Slurm array task "
                            "variables, else all)");
     replay_cmd->add_option("--video", replay_video, "encode the PNG frames to this MP4 (ffmpeg)");
+    std::optional<std::string> replay_icao24, replay_callsign;
+    std::optional<std::vector<double>> replay_observer;
+    replay_cmd->add_option("--icao24", replay_icao24,
+                           "the aircraft to replay from a log of several (OpenSky CSV)");
+    replay_cmd->add_option("--callsign", replay_callsign,
+                           "the aircraft to replay from a log of several, by callsign");
+    replay_cmd->add_option("--observer", replay_observer,
+                           "the ground camera at LAT,LON,H (degrees, metres above the WGS84 "
+                           "ellipsoid); default: on the ground under the first fix")
+        ->delimiter(',')
+        ->expected(3);
 
     CLI::App* info = app.add_subcommand(
         "info", "Versions, the headless GL context (ZENITH_GL=osmesa|egl), star catalogue");
@@ -355,6 +390,12 @@ int main(int argc, char** argv) {
             replay.video = replay_video;
             replay.start_s = replay_start;
             replay.end_s = replay_end;
+            replay.read.icao24 = replay_icao24;
+            replay.read.callsign = replay_callsign;
+            if (replay_observer) {
+                replay.observer =
+                    glm::dvec3((*replay_observer)[0], (*replay_observer)[1], (*replay_observer)[2]);
+            }
             return RunReplayCommand(replay, replay_size, replay_exposure, replay_format,
                                     replay_camera, replay_shard);
         }
@@ -363,7 +404,7 @@ int main(int argc, char** argv) {
             return RunRender(frame, size, exposure, quality);
         }
         if (*info) {
-            fmt::print("zenith 0.1.0\n");
+            fmt::print("zenith {}\n", kVersion);
             try {
                 const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
                 fmt::print("GL context: {}\n", context->description());
@@ -379,6 +420,11 @@ int main(int argc, char** argv) {
             }
             return 0;
         }
+    } catch (const ArgumentError& e) {
+        // The library names its fields; say which option it was.
+        const std::string flag = FlagForField(e.field());
+        fmt::print(stderr, "zenith: error: {}{}\n", flag.empty() ? "" : flag + ": ", e.what());
+        return 2;
     } catch (const std::exception& e) {
         fmt::print(stderr, "zenith: error: {}\n", e.what());
         return 2;

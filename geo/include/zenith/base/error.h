@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 
 namespace zenith {
 
@@ -18,10 +20,17 @@ class Error : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// A value given through the API is outside what it may be.
+// A value given through the API is outside what it may be. field() names it as the API does
+// ("fov_deg", "size"), so that a front end can say which of its own options it was.
 class ArgumentError : public Error {
   public:
-    using Error::Error;
+    explicit ArgumentError(const std::string& message) : Error(message) {}
+    ArgumentError(std::string field, const std::string& message)
+        : Error(message), field_(std::move(field)) {}
+    const std::string& field() const { return field_; }
+
+  private:
+    std::string field_;
 };
 
 // An input file or record is malformed; the message starts with "file:line: " where known.
@@ -54,10 +63,17 @@ std::string FormatValue(double value);
 std::string RangeMessage(std::string_view field, double value, std::string_view unit,
                          const Range& range);
 
-// Returns value if range contains it, else throws E with RangeMessage. NaN always throws.
+// Returns value if range contains it, else throws E with RangeMessage (and the field, for an
+// ArgumentError). NaN always throws.
 template <class E = ArgumentError>
 double Require(std::string_view field, double value, std::string_view unit, const Range& range) {
-    if (!range.Contains(value)) throw E(RangeMessage(field, value, unit, range));
+    if (!range.Contains(value)) {
+        if constexpr (std::is_constructible_v<E, std::string, std::string>) {
+            throw E(std::string(field), RangeMessage(field, value, unit, range));
+        } else {
+            throw E(RangeMessage(field, value, unit, range));
+        }
+    }
     return value;
 }
 
