@@ -9,9 +9,9 @@
 // overcast: the overcast_stratus preset at 2024-06-21T11:00:00Z, 47.45 N 8.56 E (sun from the
 //   ephemeris), camera at 8000 m looking straight down (pitch -89.9 deg) and on the ground looking
 //   up: reference luminance L, the horizontal illuminance E on the cloud top and at the ground, and
-//   the effective albedo / transmittance pi L / E. The renderer's own numbers for these views
-//   come from `zenith render` (the CPU twin of its cloud pass needs GPU LUT read-backs); this
-//   tool prints only the reference.
+//   the effective albedo / transmittance pi L / E; beside it the renderer's cloud pass for the
+//   same ray, evaluated on the CPU (reference/cloud_trace.h, the shared GLSL compiled as C++,
+//   over CPU-built LUTs from AtmosphereReference): its cloud luminance and transmittance.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,8 +24,11 @@
 #include "zenith/geo/observer.h"
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
+#include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/reference/cloud_path_tracer.h"
 #include "zenith/sky/sky_state.h"
+// The renderer's cloud pass on the CPU (private headers; this target sees sky/src).
+#include "reference/cloud_trace.h"
 
 namespace {
 
@@ -161,6 +164,29 @@ void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
                 l_above.radiance.x, l_above.radiance.y, l_above.radiance.z, l_below.radiance.x,
                 l_below.radiance.y, l_below.radiance.z);
     std::printf("(± one standard error; times are thread-seconds per path.)\n");
+
+    // The renderer's cloud pass for the same rays (its CPU twin; block = 1, jitter 0.5).
+    const AtmosphereReference luts(earth);
+    Lights lights = state.lights;
+    const auto renderer = [&](const glm::dvec3& position, const glm::dvec3& view) {
+        Camera camera = state.camera;
+        camera.position = position;
+        const ref::CloudScene cloud_scene = ref::MakeCloudScene(
+            earth, luts.transmittance(), luts.multiple_scattering(), luts.ground_irradiance(),
+            weather, settings, noise.noise, camera, lights, CloudView{});
+        return ref::TraceClouds(cloud_scene, position / 1000.0,
+                                (glm::length(position) - r) / 1000.0, view, 0.5);
+    };
+    const glm::dvec4 above = renderer(high, down);
+    const glm::dvec4 below = renderer(low, up);
+    const auto y = [](const glm::dvec4& v) { return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z; };
+    std::printf(
+        "\nRenderer (cloud pass, CPU twin), same rays: from 8000 m L_clouds = %.0f cd/m², "
+        "T = %.4f, pi L / E(cloud top, reference) = %.3f; from the ground L_clouds = %.0f cd/m², "
+        "T = %.4f, pi L / E(ground, reference) = %.3f, pi L / E(cloud top, reference) = %.3f. "
+        "(The frame adds T times what lies behind the clouds.)\n",
+        y(above), above.w, kPi * y(above) / e_top.luminance, y(below), below.w,
+        kPi * y(below) / e_ground.luminance, kPi * y(below) / e_top.luminance);
 }
 
 }  // namespace
