@@ -1,0 +1,223 @@
+// The cloud path tracer (reference/cloud_path_tracer.h) as markdown tables: not a Google
+// Benchmark, a plain main built by tests/bench/CMakeLists.txt's glob.
+//
+//   cloud_reference_report --part energy   [--samples N] [--threads T] [--seed S]
+//   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
+//
+// energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
+//   and by camera paths, R + T, and the time per path, over optical depths 1-128.
+// overcast: the overcast_stratus preset at 2024-06-21T11:00:00Z, 47.45 N 8.56 E (sun from the
+//   ephemeris), camera at 8000 m looking straight down (pitch -89.9 deg) and on the ground looking
+//   up: reference luminance L, the horizontal illuminance E on the cloud top and at the ground, and
+//   the effective albedo / transmittance pi L / E; beside it the renderer's cloud pass for the
+//   same ray, evaluated on the CPU (reference/cloud_trace.h, the shared GLSL compiled as C++,
+//   over CPU-built LUTs from AtmosphereReference): its cloud luminance and transmittance.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <numbers>
+#include <string>
+
+#include "zenith/geo/ephemeris.h"
+#include "zenith/geo/observer.h"
+#include "zenith/geo/time.h"
+#include "zenith/sky/atmosphere.h"
+#include "zenith/sky/reference/atmosphere_reference.h"
+#include "zenith/sky/reference/cloud_path_tracer.h"
+#include "zenith/sky/sky_state.h"
+// The renderer's cloud pass on the CPU (private headers; this target sees sky/src).
+#include "reference/cloud_trace.h"
+
+namespace {
+
+using namespace zenith::sky;
+using namespace zenith::sky::reference;
+
+constexpr double kPi = std::numbers::pi;
+
+[[noreturn]] void Usage(const std::string& message) {
+    std::fprintf(stderr,
+                 "cloud_reference_report: %s\nusage: cloud_reference_report --part "
+                 "energy|overcast [--samples N] [--threads T] [--seed S]\n",
+                 message.c_str());
+    std::exit(2);
+}
+
+long long ParseInteger(const char* flag, const char* text, long long low, long long high) {
+    char* end = nullptr;
+    const long long value = std::strtoll(text, &end, 10);
+    if (end == text || *end != '\0' || value < low || value > high) {
+        Usage(std::string(flag) + " " + text + " is out of range [" + std::to_string(low) + ", " +
+              std::to_string(high) + "]");
+    }
+    return value;
+}
+
+void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
+    std::printf(
+        "Non-absorbing Henyey-Greenstein slab, g = 0.85, mu0 = 0.6, black ground; photons: %lld "
+        "light paths, camera: %lld camera paths for each of R and T (threads %d).\n\n",
+        static_cast<long long>(samples * 5), static_cast<long long>(samples), threads);
+    std::printf(
+        "| tau | R (photons) | T (photons) | R + T (photons) | R (camera) | T (camera) | "
+        "R + T (camera) | us/photon | us/camera path |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const double tau : {1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0, 128.0}) {
+        SlabProblem problem;
+        problem.optical_depth = tau;
+        problem.phase = CloudPhase{0.85, 0.0, 0.0};
+        problem.mu0 = 0.6;
+        CloudPathTraceOptions options;
+        options.threads = threads;
+        options.seed = seed;
+        options.samples = samples * 5;
+        const SlabFluxes photons = SlabFluxesFromPhotons(problem, options);
+        options.samples = samples;
+        const SlabFluxes camera = SlabFluxesFromRadiance(problem, options);
+        std::printf(
+            "| %g | %.4f ± %.4f | %.4f ± %.4f | %.6f | %.4f ± %.4f | %.4f ± %.4f | %.4f ± %.4f "
+            "| %.2f | %.1f |\n",
+            tau, photons.reflectance, photons.reflectance_error, photons.transmittance,
+            photons.transmittance_error, photons.reflectance + photons.transmittance,
+            camera.reflectance, camera.reflectance_error, camera.transmittance,
+            camera.transmittance_error, camera.reflectance + camera.transmittance,
+            std::hypot(camera.reflectance_error, camera.transmittance_error),
+            1e6 * photons.seconds * threads / static_cast<double>(photons.samples),
+            1e6 * camera.seconds * threads / (2.0 * static_cast<double>(camera.samples)));
+        std::fflush(stdout);
+    }
+    std::printf("\n(± one standard error; times are thread-seconds per path.)\n");
+}
+
+void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
+    const double lat = 47.45, lon = 8.56;
+    const zenith::geo::Time time = zenith::geo::TimeFromIso8601("2024-06-21T11:00:00Z");
+    const Atmosphere earth = LoadAtmosphere("earth");
+    const clouds::Weather weather = clouds::LoadWeather("overcast_stratus");
+    const CloudSettings settings;
+    const clouds::CloudNoiseLoad noise = clouds::LoadOrGenerateCloudNoise(settings.noise);
+    const CloudField field(weather, settings, noise.noise, earth.bottom_radius);
+
+    // The sun from the ephemeris, as `zenith render` places it (ENU frame at the observer = the
+    // weather frame when the weather's origin is the observer).
+    const zenith::geo::Observer observer(lat, lon, 0.0);
+    const zenith::geo::SkyEphemeris ephemeris = zenith::geo::Ephemeris().Compute(time, observer);
+    const SkyState state =
+        MakeSkyState(ephemeris, observer, earth,
+                     zenith::geo::Attitude::FromDegrees(0.0, -89.9, 0.0), 20.0 * kPi / 180.0, 1.0);
+    CloudScene scene;
+    scene.atmosphere = earth;
+    scene.atmosphere.solar_illuminance = state.lights.sun_illuminance;  // at today's distance
+    scene.clouds = &field;
+    scene.sun_direction = glm::normalize(state.lights.sun_direction);
+
+    const CloudField::Shell& shell = field.shells().front();
+    const double r = earth.bottom_radius;
+    std::printf(
+        "overcast_stratus at 2024-06-21T11:00:00Z, %.2f N %.2f E: sun elevation %.2f deg, "
+        "E_sun(TOA) Y = %.0f lux; deck %.0f-%.0f m (clouds' top), mean vertical optical depth "
+        "%.2f; ground albedo %.2f; %lld paths per number (threads %d).\n\n",
+        lat, lon, std::asin(scene.sun_direction.z) * 180.0 / kPi,
+        0.2126 * scene.atmosphere.solar_illuminance.x +
+            0.7152 * scene.atmosphere.solar_illuminance.y +
+            0.0722 * scene.atmosphere.solar_illuminance.z,
+        shell.inner_radius - r, shell.outer_radius - r, field.MeanVerticalOpticalDepth(32, 256),
+        earth.ground_albedo.x, static_cast<long long>(samples), threads);
+
+    CloudPathTraceOptions options;
+    options.samples = samples;
+    options.threads = threads;
+    options.seed = seed;
+    const double pitch = 89.9 * kPi / 180.0;
+    const glm::dvec3 down(0.0, std::cos(pitch), -std::sin(pitch));
+    const glm::dvec3 up(0.0, std::cos(pitch), std::sin(pitch));
+    const glm::dvec3 high(0.0, 0.0, r + 8000.0);
+    const glm::dvec3 low(0.0, 0.0, r + 2.0);
+
+    const CloudPathTraceResult l_above = CloudPathTrace(scene, high, down, options);
+    const CloudPathTraceResult l_below = CloudPathTrace(scene, low, up, options);
+    const CloudPathTraceResult e_top =
+        CloudHorizontalIlluminance(scene, glm::dvec3(0.0, 0.0, shell.outer_radius), options);
+    const CloudPathTraceResult e_ground =
+        CloudHorizontalIlluminance(scene, glm::dvec3(0.0, 0.0, r), options);
+
+    const auto ratio_error = [](double a, double da, double b, double db) {
+        return a / b * std::hypot(da / a, db / b);
+    };
+    std::printf("| view | L (Y, cd/m²) | E (Y, lux) | pi L / E | vertices/path | us/path |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|\n");
+    const auto row = [&](const char* name, const CloudPathTraceResult& l, const char* e_name,
+                         const CloudPathTraceResult& e) {
+        const double albedo = kPi * l.luminance / e.luminance;
+        std::printf(
+            "| %s | %.0f ± %.0f | %s %.0f ± %.0f | %.3f ± %.3f | %.1f | %.0f |\n", name,
+            l.luminance, l.luminance_error, e_name, e.luminance, e.luminance_error, albedo,
+            ratio_error(kPi * l.luminance, kPi * l.luminance_error, e.luminance, e.luminance_error),
+            l.mean_vertices, 1e6 * l.seconds * threads / static_cast<double>(l.samples));
+    };
+    row("8000 m, down", l_above, "cloud top", e_top);
+    row("ground, up", l_below, "ground", e_ground);
+    row("ground, up", l_below, "cloud top", e_top);
+    std::printf("\nRGB (cd/m²): from 8000 m %.0f %.0f %.0f; from the ground %.0f %.0f %.0f.\n",
+                l_above.radiance.x, l_above.radiance.y, l_above.radiance.z, l_below.radiance.x,
+                l_below.radiance.y, l_below.radiance.z);
+    std::printf("(± one standard error; times are thread-seconds per path.)\n");
+
+    // The renderer's cloud pass for the same rays (its CPU twin; block = 1, jitter 0.5).
+    const AtmosphereReference luts(earth);
+    Lights lights = state.lights;
+    const auto renderer = [&](const glm::dvec3& position, const glm::dvec3& view) {
+        Camera camera = state.camera;
+        camera.position = position;
+        const ref::CloudScene cloud_scene = ref::MakeCloudScene(
+            earth, luts.transmittance(), luts.multiple_scattering(), luts.ground_irradiance(),
+            weather, settings, noise.noise, camera, lights, CloudView{});
+        return ref::TraceClouds(cloud_scene, position / 1000.0,
+                                (glm::length(position) - r) / 1000.0, view, 0.5);
+    };
+    const glm::dvec4 above = renderer(high, down);
+    const glm::dvec4 below = renderer(low, up);
+    const auto y = [](const glm::dvec4& v) { return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z; };
+    std::printf(
+        "\nRenderer (cloud pass, CPU twin), same rays: from 8000 m L_clouds = %.0f cd/m², "
+        "T = %.4f, pi L / E(cloud top, reference) = %.3f; from the ground L_clouds = %.0f cd/m², "
+        "T = %.4f, pi L / E(ground, reference) = %.3f, pi L / E(cloud top, reference) = %.3f. "
+        "(The frame adds T times what lies behind the clouds.)\n",
+        y(above), above.w, kPi * y(above) / e_top.luminance, y(below), below.w,
+        kPi * y(below) / e_ground.luminance, kPi * y(below) / e_top.luminance);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string part;
+    std::int64_t samples = 0;
+    int threads = 2;
+    std::uint64_t seed = 1;
+    for (int i = 1; i < argc; ++i) {
+        const char* flag = argv[i];
+        if (i + 1 >= argc) Usage(std::string("missing value after ") + flag);
+        const char* value = argv[++i];
+        if (!std::strcmp(flag, "--part")) {
+            part = value;
+        } else if (!std::strcmp(flag, "--samples")) {
+            samples = ParseInteger(flag, value, 2, 1LL << 32);
+        } else if (!std::strcmp(flag, "--threads")) {
+            threads = static_cast<int>(ParseInteger(flag, value, 1, 1024));
+        } else if (!std::strcmp(flag, "--seed")) {
+            seed = static_cast<std::uint64_t>(ParseInteger(flag, value, 0, 1LL << 62));
+        } else {
+            Usage(std::string("unknown option ") + flag);
+        }
+    }
+    if (part == "energy") {
+        EnergyPart(samples > 0 ? samples : 20000, threads, seed);
+    } else if (part == "overcast") {
+        OvercastPart(samples > 0 ? samples : 20000, threads, seed);
+    } else {
+        Usage("--part must be energy or overcast");
+    }
+    return 0;
+}
