@@ -1,11 +1,14 @@
 #include "zenith/sim/replay.h"
 
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fcntl.h>
@@ -132,12 +135,42 @@ std::string Differences(const Json& folder, const Json& now, const std::string& 
     return out;
 }
 
+std::string HostName() {
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0) return "host";
+    return name;
+}
+
+// Removes the manifest candidates (".replay.HOST.PID.json", and its ".partial") that runs on
+// this host left when they were killed between writing and removing them; a candidate of a
+// running process or of another host (shards on a shared folder) is left alone.
+void RemoveStaleCandidates(const fs::path& dir, const std::string& host) {
+    const std::string prefix = ".replay." + host + ".";
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(dir, error)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(prefix, 0) != 0) continue;
+        const std::string rest = name.substr(prefix.size());
+        char* end = nullptr;
+        const long pid = std::strtol(rest.c_str(), &end, 10);
+        if (pid <= 0 || end == rest.c_str() || (std::string_view(end) != ".json" &&
+                                               std::string_view(end) != ".json.partial")) {
+            continue;
+        }
+        if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+        std::error_code ignored;
+        fs::remove(entry.path(), ignored);
+    }
+}
+
 // Creates the folder's manifest, or checks that the one there describes this run. Shards that
 // start together race to create it: the first link() wins and the others compare with it.
 void ClaimFolder(const fs::path& dir, const Json& manifest) {
     const fs::path path = dir / kReplayManifest;
     const std::string text = manifest.dump(2) + "\n";
-    const fs::path candidate = dir / fmt::format(".replay.{}.json", ::getpid());
+    const std::string host = HostName();
+    RemoveStaleCandidates(dir, host);
+    const fs::path candidate = dir / fmt::format(".replay.{}.{}.json", host, ::getpid());
     WriteFileAtomically(candidate, text);
     const bool created = ::link(candidate.c_str(), path.c_str()) == 0;
     std::error_code ignored;
@@ -228,18 +261,6 @@ std::optional<Shard> ShardFromEnvironment() {
                                         task, tasks, first, kMaxShards));
     }
     return Shard{static_cast<int>(task - first), static_cast<int>(tasks)};
-}
-
-glm::ivec2 ParseFrameSize(const std::string& text) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 ||
-        (x != 'x' && x != 'X') || !(w >= 1 && w <= kMaxFrameSide && h >= 1 && h <= kMaxFrameSide)) {
-        throw ArgumentError("size", fmt::format("size = {} is not a frame size (expected WxH with "
-                                                "1 <= W, H <= {}, e.g. 1280x720)",
-                                                text, kMaxFrameSide));
-    }
-    return {w, h};
 }
 
 std::string ReplayFrameName(std::size_t index, const std::string& extension) {

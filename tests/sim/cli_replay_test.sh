@@ -12,6 +12,9 @@ source "$(dirname "$0")/check.sh"
 log=$source_dir/data/flights/glider_sisteron.igc
 # 11 frames of a glider at 64x36; the night case puts the same flight at local midnight, where
 # the stars show, and the cloud case flies it under the scattered cumulus.
+# Two frame folders hold the same files, byte for byte (the settings file aside; hidden files
+# count); the differences are printed when not.
+same_frames() { diff -r -x replay.json "$1" "$2"; }
 common=(--fps 0.5 --start 0 --end 20 --size 64x36)
 
 # Whole runs, the reference bytes.
@@ -34,7 +37,7 @@ for case in day night clouds; do
     done
     "$zenith" replay "$log" "${common[@]}" "${extra[@]}" --out "$out" >/dev/null 2>&1
     check "$case: killed three times, then resumed, equals the whole run" \
-        diff -r -x replay.json "$work/$case-whole" "$out"
+        same_frames "$work/$case-whole" "$out"
 
     # Three shards into one folder: the same bytes as the whole run.
     for k in 0 1 2; do
@@ -42,8 +45,13 @@ for case in day night clouds; do
             --out "$work/$case-shards" >/dev/null 2>&1
     done
     check "$case: three shards equal the whole run" \
-        diff -r -x replay.json "$work/$case-whole" "$work/$case-shards"
+        same_frames "$work/$case-whole" "$work/$case-shards"
 done
+# What a run killed while claiming the folder leaves (its settings candidate) is swept by the next.
+stale="$work/day-killed/.replay.$(hostname).999999999.json"
+echo '{}' >"$stale"
+"$zenith" replay "$log" "${common[@]}" --out "$work/day-killed" >/dev/null 2>&1
+check "a killed run's settings candidate is removed on resume" test ! -e "$stale"
 check "night frames differ from day frames (stars, not a copy)" \
     bash -c "! cmp -s '$work/day-whole/frame_000005.png' '$work/night-whole/frame_000005.png'"
 
@@ -73,6 +81,21 @@ if command -v ffprobe >/dev/null; then
     frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
         -of csv=p=0 "$work/$evil")
     check "the video has one frame per planned frame (11)" test "$frames" = 11
+fi
+
+# A log with a gap: the video holds the last frame across it and keeps the flight's timing (it
+# stopped at the first gap).
+{
+    echo "time,lat_deg,lon_deg,alt_wgs84_m"
+    for t in 00 01 02 03 04 05; do echo "2024-06-21T12:00:${t}Z,47.0,8.0${t},1000"; done
+    for t in 00 01 02 03 04 05; do echo "2024-06-21T12:01:${t}Z,47.0,8.1${t},1000"; done
+} >"$work/gap.csv"
+"$zenith" replay "$work/gap.csv" --fps 1 --size 64x36 --out "$work/gap" --video "$work/gap.mp4" \
+    >/dev/null 2>&1
+if command -v ffprobe >/dev/null; then
+    frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
+        -of csv=p=0 "$work/gap.mp4")
+    check "a gap is held in the video: 66 frames for 65 s at 1 fps" test "$frames" = 66
 fi
 
 # A failed encode is reported and fails the run (the video's folder does not exist).
