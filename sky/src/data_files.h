@@ -73,7 +73,8 @@ class JsonReader {
 
     void RejectUnknownKeys(const nlohmann::json& object, const std::string& prefix,
                            std::span<const char* const> allowed) const {
-        for (const auto& [key, value] : object.items()) {
+        for (const auto& item : object.items()) {
+            const std::string& key = item.key();
             if (std::none_of(allowed.begin(), allowed.end(),
                              [&](const char* k) { return key == k; })) {
                 std::string list;
