@@ -176,6 +176,10 @@ std::string FlagForField(const std::string& field) {
         {"lat_deg", "--lat"},
         {"lon_deg", "--lon"},
         {"height_m", "--height"},
+        {"heading_deg", "--heading"},
+        {"pitch_deg", "--pitch"},
+        {"roll_deg", "--roll"},
+        {"out", "--out"},
     };
     const auto it = kFlags.find(field);
     return it == kFlags.end() ? std::string() : it->second;

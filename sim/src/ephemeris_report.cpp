@@ -10,6 +10,7 @@
 
 #include "zenith/base/json_text.h"
 #include "zenith/base/json_value.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sim {
 namespace {
@@ -44,10 +45,10 @@ bool ReadLine(std::istream& in, std::string& text, std::size_t& length) {
 double RequireNumber(const nlohmann::json& j, const char* key, const char* unit) {
     const auto it = j.find(key);
     if (it == j.end()) {
-        throw std::invalid_argument(fmt::format("missing key \"{}\" ({})", key, unit));
+        throw ArgumentError(fmt::format("missing key \"{}\" ({})", key, unit));
     }
     if (!it->is_number()) {
-        throw std::invalid_argument(
+        throw ArgumentError(
             fmt::format("\"{}\" must be a number ({}), got {}", key, unit, DescribeJsonValue(*it)));
     }
     return it->get<double>();
@@ -137,20 +138,20 @@ BatchSummary RunEphemerisBatch(std::istream& in, std::ostream& out) {
         try {
             // A line is one small object: bound what it may cost before parsing it.
             if (length > kMaxBatchLineBytes) {
-                throw std::invalid_argument(
+                throw ArgumentError(
                     fmt::format("line of {} bytes (at most {})", length, kMaxBatchLineBytes));
             }
             if (const auto at = FindJsonNestingBeyond(text, kMaxBatchDepth)) {
-                throw std::invalid_argument(
+                throw ArgumentError(
                     fmt::format("JSON nested deeper than {} levels at "
                                 "byte {}",
                                 kMaxBatchDepth, *at + 1));
             }
             const nlohmann::json j = nlohmann::json::parse(text);
-            if (!j.is_object()) throw std::invalid_argument("expected a JSON object");
+            if (!j.is_object()) throw ArgumentError("expected a JSON object");
             const auto utc = j.find("utc");
             if (utc == j.end() || !utc->is_string()) {
-                throw std::invalid_argument("missing string key \"utc\" (ISO 8601 UTC)");
+                throw ArgumentError("missing string key \"utc\" (ISO 8601 UTC)");
             }
             const geo::Time t = geo::TimeFromIso8601(utc->get<std::string>(), TimeOptionsFrom(j));
             const geo::Observer observer(RequireNumber(j, "lat_deg", "degrees"),

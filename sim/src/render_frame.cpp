@@ -1,6 +1,7 @@
 #include "zenith/sim/render_frame.h"
 
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -11,44 +12,41 @@
 #include "zenith/geo/observer.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
+#include "zenith/base/error.h"
+#include "zenith/base/units.h"
 
 namespace zenith::sim {
-namespace {
 
-constexpr double kDegToRad = 0.017453292519943295;
-
-void Require(bool ok, const std::string& parameter, const std::string& value,
-             const std::string& expected) {
-    if (!ok) {
-        throw std::invalid_argument(fmt::format("{} = {} is out of range (expected {})", parameter,
-                                                value, expected));
+glm::ivec2 ParseFrameSize(const std::string& text) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 ||
+        (x != 'x' && x != 'X') || !(w >= 1 && w <= kMaxFrameSide && h >= 1 && h <= kMaxFrameSide)) {
+        throw ArgumentError("size", fmt::format("size = {} is not a frame size (expected WxH with "
+                                                "1 <= W, H <= {}, e.g. 1280x720)",
+                                                text, kMaxFrameSide));
     }
+    return {w, h};
 }
 
-}  // namespace
-
 void ValidateFrameRequest(const FrameRequest& r) {
-    Require(std::isfinite(r.heading_deg), "--heading", fmt::format("{}", r.heading_deg),
-            "a finite angle in degrees");
-    Require(r.pitch_deg >= -90.0 && r.pitch_deg <= 90.0, "--pitch",
-            fmt::format("{}", r.pitch_deg), "-90..90 degrees");
-    Require(r.roll_deg >= -180.0 && r.roll_deg <= 180.0, "--roll", fmt::format("{}", r.roll_deg),
-            "-180..180 degrees");
-    Require(r.fov_deg > 0.0 && r.fov_deg < 180.0, "--fov", fmt::format("{}", r.fov_deg),
-            "0 < vertical field of view < 180 degrees");
-    Require(r.size.x >= 1 && r.size.y >= 1 && r.size.x <= 16384 && r.size.y <= 16384, "--size",
-            fmt::format("{}x{}", r.size.x, r.size.y), "WxH with 1..16384 pixels per axis");
+    Require("heading_deg", r.heading_deg, "deg", Range::Closed(-1e6, 1e6));
+    Require("pitch_deg", r.pitch_deg, "deg", Range::Closed(-90.0, 90.0));
+    Require("roll_deg", r.roll_deg, "deg", Range::Closed(-180.0, 180.0));
+    Require("fov_deg", r.fov_deg, "deg", Range::Open(0.0, 180.0));
+    ParseFrameSize(fmt::format("{}x{}", r.size.x, r.size.y));
     const std::string extension = r.out.extension().string();
-    Require(extension == ".exr" || extension == ".png" || extension == ".EXR" ||
-                extension == ".PNG",
-            "--out", r.out.string(), "a file name ending in .exr (linear cd/m^2) or .png");
+    if (extension != ".exr" && extension != ".png" && extension != ".EXR" && extension != ".PNG") {
+        throw ArgumentError("out", fmt::format("out = {} has no image extension (expected a file "
+                                               "name ending in .exr (linear cd/m^2) or .png)",
+                                               r.out.string()));
+    }
     // Position and time are validated by geo (Observer, TimeFromIso8601) with the same style.
     geo::Observer(r.lat_deg, r.lon_deg, r.height_m);
     geo::TimeFromIso8601(r.utc);
     r.lut_settings.Validate();
     r.clouds.Validate();
-    Require(r.cloud_passes >= 1 && r.cloud_passes <= 64, "cloud_passes",
-            fmt::format("{}", r.cloud_passes), "1..64");
+    Require("cloud_passes", r.cloud_passes, "", Range::Closed(1, 64));
 }
 
 FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
@@ -70,10 +68,10 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     const geo::SkyEphemeris sky_ephemeris = ephemeris.Compute(time, observer, ephemeris_options);
 
     const double aspect = static_cast<double>(request.size.x) / request.size.y;
-    const geo::Attitude attitude{request.heading_deg * kDegToRad, request.pitch_deg * kDegToRad,
-                                 request.roll_deg * kDegToRad};
+    const geo::Attitude attitude{Radians(request.heading_deg), Radians(request.pitch_deg),
+                                 Radians(request.roll_deg)};
     sky::SkyState state = sky::MakeSkyState(sky_ephemeris, observer, atmosphere, attitude,
-                                            request.fov_deg * kDegToRad, aspect);
+                                            Radians(request.fov_deg), aspect);
 
     const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
     sky::AtmosphereRenderer renderer(atmosphere, request.lut_settings);
@@ -96,7 +94,7 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
         }
     }
     result.ev100 = sky::ResolveEV100(request.exposure, result.image);
-    result.sun_elevation_deg = state.sun_elevation / kDegToRad;
+    result.sun_elevation_deg = Degrees(state.sun_elevation);
     result.stars_drawn = options.stars.size();
     result.gl_description = context->description();
     sky::ImageWriteOptions write_options;

@@ -9,6 +9,7 @@
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/lighting.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sim {
 namespace {
@@ -100,7 +101,7 @@ std::unique_ptr<SkySystem> SkySystem::CreateHeadless(const SkySystemSettings& se
 std::unique_ptr<SkySystem> SkySystem::CreateInHostContext(GetProcAddressFn get_proc_address,
                                                           const SkySystemSettings& settings) {
     if (get_proc_address == nullptr) {
-        throw std::invalid_argument("CreateInHostContext: get_proc_address is null");
+        throw ArgumentError("CreateInHostContext: get_proc_address is null");
     }
     sky::gl::LoadGlFunctions(get_proc_address);
     return std::unique_ptr<SkySystem>(new SkySystem(std::make_unique<Impl>(settings, nullptr)));
@@ -110,7 +111,7 @@ void SkySystem::SetTime(const geo::Time& utc) { impl_->time = utc; }
 
 void SkySystem::AdvanceTime(double seconds, double warp) {
     if (!(std::isfinite(seconds) && std::isfinite(warp))) {
-        throw std::invalid_argument("AdvanceTime: seconds and warp must be finite");
+        throw ArgumentError("AdvanceTime: seconds and warp must be finite");
     }
     const double dt = seconds * warp / geo::kSecondsPerDay;
     geo::Time& t = impl_->time;
@@ -140,7 +141,7 @@ void SkySystem::SetViewFromEnu(const glm::dmat3& world_from_view) {
 
 void SkySystem::SetProjection(double vertical_fov, double aspect) {
     if (!(vertical_fov > 0.0 && vertical_fov < glm::pi<double>() && aspect > 0.0)) {
-        throw std::invalid_argument("SetProjection: vertical_fov in (0, pi) rad and aspect > 0");
+        throw ArgumentError("SetProjection: vertical_fov in (0, pi) rad and aspect > 0");
     }
     impl_->vertical_fov = vertical_fov;
     impl_->aspect = aspect;
@@ -173,7 +174,7 @@ void SkySystem::ResetCloudHistory() { impl_->cloud_view.reset_history = true; }
 
 void SkySystem::SetSceneDepth(unsigned depth_texture, double near_m, double far_m) {
     if (!(depth_texture != 0 && near_m > 0.0 && far_m > near_m)) {
-        throw std::invalid_argument("SetSceneDepth: needs a texture and 0 < near_m < far_m");
+        throw ArgumentError("SetSceneDepth: needs a texture and 0 < near_m < far_m");
     }
     impl_->scene_depth = sky::SceneDepth{depth_texture, near_m, far_m};
 }

@@ -22,6 +22,7 @@
 #include "shader_parameters.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/gl/shader.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky {
 namespace {
@@ -457,14 +458,14 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     Impl& d = *impl_;
     if (!(options.size.x > 0 && options.size.y > 0 && options.size.x <= 16384 &&
           options.size.y <= 16384)) {
-        throw std::invalid_argument("render size " + std::to_string(options.size.x) + "x" +
+        throw ArgumentError("render size " + std::to_string(options.size.x) + "x" +
                                     std::to_string(options.size.y) +
                                     " is out of range (expected 1..16384 per axis)");
     }
     const bool to_host = options.target_framebuffer.has_value();
     if (to_host && (options.target_viewport.z != options.size.x ||
                     options.target_viewport.w != options.size.y)) {
-        throw std::invalid_argument("RenderOptions: target_viewport size " +
+        throw ArgumentError("RenderOptions: target_viewport size " +
                                     std::to_string(options.target_viewport.z) + "x" +
                                     std::to_string(options.target_viewport.w) +
                                     " differs from size " + std::to_string(options.size.x) + "x" +
@@ -507,7 +508,7 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     if (options.scene_depth &&
         !(to_host && options.scene_depth->texture != 0 && options.scene_depth->near_m > 0.0 &&
           options.scene_depth->far_m > options.scene_depth->near_m)) {
-        throw std::invalid_argument("RenderOptions::scene_depth needs a host framebuffer, a depth "
+        throw ArgumentError("RenderOptions::scene_depth needs a host framebuffer, a depth "
                                     "texture and 0 < near_m < far_m");
     }
     const bool inside = glm::length(camera.position) < d.atmosphere.top_radius;
@@ -602,7 +603,7 @@ double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,
                                               const glm::dvec3& direction, const CloudView& view,
                                               int steps) const {
     if (!(steps >= 1 && steps <= 4096)) {
-        throw std::invalid_argument("CloudTransmittance: steps " + std::to_string(steps) +
+        throw ArgumentError("CloudTransmittance: steps " + std::to_string(steps) +
                                     " is out of range (expected 1..4096)");
     }
     if (!impl_->cpu_clouds) return 1.0;

@@ -23,6 +23,7 @@
 #include <system_error>
 
 #include "zenith/base/atomic_file.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky {
 namespace {
@@ -67,7 +68,7 @@ void CheckEV100(double ev100) {
         std::ostringstream message;
         message << "exposure " << ev100 << " EV100 is outside [" << kMinExposureEV100 << ", "
                 << kMaxExposureEV100 << "]";
-        throw std::invalid_argument(message.str());
+        throw ArgumentError(message.str());
     }
 }
 
@@ -172,14 +173,14 @@ std::vector<char> EncodePng(const Srgb8Image& srgb) {
     if (!png_image_write_get_memory_size(png, size, 0, srgb.rgb.data(), stride, nullptr)) {
         const std::string message = png.message;
         png_image_free(&png);
-        throw std::runtime_error("PNG encoding failed: " + message);
+        throw Error("PNG encoding failed: " + message);
     }
     std::vector<char> bytes(size);
     if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, srgb.rgb.data(), stride,
                                    nullptr)) {
         const std::string message = png.message;
         png_image_free(&png);
-        throw std::runtime_error("PNG encoding failed: " + message);
+        throw Error("PNG encoding failed: " + message);
     }
     bytes.resize(size);
     return bytes;
@@ -198,7 +199,7 @@ double ExposureScale(double ev100) {
 }
 
 double AutoExposureEV100(const Image& image) {
-    if (image.pixels.empty()) throw std::invalid_argument("AutoExposureEV100: empty image");
+    if (image.pixels.empty()) throw ArgumentError("AutoExposureEV100: empty image");
     std::vector<double> log_luminance;
     log_luminance.reserve(image.pixels.size());
     for (const glm::vec4& p : image.pixels) {
@@ -208,7 +209,7 @@ double AutoExposureEV100(const Image& image) {
         log_luminance.push_back(std::log2(std::max(y, kMinMeteredLuminance)));
     }
     if (log_luminance.empty()) {
-        throw std::invalid_argument("AutoExposureEV100: no pixel of the " +
+        throw ArgumentError("AutoExposureEV100: no pixel of the " +
                                     std::to_string(image.width) + " x " +
                                     std::to_string(image.height) + " image is finite");
     }
@@ -237,12 +238,12 @@ Exposure ExposureFromString(std::string_view text) {
     const char* end = text.data() + text.size();
     const auto [ptr, error] = std::from_chars(text.data(), end, value);
     if (text.empty() || error != std::errc() || ptr != end) {
-        throw std::invalid_argument("--exposure: '" + std::string(text) +
+        throw ArgumentError("exposure", "exposure = '" + std::string(text) +
                                     "' is neither 'auto' nor a number (EV100 in " + range.str() +
                                     ")");
     }
     if (!(value >= kMinExposureEV100 && value <= kMaxExposureEV100)) {
-        throw std::invalid_argument("--exposure: " + std::string(text) + " EV100 is outside " +
+        throw ArgumentError("exposure", "exposure = " + std::string(text) + " EV100 is outside " +
                                     range.str());
     }
     return Exposure{false, value};

@@ -3,12 +3,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky {
 namespace {
 
 void Require(bool ok, const char* field, const std::string& value, const char* expected) {
     if (!ok) {
-        throw std::invalid_argument(std::string("LUT setting ") + field + " = " + value +
+        throw ArgumentError(std::string("LUT setting ") + field + " = " + value +
                                     " is out of range (expected " + expected + ")");
     }
 }

@@ -20,7 +20,8 @@ err=$("$zenith" render --size 64x36 --out "$work/frame.jpg" 2>&1); rc=$?
 check "unknown extension exits 2" test $rc -eq 2
 check "message names --out and the allowed extensions" grep -q "\-\-out.*\.exr.*\.png" <<<"$err"
 err=$("$zenith" render --pitch 100 --out "$work/p.png" 2>&1); rc=$?
-check "pitch 100 names --pitch and its range" bash -c "test $rc -eq 2 && grep -q -- '--pitch = 100.*-90..90' <<<'$err'"
+check "pitch 100 names --pitch, the value and its range" \
+    bash -c "test $rc -eq 2 && grep -q -- '--pitch: pitch_deg = 100 deg is out of range (expected \\[-90, 90\\] deg)' <<<'$err'"
 err=$("$zenith" render --size 0x10 --out "$work/s.png" 2>&1)
 check "size 0x10 names --size" grep -q -- "--size" <<<"$err"
 err=$("$zenith" render --preset nowhere --out "$work/n.png" 2>&1)

@@ -17,6 +17,8 @@
 #include <cstdio>
 #include <string>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky::reference {
 namespace {
 
@@ -49,7 +51,7 @@ const AccuracyScenario& Scenario(const std::string& name) {
     for (const AccuracyScenario& s : scenarios) {
         if (s.name == name) return s;
     }
-    throw std::invalid_argument("no scenario " + name);
+    throw zenith::ArgumentError("no scenario " + name);
 }
 
 AccuracyResult Measure(const std::string& name) {
@@ -177,10 +179,10 @@ TEST(Accuracy, ReferenceNoiseFallsAsOneOverSqrtSamples) {
 TEST(Accuracy, RejectsBadOptions) {
     AccuracyOptions options = TestOptions();
     options.width = 0;
-    EXPECT_THROW(MeasureAccuracy(Scenario("earth_daytime"), options), std::invalid_argument);
+    EXPECT_THROW(MeasureAccuracy(Scenario("earth_daytime"), options), zenith::ArgumentError);
     options = TestOptions();
     options.samples = 1;
-    EXPECT_THROW(MeasureAccuracy(Scenario("earth_daytime"), options), std::invalid_argument);
+    EXPECT_THROW(MeasureAccuracy(Scenario("earth_daytime"), options), zenith::ArgumentError);
 }
 
 }  // namespace

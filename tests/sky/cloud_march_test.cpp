@@ -8,6 +8,7 @@
 
 #include "clouds/cloud_parameters.h"
 #include "reference/cloud_march.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::ref {
 namespace {
@@ -173,15 +174,15 @@ TEST(CloudSettings, RejectsOutOfRangeValuesByName) {
     try {
         s.Validate();
         FAIL();
-    } catch (const std::invalid_argument& e) {
+    } catch (const zenith::ArgumentError& e) {
         EXPECT_STREQ(e.what(), "CloudSettings::octave_b = 0 (expected (0, 1])");
     }
     s = CloudSettings{};
     s.max_steps = 0;
-    EXPECT_THROW(s.Validate(), std::invalid_argument);
+    EXPECT_THROW(s.Validate(), zenith::ArgumentError);
     s = CloudSettings{};
     s.extinction = std::nan("");
-    EXPECT_THROW(s.Validate(), std::invalid_argument);
+    EXPECT_THROW(s.Validate(), zenith::ArgumentError);
 }
 
 TEST(CloudLightSet, DropsTheSunAtNightAndAFaintMoonByDay) {

@@ -13,6 +13,7 @@
 
 #include "zenith/sky/clouds/noise.h"
 #include "cloud_test_support.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::clouds {
 namespace {
@@ -185,12 +186,12 @@ TEST(CloudNoiseGeneration, SameSeedSameBytesWhateverTheThreads) {
 }
 
 TEST(CloudNoiseGeneration, RejectsSizesThatCannotTile) {
-    EXPECT_THROW(GenerateShapeNoise(1, {128, 20, 128}), std::invalid_argument);
-    EXPECT_THROW(GenerateShapeNoise(1, {0, 32, 128}), std::invalid_argument);
-    EXPECT_THROW(GenerateDetailNoise(1, 0), std::invalid_argument);
+    EXPECT_THROW(GenerateShapeNoise(1, {128, 20, 128}), zenith::ArgumentError);
+    EXPECT_THROW(GenerateShapeNoise(1, {0, 32, 128}), zenith::ArgumentError);
+    EXPECT_THROW(GenerateDetailNoise(1, 0), zenith::ArgumentError);
     try {
         GenerateShapeNoise(1, {128, 20, 128});
-    } catch (const std::invalid_argument& e) {
+    } catch (const zenith::ArgumentError& e) {
         EXPECT_NE(std::string(e.what()).find("128x20x128"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("axis y"), std::string::npos) << e.what();
     }

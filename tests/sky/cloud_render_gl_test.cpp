@@ -15,6 +15,7 @@
 #include "gl_test_support.h"
 #include "reference/cloud_trace.h"
 #include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky {
 namespace {
@@ -493,7 +494,7 @@ TEST_F(CloudRenderGlTest, CloudTransmittanceIsTheShadowMapsMarchFromAnyHeight) {
     EXPECT_EQ(renderer.CloudTransmittance(camera.position, lights.sun_direction, view), 1.0);
     renderer.SetWeather(weather, settings);
     EXPECT_THROW(renderer.CloudTransmittance(camera.position, lights.sun_direction, view, 0),
-                 std::invalid_argument);
+                 zenith::ArgumentError);
 
     const glm::dvec3 ground = glm::dvec3(0.0, 0.0, earth.bottom_radius);
     const ref::CloudScene scene = ref::MakeCloudScene(
@@ -572,7 +573,7 @@ TEST_F(CloudRenderGlTest, OvercastShadowsTheGroundAndTheSettingsAreChecked) {
     try {
         renderer.SetWeather(overcast, bad);
         FAIL() << "block 0 accepted";
-    } catch (const std::invalid_argument& e) {
+    } catch (const zenith::ArgumentError& e) {
         EXPECT_NE(std::string(e.what()).find("CloudSettings::block = 0"), std::string::npos)
             << e.what();
     }
@@ -584,7 +585,7 @@ TEST_F(CloudRenderGlTest, OvercastShadowsTheGroundAndTheSettingsAreChecked) {
         layer.top_altitude = layer.base_altitude + 1000.0;
         five.layers.push_back(layer);
     }
-    EXPECT_THROW(renderer.SetWeather(five, Settings()), std::invalid_argument);
+    EXPECT_THROW(renderer.SetWeather(five, Settings()), zenith::ArgumentError);
     // The failed calls left the previous weather in place.
     EXPECT_EQ(renderer.weather(), overcast);
 }

@@ -1,6 +1,6 @@
 // Smoke test of the GL layer: each headless context kind comes up with OpenGL >= 4.5 core, runs a
 // compute shader and reads the result back; every way of not getting a context is a ContextError
-// or std::invalid_argument whose message says what was tried.
+// or zenith::ArgumentError whose message says what was tried.
 #include <glad/gl.h>
 #include <gtest/gtest.h>
 
@@ -15,6 +15,7 @@
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/loader.h"
 #include "zenith/sky/gl/shader.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::gl {
 namespace {
@@ -134,7 +135,7 @@ TEST(ContextKindTest, RejectsUnknownNamesListingTheChoices) {
         try {
             ParseContextKind(bad);
             ADD_FAILURE() << "accepted '" << bad << "'";
-        } catch (const std::invalid_argument& error) {
+        } catch (const zenith::ArgumentError& error) {
             EXPECT_CONTAINS(error.what(), "'" + std::string(bad) + "'");
             EXPECT_CONTAINS(error.what(), "'osmesa'");
             EXPECT_CONTAINS(error.what(), "'egl'");
@@ -155,7 +156,7 @@ TEST(ContextKindTest, EnvironmentDefaultsToOsMesaAndNamesTheVariableOnError) {
     try {
         ContextKindFromEnvironment();
         ADD_FAILURE() << "accepted ZENITH_GL=direct3d";
-    } catch (const std::invalid_argument& error) {
+    } catch (const zenith::ArgumentError& error) {
         EXPECT_CONTAINS(error.what(), "ZENITH_GL");
         EXPECT_CONTAINS(error.what(), "direct3d");
     }
@@ -171,13 +172,13 @@ TEST(EglOptionsTest, ParsesPlatformsAndDeviceIndices) {
     EXPECT_EQ(device3.platform, EglPlatform::kDevice);
     EXPECT_EQ(device3.device_index, 3);
     for (const char* bad : {"", "device:", "device:-1", "device:1x", "device:x", "wayland"}) {
-        EXPECT_THROW(ParseEglOptions(bad), std::invalid_argument) << "'" << bad << "'";
+        EXPECT_THROW(ParseEglOptions(bad), zenith::ArgumentError) << "'" << bad << "'";
     }
     const ScopedEnv env("ZENITH_EGL_PLATFORM", "x11");
     try {
         EglOptionsFromEnvironment();
         ADD_FAILURE() << "accepted ZENITH_EGL_PLATFORM=x11";
-    } catch (const std::invalid_argument& error) {
+    } catch (const zenith::ArgumentError& error) {
         EXPECT_CONTAINS(error.what(), "ZENITH_EGL_PLATFORM");
         EXPECT_CONTAINS(error.what(), "device:N");
     }

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky {
 namespace {
 
@@ -171,7 +173,7 @@ TEST(ImageIoExposure, AutoExposureMetersTheMiddleOfTheHistogram) {
     // Luminance is Rec.709 Y: pure green of 1/0.7152 cd/m² meters as 1 cd/m².
     const Image green(2, 2, glm::vec4(0.0f, 1.0f / 0.7152f, 0.0f, 1.0f));
     EXPECT_NEAR(AutoExposureEV100(green), 3.0, 1e-6);
-    EXPECT_THROW(AutoExposureEV100(Image{}), std::invalid_argument);
+    EXPECT_THROW(AutoExposureEV100(Image{}), zenith::ArgumentError);
 }
 
 TEST(ImageIoExposure, ToneCurveIsMonotonicAndInUnitRange) {
@@ -212,9 +214,10 @@ TEST(ImageIoExposure, ExposureFromString) {
         try {
             ExposureFromString(bad);
             ADD_FAILURE() << "accepted '" << bad << "'";
-        } catch (const std::invalid_argument& error) {
+        } catch (const zenith::ArgumentError& error) {
             const std::string message = error.what();
-            EXPECT_NE(message.find("--exposure"), std::string::npos) << message;
+            EXPECT_EQ(error.field(), "exposure");  // the CLI maps it to --exposure
+            EXPECT_EQ(message.find("--exposure"), std::string::npos) << message;
             EXPECT_NE(message.find(bad), std::string::npos) << message;
             EXPECT_NE(message.find("[-20, 30]"), std::string::npos) << message;
         }

@@ -11,11 +11,13 @@
 
 #include <sys/types.h>
 
+#include "zenith/base/error.h"
+
 namespace zenith::vis {
 
-class DisplayError : public std::runtime_error {
+class DisplayError : public Error {
   public:
-    using std::runtime_error::runtime_error;
+    using Error::Error;
 };
 
 // Whether XOpenDisplay(name) succeeds (nullptr: $DISPLAY). Never aborts: a missing libX11 is

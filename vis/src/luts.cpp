@@ -17,6 +17,7 @@
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/reference/path_tracer.h"
 #include "zenith/sky/sky_state.h"
+#include "zenith/base/error.h"
 
 namespace zenith::vis {
 namespace ref = zenith::sky::ref;
@@ -49,7 +50,7 @@ LutKind ParseLutKind(std::string_view name) {
     for (LutKind kind : kAllLuts) {
         if (name == LutName(kind)) return kind;
     }
-    throw std::invalid_argument(fmt::format(
+    throw ArgumentError(fmt::format(
         "--lut = '{}' is not a LUT (expected transmittance, multiple-scattering, irradiance, "
         "sky-view or aerial-perspective)", name));
 }
@@ -59,7 +60,7 @@ Channel ParseChannel(std::string_view name) {
     if (name == "g") return Channel::kG;
     if (name == "b") return Channel::kB;
     if (name == "luminance" || name == "y") return Channel::kLuminance;
-    throw std::invalid_argument(
+    throw ArgumentError(
         fmt::format("--channel = '{}' is not a channel (expected r, g, b or luminance)", name));
 }
 
@@ -102,11 +103,11 @@ Luts ComputeLuts(const Scene& scene) {
     } else if (scene.quality == "mobile") {
         luts.settings = sky::LutSettings::Mobile();
     } else {
-        throw std::invalid_argument(
+        throw ArgumentError(
             fmt::format("--quality = '{}' is not a quality (expected pc or mobile)", scene.quality));
     }
     if (!(scene.fov_deg > 0.0 && scene.fov_deg < 180.0)) {
-        throw std::invalid_argument(fmt::format(
+        throw ArgumentError(fmt::format(
             "--fov = {} deg is out of range (expected 0 < vertical field of view < 180)",
             scene.fov_deg));
     }
@@ -408,7 +409,7 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
         case LutKind::kAerialPerspective: {
             const int slices = luts.aerial_perspective.size.z;
             if (slice < 0 || slice >= slices) {
-                throw std::invalid_argument(fmt::format(
+                throw ArgumentError(fmt::format(
                     "--slice = {} is out of range (expected 0..{})", slice, slices - 1));
             }
             s.title = fmt::format("Aerial perspective slice {} (depth {:.1f} km), {} ({})", slice,

@@ -16,6 +16,7 @@
 
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/lut.h"
+#include "zenith/base/error.h"
 
 namespace zenith::vis {
 
@@ -41,7 +42,7 @@ inline constexpr std::array<LutKind, 5> kAllLuts = {
     LutKind::kSkyView, LutKind::kAerialPerspective};
 // "transmittance", "multiple-scattering", "irradiance", "sky-view", "aerial-perspective".
 std::string_view LutName(LutKind kind);
-// Throws std::invalid_argument naming the value and the choices.
+// Throws zenith::ArgumentError naming the value and the choices.
 LutKind ParseLutKind(std::string_view name);
 
 enum class Channel { kR, kG, kB, kLuminance };

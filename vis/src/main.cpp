@@ -21,6 +21,8 @@
 #include <vtkPolyData.h>
 #include <vtkRenderer.h>
 
+#include "zenith/base/error.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -31,7 +33,7 @@ glm::ivec2 ParseSize(const std::string& text, const char* option = "--size", int
     char x = 0;
     if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < min ||
         h < min || w > 8192 || h > 8192) {
-        throw std::invalid_argument(fmt::format("{} = '{}' is not a size (expected WxH with "
+        throw ArgumentError(fmt::format("{} = '{}' is not a size (expected WxH with "
                                                 "{}..8192 per axis)",
                                                 option, text, min));
     }
@@ -78,7 +80,7 @@ std::optional<vis::DisplayGuard> Display(const std::string& out) {
 
 void CheckPng(const std::string& out) {
     if (!out.empty() && fs::path(out).extension() != ".png") {
-        throw std::invalid_argument(
+        throw ArgumentError(
             fmt::format("--out = '{}' must end in .png (or leave it out for a window)", out));
     }
 }
@@ -191,7 +193,7 @@ int main(int argc, char** argv) {
             const vis::LutKind kind = vis::ParseLutKind(lut_name);
             const vis::Channel channel = vis::ParseChannel(channel_name);
             if (scale != "linear" && scale != "log") {
-                throw std::invalid_argument(fmt::format(
+                throw ArgumentError(fmt::format(
                     "--scale = '{}' is not a scale (expected linear or log)", scale));
             }
             const glm::ivec2 samples = ParseSize(samples_text, "--samples", 2);

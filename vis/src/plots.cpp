@@ -57,6 +57,8 @@
 #include <vtkXMLImageDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include "zenith/base/error.h"
+
 namespace zenith::vis {
 namespace {
 
@@ -459,12 +461,12 @@ void WriteVti(vtkImageData* image, const std::filesystem::path& path) {
     writer->SetFileName(path.c_str());
     writer->SetInputData(image);
     writer->SetDataModeToBinary();
-    if (writer->Write() != 1) throw std::runtime_error("cannot write " + path.string());
+    if (writer->Write() != 1) throw Error("cannot write " + path.string());
 }
 
 vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, double step_s) {
     if (!(step_s > 0.0)) {
-        throw std::invalid_argument(fmt::format("--step = {} s is out of range (expected > 0)",
+        throw ArgumentError(fmt::format("--step = {} s is out of range (expected > 0)",
                                                 step_s));
     }
     const track::FlightLog log = track::ReadFlightLog(flight);
@@ -520,7 +522,7 @@ void WriteVtp(vtkPolyData* path, const std::filesystem::path& file) {
     writer->SetFileName(file.c_str());
     writer->SetInputData(path);
     writer->SetDataModeToBinary();
-    if (writer->Write() != 1) throw std::runtime_error("cannot write " + file.string());
+    if (writer->Write() != 1) throw Error("cannot write " + file.string());
 }
 
 // --- overview --------------------------------------------------------------------------------
@@ -672,7 +674,7 @@ void SavePng(vtkRenderWindow* window, const std::filesystem::path& out) {
     writer->Write();
     std::error_code error;
     if (!std::filesystem::exists(partial, error) || std::filesystem::file_size(partial) == 0) {
-        throw std::runtime_error("could not write " + out.string());
+        throw Error("could not write " + out.string());
     }
     std::filesystem::rename(partial, out);  // never a half-written PNG under the final name
 }

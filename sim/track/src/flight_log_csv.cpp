@@ -17,6 +17,7 @@
 #include <numbers>
 
 #include "flight_log_internal.h"
+#include "zenith/base/error.h"
 
 namespace zenith::track {
 
@@ -299,7 +300,7 @@ FlightLog ParseCsv(std::string_view text, std::string source, const ReadOptions&
             std::optional<double> unix_s;
             try {
                 unix_s = detail::ParseDouble(time_text);
-            } catch (const std::invalid_argument&) {
+            } catch (const ArgumentError&) {
                 // not a number: ISO 8601 below
             }
             s.time_s = unix_s ? *unix_s : detail::UnixSecondsFromIso8601(time_text);

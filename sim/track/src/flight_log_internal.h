@@ -52,7 +52,7 @@ std::string Where(std::string_view source, int line);
 std::string_view NextLine(std::string_view& text);
 
 // Strict numeric parsing of a whole field (no trailing junk, finite). Empty -> nullopt; throws
-// std::invalid_argument naming the text otherwise.
+// zenith::ArgumentError naming the text otherwise.
 std::optional<double> ParseDouble(std::string_view text);
 
 // ISO 8601 UTC text -> POSIX seconds; throws geo::TimeError on a bad string.

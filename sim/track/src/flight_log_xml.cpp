@@ -25,6 +25,7 @@
 #include <sstream>
 
 #include "flight_log_internal.h"
+#include "zenith/base/error.h"
 
 namespace zenith::track {
 
@@ -410,10 +411,10 @@ FlightLog ParseKml(std::string_view text, std::string source, const ReadOptions&
                 std::array<double, 3> hpr{};
                 try {
                     for (double& x : hpr) {
-                        if (!(a >> field)) throw std::invalid_argument("needs 3 values");
+                        if (!(a >> field)) throw ArgumentError("needs 3 values");
                         x = *detail::ParseDouble(field);
                     }
-                    if (a >> field) throw std::invalid_argument("more than 3 values");
+                    if (a >> field) throw ArgumentError("more than 3 values");
                 } catch (const std::exception& e) {
                     out.Skip(angles[i]->GetLineNum(),
                              fmt::format("bad <gx:angles> '{}' (heading tilt roll): {}",

@@ -6,6 +6,8 @@
 
 #include <sstream>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky {
 namespace {
 
@@ -13,7 +15,7 @@ void Require(bool ok, const char* field, double value, const char* expected) {
     if (!ok) {
         std::ostringstream text;
         text << "CloudSettings::" << field << " = " << value << " (expected " << expected << ")";
-        throw std::invalid_argument(text.str());
+        throw ArgumentError(text.str());
     }
 }
 

@@ -14,6 +14,7 @@
 #include "gl/shader_library.h"
 #include "gl/textures.h"
 #include "zenith/sky/gl/error.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky {
 namespace {
@@ -132,7 +133,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
       cloud_tops_(tops) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(gl::kCloudMaxLayers)) {
-        throw std::invalid_argument("weather '" + weather_.name + "' has " +
+        throw ArgumentError("weather '" + weather_.name + "' has " +
                                     std::to_string(weather_.layers.size()) +
                                     " layers (the renderer draws at most " +
                                     std::to_string(gl::kCloudMaxLayers) + ")");

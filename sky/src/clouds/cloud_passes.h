@@ -16,6 +16,7 @@
 
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/shader.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky {
 
@@ -26,7 +27,7 @@ class CloudPasses {
   public:
     // For a validated weather with at least one layer, its maps (clouds::BuildWeatherMap of
     // each layer) and their clouds::CloudTopFraction, validated settings and the noise they
-    // give. Throws std::invalid_argument for more than 4 layers.
+    // give. Throws zenith::ArgumentError for more than 4 layers.
     CloudPasses(const clouds::Weather& weather, const CloudSettings& settings,
                 const std::vector<clouds::WeatherMap>& maps, const std::vector<double>& tops,
                 const clouds::CloudNoise& noise);

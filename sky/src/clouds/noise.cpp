@@ -17,6 +17,8 @@
 #include <system_error>
 #include <thread>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky::clouds {
 namespace {
 
@@ -102,7 +104,7 @@ glm::ivec3 CellsFor(int cells_x, const glm::ivec3& size, const char* what) {
     for (int a = 0; a < 3; ++a) {
         const long long product = static_cast<long long>(cells_x) * size[a];
         if (product % size.x != 0 || product / size.x < 1) {
-            throw std::invalid_argument(
+            throw ArgumentError(
                 std::string(what) + " noise of size " + std::to_string(size.x) + "x" +
                 std::to_string(size.y) + "x" + std::to_string(size.z) + ": axis " + "xyz"[a] +
                 " cannot hold a whole number of its " + std::to_string(cells_x) +
@@ -117,7 +119,7 @@ glm::ivec3 CellsFor(int cells_x, const glm::ivec3& size, const char* what) {
 void CheckSize(const glm::ivec3& size, int minimum, const char* what) {
     if (!(size.x >= minimum && size.y >= 1 && size.z >= 1 && size.x <= 4096 && size.y <= 4096 &&
           size.z <= 4096)) {
-        throw std::invalid_argument(
+        throw ArgumentError(
             std::string(what) + " noise size " + std::to_string(size.x) + "x" +
             std::to_string(size.y) + "x" + std::to_string(size.z) +
             ": expected each axis in [1, 4096] and x >= " + std::to_string(minimum));
@@ -262,7 +264,7 @@ void WriteAll(int fd, const void* data, std::size_t size, const std::filesystem:
         const ssize_t written = ::write(fd, bytes, size);
         if (written < 0) {
             if (errno == EINTR) continue;
-            throw std::runtime_error("cannot write noise cache " + Quoted(path) + ": " +
+            throw Error("cannot write noise cache " + Quoted(path) + ": " +
                                      std::strerror(errno));
         }
         bytes += written;
@@ -423,7 +425,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
     std::error_code error;
     if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), error);
     if (error) {
-        throw std::runtime_error("cannot create noise cache directory " +
+        throw Error("cannot create noise cache directory " +
                                  Quoted(file.parent_path()) + ": " + error.message());
     }
     Header header = MakeHeader(settings);
@@ -436,7 +438,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
         std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {
-        throw std::runtime_error("cannot write noise cache " + Quoted(temporary) + ": " +
+        throw Error("cannot write noise cache " + Quoted(temporary) + ": " +
                                  std::strerror(errno));
     }
     try {
@@ -445,7 +447,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
         WriteAll(fd, noise.detail.texels.data(), noise.detail.texels.size(), temporary);
         WriteAll(fd, noise.curl.texels.data(), noise.curl.texels.size(), temporary);
         if (::fsync(fd) != 0) {
-            throw std::runtime_error("cannot flush noise cache " + Quoted(temporary) + ": " +
+            throw Error("cannot flush noise cache " + Quoted(temporary) + ": " +
                                      std::strerror(errno));
         }
     } catch (...) {
@@ -457,7 +459,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
     std::filesystem::rename(temporary, file, error);
     if (error) {
         std::filesystem::remove(temporary, error);
-        throw std::runtime_error("cannot rename noise cache into " + Quoted(file) + ": " +
+        throw Error("cannot rename noise cache into " + Quoted(file) + ": " +
                                  error.message());
     }
 }

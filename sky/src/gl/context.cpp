@@ -6,6 +6,7 @@
 #include <string>
 
 #include "gl/backends.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::gl {
 namespace {
@@ -23,7 +24,7 @@ thread_local HeadlessContext* g_current = nullptr;
 ContextKind ParseContextKind(std::string_view name) {
     if (name == "osmesa") return ContextKind::kOsMesa;
     if (name == "egl") return ContextKind::kEgl;
-    throw std::invalid_argument("unknown GL context kind '" + std::string(name) +
+    throw ArgumentError("unknown GL context kind '" + std::string(name) +
                                 "': expected 'osmesa' (default, headless llvmpipe) or 'egl'");
 }
 
@@ -42,8 +43,8 @@ ContextKind ContextKindFromEnvironment() {
     if (value.empty()) return ContextKind::kOsMesa;
     try {
         return ParseContextKind(value);
-    } catch (const std::invalid_argument& error) {
-        throw std::invalid_argument(std::string("environment variable ZENITH_GL: ") + error.what());
+    } catch (const ArgumentError& error) {
+        throw ArgumentError(std::string("environment variable ZENITH_GL: ") + error.what());
     }
 }
 
@@ -62,7 +63,7 @@ EglOptions ParseEglOptions(std::string_view text) {
             return {EglPlatform::kDevice, index};
         }
     }
-    throw std::invalid_argument("unknown EGL platform '" + std::string(text) +
+    throw ArgumentError("unknown EGL platform '" + std::string(text) +
                                 "': expected 'auto', 'surfaceless', 'device' or 'device:N' "
                                 "(N = EGL device index, 0 or more)");
 }
@@ -72,8 +73,8 @@ EglOptions EglOptionsFromEnvironment() {
     if (value.empty()) return {};
     try {
         return ParseEglOptions(value);
-    } catch (const std::invalid_argument& error) {
-        throw std::invalid_argument(std::string("environment variable ZENITH_EGL_PLATFORM: ") +
+    } catch (const ArgumentError& error) {
+        throw ArgumentError(std::string("environment variable ZENITH_EGL_PLATFORM: ") +
                                     error.what());
     }
 }
@@ -123,7 +124,7 @@ std::unique_ptr<HeadlessContext> CreateHeadlessContext(const ContextOptions& opt
         case ContextKind::kEgl:
             return internal::CreateEglContext(options);
     }
-    throw std::invalid_argument("CreateHeadlessContext: invalid ContextKind");
+    throw ArgumentError("CreateHeadlessContext: invalid ContextKind");
 }
 
 std::unique_ptr<HeadlessContext> CreateHeadlessContextFromEnvironment() {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "zenith/sky/reference/atmosphere_reference.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::reference {
 namespace {
@@ -135,12 +136,12 @@ glm::dvec3 AccuracyResult::MeanBiasError() const {
 AccuracyResult MeasureAccuracy(const AccuracyScenario& scenario, const AccuracyOptions& options) {
     if (!(options.width > 0 && options.height > 0 && options.width <= 4096 &&
           options.height <= 4096)) {
-        throw std::invalid_argument("accuracy image size " + std::to_string(options.width) + "x" +
+        throw ArgumentError("accuracy image size " + std::to_string(options.width) + "x" +
                                     std::to_string(options.height) +
                                     " is out of range (expected 1..4096 per axis)");
     }
     if (!(options.samples >= 2)) {
-        throw std::invalid_argument("accuracy samples " + std::to_string(options.samples) +
+        throw ArgumentError("accuracy samples " + std::to_string(options.samples) +
                                     " is out of range (expected >= 2, for a standard error)");
     }
     using Clock = std::chrono::steady_clock;
@@ -206,7 +207,7 @@ AccuracyResult MeasureAccuracy(const AccuracyScenario& scenario, const AccuracyO
     result.rmse = glm::sqrt(squared_error);
     result.noise = glm::sqrt(variance);
     if (!(Sum(result.reference_mean) > 0.0)) {
-        throw std::runtime_error("scenario " + scenario.name +
+        throw Error("scenario " + scenario.name +
                                  ": the reference image is black (mean " +
                                  std::to_string(Sum(result.reference_mean)) + " cd/m^2)");
     }

@@ -22,6 +22,7 @@
 #include "clouds/cloud_parameters.h"
 #include "reference/cloud_functions.h"
 #include "zenith/sky/reference/path_tracer.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::reference {
 namespace {
@@ -425,7 +426,7 @@ CloudPhase SlabPhase(const SlabProblem& p) { return p.phase; }
 SlabMedium MakeSlab(const SlabProblem& problem) {
     if (!(problem.optical_depth > 0.0) || !(problem.mu0 > 0.0 && problem.mu0 <= 1.0) ||
         !(problem.majorant_factor >= 1.0)) {
-        throw std::invalid_argument(
+        throw ArgumentError(
             "SlabProblem: optical_depth must be > 0, mu0 in (0, 1], majorant_factor >= 1");
     }
     SlabMedium m{};

@@ -11,12 +11,13 @@
 #include <glm/glm.hpp>
 
 #include "zenith/geo/time.h"
+#include "zenith/base/error.h"
 
 namespace zenith::geo {
 
-class ObserverError : public std::invalid_argument {
+class ObserverError : public ArgumentError {
 public:
-    using std::invalid_argument::invalid_argument;
+    using ArgumentError::ArgumentError;
 };
 
 class Observer {

@@ -16,11 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "zenith/base/error.h"
+
 namespace zenith::geo {
 
-class CatalogError : public std::runtime_error {
+class CatalogError : public InputError {
   public:
-    using std::runtime_error::runtime_error;
+    using InputError::InputError;
 };
 
 struct Star {

@@ -14,13 +14,15 @@
 #include <string>
 #include <string_view>
 
+#include "zenith/base/error.h"
+
 namespace zenith::geo {
 
 // Thrown for any input that cannot be a valid instant; the message names the parameter, the
 // value and the accepted range or format.
-class TimeError : public std::invalid_argument {
+class TimeError : public ArgumentError {
 public:
-    using std::invalid_argument::invalid_argument;
+    using ArgumentError::ArgumentError;
 };
 
 // A UTC calendar instant. second may reach 60.999... only on a day that ends with a leap second.

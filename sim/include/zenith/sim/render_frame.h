@@ -14,8 +14,14 @@
 #include "zenith/sky/image_io.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sim {
+
+inline constexpr int kMaxFrameSide = 16384;
+
+// "WxH" with 1 <= W, H <= kMaxFrameSide; throws ArgumentError (field "size").
+glm::ivec2 ParseFrameSize(const std::string& text);
 
 struct FrameRequest {
     std::string utc = "2024-06-21T19:00:00Z";  // ISO 8601
@@ -48,7 +54,7 @@ struct FrameRequest {
     }
 };
 
-// Throws std::invalid_argument naming the parameter, value and allowed range for anything out of
+// Throws zenith::ArgumentError naming the parameter, value and allowed range for anything out of
 // range (before any rendering, so nothing is written).
 void ValidateFrameRequest(const FrameRequest& request);
 

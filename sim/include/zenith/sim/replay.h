@@ -25,13 +25,13 @@
 #include <glm/glm.hpp>
 
 #include "zenith/base/error.h"
+#include "zenith/sim/render_frame.h"
 #include "zenith/sky/image_io.h"
 #include "zenith/track/flight_log.h"
 
 namespace zenith::sim {
 
 inline constexpr std::size_t kMaxReplayFrames = 10'000'000;
-inline constexpr int kMaxFrameSide = 16384;
 // Ground observer: eye height above the ground zenith draws (the WGS84 ellipsoid).
 inline constexpr double kGroundEyeHeight = 2.0;  // m
 
@@ -56,8 +56,6 @@ Shard ParseShard(const std::string& text);
 // whole number or the task is outside the array.
 std::optional<Shard> ShardFromEnvironment();
 
-// "WxH" with 1 <= W, H <= kMaxFrameSide; throws ArgumentError (field "size").
-glm::ivec2 ParseFrameSize(const std::string& text);
 
 struct ReplayRequest {
     std::filesystem::path flight;  // .igc .gpx .kml .csv

@@ -29,6 +29,7 @@
 #include "zenith/sky/gl/loader.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sim {
 
@@ -104,7 +105,7 @@ public:
     // Clouds from now on (an empty Weather: none). The weather map's origin stays where it is
     // set (SetWeatherOrigin), else at the aircraft's position at the next Update; the wind
     // carries the layers from the simulation time of that Update on. Throws
-    // sky::clouds::WeatherError or std::invalid_argument, keeping the previous weather.
+    // sky::clouds::WeatherError or zenith::ArgumentError, keeping the previous weather.
     void SetWeather(const sky::clouds::Weather& weather, const sky::CloudSettings& settings = {});
     void SetWeatherOrigin(double lat_deg, double lon_deg);
     // The simulation time at which the wind starts carrying the layers (default: the first

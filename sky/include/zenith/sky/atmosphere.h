@@ -16,13 +16,15 @@
 #include <string>
 #include <string_view>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky {
 
 // Thrown for an invalid parameter or preset file; the message names the file (and line where
 // the JSON parser knows it), the field, its value, its unit and the allowed range.
-class AtmosphereError : public std::invalid_argument {
+class AtmosphereError : public InputError {
   public:
-    using std::invalid_argument::invalid_argument;
+    using InputError::InputError;
 };
 
 struct Atmosphere {

@@ -14,6 +14,7 @@
 #include "zenith/sky/clouds/noise.h"
 #include "zenith/sky/clouds/weather.h"
 #include "zenith/sky/lut.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky {
 
@@ -71,7 +72,7 @@ struct CloudSettings {
     clouds::CloudNoiseSettings noise;
     std::filesystem::path noise_cache_directory = clouds::DefaultNoiseCacheDirectory();
 
-    // Throws std::invalid_argument naming the field, its value and the allowed range.
+    // Throws zenith::ArgumentError naming the field, its value and the allowed range.
     void Validate() const;
 };
 
@@ -147,7 +148,7 @@ public:
 
     // Clouds from now on (an empty Weather: none). Builds the weather maps and loads the noise
     // (generated and cached on first use); throws clouds::WeatherError for a bad weather or map
-    // and std::invalid_argument for bad settings. Resets the reprojection history.
+    // and zenith::ArgumentError for bad settings. Resets the reprojection history.
     void SetWeather(const clouds::Weather& weather, const CloudSettings& settings = {});
     const clouds::Weather& weather() const;
     const CloudSettings& cloud_settings() const;

@@ -23,6 +23,8 @@
 #include <string_view>
 #include <vector>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky {
 
 // An HDR frame: RGBA, x fastest, row 0 at the top. RGB in cd/m² (Rec.709), A in [0, 1].
@@ -54,9 +56,9 @@ struct Srgb8Image {
 };
 
 // Any failure to write or read an image file: the message names the path and the cause.
-class ImageError : public std::runtime_error {
+class ImageError : public Error {
   public:
-    using std::runtime_error::runtime_error;
+    using Error::Error;
 };
 
 // --- Exposure and tone mapping ------------------------------------------------------------------
@@ -76,7 +78,7 @@ double ExposureScale(double ev100);
 // taken over the pixels between the kMeteredLowPercentile-th and kMeteredHighPercentile-th
 // percentiles of Y (histogram metering: space beside a planet, or the sun disk, does not set it).
 // Non-finite pixels are skipped; Y below kMinMeteredLuminance counts as that. The result is clamped to
-// [kMinExposureEV100, kMaxExposureEV100]. Throws std::invalid_argument for an empty image or one
+// [kMinExposureEV100, kMaxExposureEV100]. Throws zenith::ArgumentError for an empty image or one
 // with no finite pixel.
 inline constexpr double kMinMeteredLuminance =
     1e-6;  // cd/m², about the absolute threshold of vision
@@ -91,7 +93,7 @@ struct Exposure {
 };
 
 // Parses "auto" or a number in [kMinExposureEV100, kMaxExposureEV100] (e.g. "12.5", "-3").
-// Throws std::invalid_argument naming `--exposure`, the value and the allowed range.
+// Throws zenith::ArgumentError (field "exposure") naming the value and the allowed range.
 Exposure ExposureFromString(std::string_view text);
 
 // The EV100 to use for `image`: exposure.ev100, or AutoExposureEV100(image) when automatic.
@@ -107,7 +109,7 @@ double ToneMapAcesFitted(double x);
 double SrgbEncode(double linear);
 
 // Per channel: SrgbEncode(ToneMapAcesFitted(ExposureScale(ev100) · L)), rounded to 8 bits. Alpha
-// is dropped. Throws ImageError for an inconsistent image, std::invalid_argument for an ev100
+// is dropped. Throws ImageError for an inconsistent image, zenith::ArgumentError for an ev100
 // outside [kMinExposureEV100, kMaxExposureEV100].
 Srgb8Image ToneMapToSrgb8(const Image& image, double ev100);
 

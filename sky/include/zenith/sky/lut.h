@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky {
 
 // LUT sizes and ray-marching step counts (Hillaire 2020, Table 2). Pc() is the paper's PC column,
@@ -29,7 +31,7 @@ struct LutSettings {
 
     static LutSettings Pc() { return {}; }
     static LutSettings Mobile();
-    // Throws std::invalid_argument naming the field, value and allowed range.
+    // Throws zenith::ArgumentError naming the field, value and allowed range.
     void Validate() const;
 };
 

@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky::clouds {
 
 // A volume of 8-bit channels: x fastest, then y, then z; channels interleaved.
@@ -72,7 +74,7 @@ double TileableWorley(const glm::dvec3& p, const glm::ivec3& cells, std::uint32_
 
 // --- Generation -------------------------------------------------------------------------------
 
-// Throw std::invalid_argument naming the size when it is not positive or an axis cannot hold a
+// Throw zenith::ArgumentError naming the size when it is not positive or an axis cannot hold a
 // whole number of the noise's cells: shape needs x divisible by 4 and y, z multiples of x / 4
 // (128 x 32 x 128 and any power-of-two scaling of it); detail and curl take any size >= 2.
 NoiseVolume GenerateShapeNoise(std::uint32_t seed, glm::ivec3 size = {128, 32, 128},
@@ -95,7 +97,7 @@ std::filesystem::path DefaultNoiseCacheDirectory();
 std::string NoiseCacheFileName(const CloudNoiseSettings& settings);
 
 // Writes atomically: to a unique temporary file in the same directory, fsync'ed, then renamed
-// over the target. Creates the directory. Throws std::runtime_error naming the path and cause.
+// over the target. Creates the directory. Throws zenith::Error naming the path and cause.
 void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings& settings,
                      const CloudNoise& noise);
 // The noise in `file` if it is a complete cache for exactly these settings (magic, version,

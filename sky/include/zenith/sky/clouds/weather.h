@@ -20,13 +20,15 @@
 #include <string_view>
 #include <vector>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky::clouds {
 
 // An invalid weather file, layer or map: the message names the file (or layer), the field or
 // pixel, the value and what is expected.
-class WeatherError : public std::invalid_argument {
+class WeatherError : public InputError {
   public:
-    using std::invalid_argument::invalid_argument;
+    using InputError::InputError;
 };
 
 // Where a layer's weather map comes from.

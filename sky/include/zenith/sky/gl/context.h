@@ -21,6 +21,7 @@
 
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/gl/loader.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::gl {
 
@@ -29,7 +30,7 @@ enum class ContextKind {
     kEgl,
 };
 
-// "osmesa" | "egl"; anything else throws std::invalid_argument naming the value and the choices.
+// "osmesa" | "egl"; anything else throws zenith::ArgumentError naming the value and the choices.
 ContextKind ParseContextKind(std::string_view name);
 std::string_view ToString(ContextKind kind);
 // ZENITH_GL, or kOsMesa when unset or empty; a bad value throws as ParseContextKind does.
@@ -46,7 +47,7 @@ struct EglOptions {
     int device_index = -1;  // with kDevice: index into eglQueryDevicesEXT; -1 = first that works
 };
 
-// "auto" | "surfaceless" | "device" | "device:N"; anything else throws std::invalid_argument.
+// "auto" | "surfaceless" | "device" | "device:N"; anything else throws zenith::ArgumentError.
 EglOptions ParseEglOptions(std::string_view text);
 // ZENITH_EGL_PLATFORM, or the defaults when unset or empty.
 EglOptions EglOptionsFromEnvironment();

@@ -3,12 +3,14 @@
 
 #include <stdexcept>
 
+#include "zenith/base/error.h"
+
 namespace zenith::sky::gl {
 
 // A GL call or object (shader, program, loader) failed in a context that exists.
-class GlError : public std::runtime_error {
+class GlError : public Error {
   public:
-    using std::runtime_error::runtime_error;
+    using Error::Error;
 };
 
 // No usable context could be had: library missing, no display/device, GL version too low.

@@ -34,6 +34,7 @@
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/reference/path_tracer.h"
+#include "zenith/base/error.h"
 
 namespace zenith::sky::reference {
 
@@ -99,7 +100,7 @@ struct AccuracyResult {
 // The pinhole camera of a scenario at a resolution (path_tracer.h's Camera).
 Camera ScenarioCamera(const AccuracyScenario& scenario, int width, int height);
 
-// Renders both images of the scenario and compares them. Throws std::invalid_argument for a
+// Renders both images of the scenario and compares them. Throws zenith::ArgumentError for a
 // size or sample count out of range.
 AccuracyResult MeasureAccuracy(const AccuracyScenario& scenario, const AccuracyOptions& options);
 
