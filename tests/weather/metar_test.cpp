@@ -521,6 +521,18 @@ TEST(MetarFiles, Lines) {
     std::filesystem::remove(path);
 }
 
+// NOAA's station files: the time on the line before the report.
+TEST(MetarFiles, NoaaTimeLines) {
+    const MetarFile f = ParseMetarLines(
+        "2024/07/14 12:00\nLFMY 141200Z AUTO 31010KT 9999 FEW045 29/12 Q1016\n"
+        "LFMY 141230Z AUTO 31010KT 9999 FEW045 29/12 Q1016\n",
+        "LFMY.TXT");
+    ASSERT_EQ(f.records.size(), 2u);
+    EXPECT_DOUBLE_EQ(*f.records[0].time_s,
+                     geo::UnixSecondsFromCivil(geo::ParseIso8601("2024-07-14T12:00:00Z")));
+    EXPECT_FALSE(f.records[1].time_s);
+}
+
 TEST(MetarFiles, IemCsv) {
     // The columns of the Iowa Environmental Mesonet's ASOS download (data=metar), reordered.
     const auto path = WriteTemp(

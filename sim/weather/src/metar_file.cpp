@@ -158,9 +158,28 @@ std::string MetarFile::Summary() const {
     return out;
 }
 
+// NOAA's per-station files (tgftp.nws.noaa.gov/data/observations/metar/stations) put the
+// observation time on the line before the report: "2024/07/14 12:00".
+std::optional<double> NoaaTimeLine(std::string_view s) {
+    if (s.size() != 16 || s[4] != '/' || s[7] != '/' || s[10] != ' ' || s[13] != ':') {
+        return std::nullopt;
+    }
+    std::string iso(s);
+    iso[4] = '-';
+    iso[7] = '-';
+    try {
+        const geo::CivilTime t = geo::ParseIso8601(iso);
+        geo::ValidateCivilTime(t);
+        return geo::UnixSecondsFromCivil(t);
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+}
+
 MetarFile ParseMetarLines(std::string_view text, std::string source) {
     Collector out(std::move(source));
     std::size_t line_number = 0;
+    std::optional<double> pending_time;
     while (!text.empty()) {
         const std::string_view line = NextLine(text);
         ++line_number;
@@ -171,7 +190,15 @@ MetarFile ParseMetarLines(std::string_view text, std::string source) {
                                               kMaxMetarLineBytes));
             continue;
         }
-        if (auto r = out.Decode(trimmed, line_number)) out.Add(std::move(*r));
+        if (const auto t = NoaaTimeLine(trimmed)) {
+            pending_time = t;
+            continue;
+        }
+        if (auto r = out.Decode(trimmed, line_number)) {
+            r->time_s = pending_time;
+            out.Add(std::move(*r));
+        }
+        pending_time.reset();
     }
     return out.Finish();
 }

@@ -9,7 +9,9 @@
 // than kMaxMetarRecords reports, a CSV without a metar column, or no usable report.
 //
 // Lines end in "\n", "\r\n" or "\r"; blank lines and lines starting with '#' are skipped; a line
-// is at most kMaxMetarLineBytes long (longer ones are skipped).
+// is at most kMaxMetarLineBytes long (longer ones are skipped). In a lines file, a line
+// "YYYY/MM/DD hh:mm" (NOAA's per-station files) gives the UTC time of the report on the next
+// line.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +34,8 @@ struct MetarRecord {
     Metar metar;
     std::size_t line = 0;  // 1-based
     // From the CSV: the valid time (UTC, POSIX seconds), the station's position and its name in
-    // the archive (IEM: "DSM" for KDSM). Lines files have none of these.
+    // the archive (IEM: "DSM" for KDSM). Lines files have only the time, and only after a NOAA
+    // time line.
     std::optional<double> time_s;
     std::optional<double> lat_deg;
     std::optional<double> lon_deg;
