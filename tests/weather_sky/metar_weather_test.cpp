@@ -3,6 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "zenith/base/units.h"
@@ -149,6 +153,32 @@ TEST(CloudWeather, EveryReportGivesAValidWeather) {
     }
     EXPECT_THROW(FromText(reports[0], 9001.0), ArgumentError);
     EXPECT_THROW(FromText(reports[0], std::nan("")), ArgumentError);
+}
+
+// Whatever the decoder accepts maps to a valid Weather at any allowed elevation: the fuzz seeds,
+// or a whole fuzz corpus given in $ZENITH_METAR_CORPUS.
+TEST(CloudWeather, FuzzCorpusMapsToValidWeather) {
+    const char* env = std::getenv("ZENITH_METAR_CORPUS");
+    const std::filesystem::path dir =
+        env ? std::filesystem::path(env)
+            : std::filesystem::path(ZENITH_SOURCE_DIR) / "tests/fuzz/corpus/metar";
+    int decoded = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        Metar m;
+        try {
+            m = DecodeMetar(text.str());
+        } catch (const MetarError&) {
+            continue;
+        }
+        ++decoded;
+        for (const double elevation : {-500.0, 0.0, 9000.0}) {
+            EXPECT_NO_THROW(CloudWeatherFromMetar(m, elevation)) << entry.path();
+        }
+    }
+    EXPECT_GT(decoded, 0);
 }
 
 }  // namespace
