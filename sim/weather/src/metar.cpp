@@ -1091,7 +1091,14 @@ std::string Metar::Describe() const {
         if (r.max_rvr_m) {
             out += fmt::format(" to {}{:.0f} m", BoundText(r.max_bound), *r.max_rvr_m);
         }
-        if (r.feet) out += " (reported in feet)";
+        if (r.feet) {
+            out += fmt::format(" ({}{:.0f} ft", BoundText(r.bound), r.rvr_m / kMetresPerFoot);
+            if (r.max_rvr_m) {
+                out += fmt::format(" to {}{:.0f} ft", BoundText(r.max_bound),
+                                   *r.max_rvr_m / kMetresPerFoot);
+            }
+            out += ')';
+        }
         if (r.tendency == 'U') out += ", increasing";
         if (r.tendency == 'D') out += ", decreasing";
         if (r.tendency == 'N') out += ", no change";
@@ -1118,10 +1125,12 @@ std::string Metar::Describe() const {
     }
     for (const SkyLayer& l : sky) {
         out += "cloud: ";
-        out += l.cover == Cover::kUnknown
-                   ? std::string("amount not observed")
-                   : fmt::format("{} ({}-{} oktas)", FindValue(kCovers, l.cover)->name,
-                                 MinOktas(l.cover), MaxOktas(l.cover));
+        out +=
+            l.cover == Cover::kUnknown ? std::string("amount not observed")
+            : MinOktas(l.cover) == MaxOktas(l.cover)
+                ? fmt::format("{} ({} oktas)", FindValue(kCovers, l.cover)->name, MinOktas(l.cover))
+                : fmt::format("{} ({}-{} oktas)", FindValue(kCovers, l.cover)->name,
+                              MinOktas(l.cover), MaxOktas(l.cover));
         out += l.base_ft ? fmt::format(" at {:.0f} ft ({:.0f} m)", *l.base_ft, *l.base_m())
                          : std::string(", base not observed");
         if (l.convective == ConvectiveCloud::kCumulonimbus) out += ", cumulonimbus";
