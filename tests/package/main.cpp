@@ -1,11 +1,12 @@
-// Uses each installed library from a separate project: geo (ephemeris), sky (presets) and sim
-// (the batch record). No GL context is needed.
+// Uses each installed library from a separate project: geo (ephemeris), sky (presets), sim
+// (the batch record) and weather (a METAR report as cloud layers). No GL context is needed.
 #include <cmath>
 #include <cstdio>
 
 #include <zenith/geo/ephemeris.h>
 #include <zenith/sim/ephemeris_report.h>
 #include <zenith/sky/atmosphere.h>
+#include <zenith/weather/cloud_weather.h>
 
 #include <nlohmann/json.hpp>
 
@@ -18,5 +19,8 @@ int main() {
     zenith::sky::Validate(earth);
     std::printf("sun elevation %.3f deg, Rayleigh %.3e /m\n", elevation_deg,
                 earth.rayleigh_scattering.b);
+    const auto weather = zenith::weather::CloudWeatherFromMetar(
+        zenith::weather::DecodeMetar("EGLL 211750Z 24012KT 9999 FEW035 SCT250 18/09 Q1018"), 25.0);
+    if (weather.clouds.layers.size() != 2) return 1;
     return std::abs(elevation_deg - 15.5) < 1.0 ? 0 : 1;  // winter noon sun at 51.5 N
 }

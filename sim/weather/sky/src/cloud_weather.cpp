@@ -1,0 +1,316 @@
+// METAR -> zenith weather; the mapping table is in cloud_weather.h.
+#include "zenith/weather/cloud_weather.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "zenith/base/units.h"
+
+namespace zenith::weather {
+
+namespace {
+
+using sky::clouds::CloudLayer;
+using sky::clouds::WeatherMapSource;
+
+constexpr double kLowEtageTop = 2000.0;    // m above the station (WMO cloud atlas, temperate)
+constexpr double kHighEtageBase = 6000.0;  // m
+constexpr double kCbTopAboveStation = 10000.0;
+constexpr double kMaxTop = 20000.0;  // sky::clouds::Validate's troposphere
+constexpr double kMinThickness = 50.0;
+constexpr double kFogDepth = 100.0;
+constexpr double kShallowFogDepth = 50.0;
+
+// Cloud types of the weather map's B channel (weather.h).
+constexpr double kStratus = 0.0;
+constexpr double kStratocumulus = 0.25;
+constexpr double kCumulus = 0.5;
+constexpr double kCongestus = 0.75;
+constexpr double kCumulonimbus = 1.0;
+
+struct CoverEntry {
+    Cover cover;
+    double coverage;
+};
+constexpr CoverEntry kCoverage[] = {
+    {Cover::kFew, 1.5 / 8.0}, {Cover::kScattered, 3.5 / 8.0}, {Cover::kBroken, 6.0 / 8.0},
+    {Cover::kOvercast, 1.0},  {Cover::kUnknown, 4.0 / 8.0},
+};
+
+double Coverage(Cover cover) {
+    for (const auto& e : kCoverage) {
+        if (e.cover == cover) return e.coverage;
+    }
+    return 0.5;
+}
+
+struct IntensityEntry {
+    Intensity intensity;
+    double precipitation;
+};
+constexpr IntensityEntry kPrecipitation[] = {
+    {Intensity::kLight, 0.3},
+    {Intensity::kModerate, 0.6},
+    {Intensity::kHeavy, 0.9},
+    {Intensity::kVicinity, 0.0},
+};
+
+double PrecipitationAmount(Intensity intensity) {
+    for (const auto& e : kPrecipitation) {
+        if (e.intensity == intensity) return e.precipitation;
+    }
+    return 0.0;
+}
+
+bool IsSolid(Phenomenon p) {
+    return p == Phenomenon::kSnow || p == Phenomenon::kSnowGrains || p == Phenomenon::kIcePellets ||
+           p == Phenomenon::kHail || p == Phenomenon::kSmallHail || p == Phenomenon::kIceCrystals;
+}
+
+bool IsHaze(Phenomenon p) {
+    return p == Phenomenon::kHaze || p == Phenomenon::kMist || p == Phenomenon::kSmoke ||
+           p == Phenomenon::kDust || p == Phenomenon::kSand || p == Phenomenon::kVolcanicAsh;
+}
+
+// FNV-1a of the station and the layer index: the same report gives the same maps.
+std::uint32_t Seed(const std::string& station, std::size_t index) {
+    std::uint32_t h = 2166136261u;
+    for (const char c : station) {
+        h ^= static_cast<unsigned char>(c);
+        h *= 16777619u;
+    }
+    h ^= static_cast<std::uint32_t>(index);
+    h *= 16777619u;
+    return h == 0 ? 1u : h;
+}
+
+WeatherMapSource Map(WeatherMapSource::Kind kind, std::uint32_t seed, int cells, double variation) {
+    WeatherMapSource map;
+    map.kind = kind;
+    map.seed = seed;
+    map.cells_per_tile = cells;
+    map.variation = variation;
+    map.size = 256;
+    return map;
+}
+
+struct Built {
+    CloudLayer layer;
+    bool convective = false;  // CB/TCU: where showers and thunderstorms rain from
+    bool can_rain = false;    // BKN/OVC
+};
+
+}  // namespace
+
+double ExtinctionForVisibility(double visibility_m) {
+    Require("visibility", visibility_m, "m", Range::LeftOpen(0.0, 1e9));
+    return std::log(20.0) / visibility_m;
+}
+
+MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_m) {
+    Require("station_elevation", station_elevation_m, "m", Range::Closed(-500.0, 9000.0));
+    MetarWeather out;
+    out.clouds.name = "metar " + metar.station;
+    out.clouds.description = "from the METAR of " + metar.station;
+    const double ground = std::max(0.0, station_elevation_m);
+    if (station_elevation_m < 0.0) {
+        out.notes.push_back(fmt::format(
+            "station {:.0f} m below the sphere: layers are placed from 0 m", station_elevation_m));
+    }
+    const double wind_speed =
+        metar.wind && metar.wind->speed_m_s ? std::min(*metar.wind->speed_m_s, 150.0) : 0.0;
+    const double wind_from =
+        metar.wind && metar.wind->direction_deg ? Radians(*metar.wind->direction_deg) : 0.0;
+
+    // Present weather at the station (not in the vicinity).
+    Intensity rain_intensity = Intensity::kVicinity;
+    bool showers = false;
+    bool fog = false;
+    Descriptor fog_descriptor = Descriptor::kNone;
+    for (const PresentWeather& w : metar.weather) {
+        if (w.intensity == Intensity::kVicinity) continue;
+        if (w.HasPrecipitation()) {
+            out.precipitation = std::max(out.precipitation, PrecipitationAmount(w.intensity));
+            rain_intensity = w.intensity;
+            out.snow = out.snow || std::any_of(w.phenomena.begin(), w.phenomena.end(), IsSolid);
+            showers = showers || w.descriptor == Descriptor::kShowers ||
+                      w.descriptor == Descriptor::kThunderstorm;
+        }
+        if (w.Has(Phenomenon::kFog)) {
+            fog = true;
+            fog_descriptor = w.descriptor;
+        }
+        if (std::any_of(w.phenomena.begin(), w.phenomena.end(), IsHaze)) out.haze = true;
+    }
+
+    std::vector<Built> layers;
+    // A fog layer at the ground: the vertical visibility, or FG's depth.
+    if (metar.vertical_visibility_reported || fog) {
+        out.fog = true;
+        double depth = kFogDepth;
+        if (metar.vertical_visibility_ft) {
+            depth = std::max(kMinThickness, *metar.vertical_visibility_ft * kMetresPerFoot);
+        } else if (fog_descriptor == Descriptor::kShallow) {
+            depth = kShallowFogDepth;
+        } else if (metar.vertical_visibility_reported) {
+            out.notes.push_back("VV///: fog 100 m deep assumed");
+        }
+        const bool patchy =
+            fog_descriptor == Descriptor::kPatches || fog_descriptor == Descriptor::kPartial;
+        Built b;
+        b.layer.name = "fog";
+        b.layer.base_altitude = ground;
+        b.layer.top_altitude = ground + depth;
+        b.layer.coverage = patchy ? 0.5 : 1.0;
+        b.layer.cloud_type = kStratus;
+        b.layer.map = patchy
+                          ? Map(WeatherMapSource::Kind::kPatches, Seed(metar.station, 99), 8, 0.6)
+                          : Map(WeatherMapSource::Kind::kUniform, 1, 8, 0.0);
+        b.layer.map_period = 20000.0;
+        layers.push_back(b);
+    }
+
+    if (!metar.cavok) {
+        const double surface_c = metar.temperature_c.value_or(15.0);
+        for (std::size_t i = 0; i < metar.sky.size(); ++i) {
+            const SkyLayer& s = metar.sky[i];
+            if (!s.base_ft) {
+                out.notes.push_back(fmt::format("layer {} ({}///) has no base: left out", i + 1,
+                                                CoverCode(s.cover)));
+                continue;
+            }
+            if (s.cover == Cover::kUnknown) {
+                out.notes.push_back(
+                    fmt::format("layer {}: amount not observed, 4 oktas assumed", i + 1));
+            }
+            const double height = *s.base_m();
+            Built b;
+            CloudLayer& l = b.layer;
+            l.coverage = Coverage(s.cover);
+            l.base_altitude = ground + height;
+            const bool overcast = s.cover == Cover::kOvercast;
+            const bool cumuliform = s.cover == Cover::kFew || s.cover == Cover::kScattered ||
+                                    s.cover == Cover::kUnknown;
+            double depth = 0.0;
+            if (s.convective == ConvectiveCloud::kCumulonimbus) {
+                l.name = "cumulonimbus";
+                l.cloud_type = kCumulonimbus;
+                depth = std::max(3000.0, kCbTopAboveStation - height);
+                l.map = Map(WeatherMapSource::Kind::kCells, Seed(metar.station, i), 4, 0.5);
+                l.map_period = 80000.0;
+                b.convective = true;
+            } else if (s.convective == ConvectiveCloud::kToweringCumulus) {
+                l.name = "towering cumulus";
+                l.cloud_type = kCongestus;
+                depth = 4000.0;
+                l.map = Map(WeatherMapSource::Kind::kPatches, Seed(metar.station, i), 12, 0.6);
+                l.map_period = 60000.0;
+                b.convective = true;
+            } else if (height < kLowEtageTop) {
+                if (cumuliform) {
+                    l.name = "cumulus";
+                    l.cloud_type = kCumulus;
+                    // Fair-weather cumulus deepen with the warmth of the ground.
+                    depth = std::clamp(1000.0 + 50.0 * (surface_c - 15.0), 500.0, 2000.0);
+                } else if (overcast) {
+                    l.name = out.precipitation > 0.0 ? "nimbostratus" : "stratus";
+                    l.cloud_type = kStratus;
+                    depth = out.precipitation > 0.0 ? 2000.0 : 400.0;
+                } else {
+                    l.name = "stratocumulus";
+                    l.cloud_type = kStratocumulus;
+                    depth = 600.0;
+                }
+            } else if (height < kHighEtageBase) {
+                l.name = overcast ? "altostratus" : "altocumulus";
+                l.cloud_type = overcast ? kStratus : kStratocumulus;
+                depth = 800.0;
+            } else {
+                l.name = "high cloud";
+                l.cloud_type = kStratus;
+                depth = 500.0;
+            }
+            if (b.convective) {
+                // set above
+            } else if (overcast) {
+                l.map = Map(WeatherMapSource::Kind::kUniform, 1, 8, 0.0);
+                l.map_period = 50000.0;
+            } else if (s.cover == Cover::kBroken) {
+                l.map = Map(WeatherMapSource::Kind::kPatches, Seed(metar.station, i), 8, 0.4);
+                l.map_period = 50000.0;
+            } else {
+                l.map = Map(WeatherMapSource::Kind::kPatches, Seed(metar.station, i), 12, 0.6);
+                l.map_period = 60000.0;
+            }
+            l.top_altitude = std::min(kMaxTop, l.base_altitude + depth);
+            if (l.top_altitude - l.base_altitude < kMinThickness) {
+                out.notes.push_back(
+                    fmt::format("layer {} above {:.0f} m: left out", i + 1, kMaxTop));
+                continue;
+            }
+            b.can_rain = s.cover == Cover::kBroken || overcast;
+            layers.push_back(b);
+        }
+    }
+
+    // The layer that rains.
+    if (out.precipitation > 0.0 && !layers.empty()) {
+        auto it = layers.end();
+        if (showers) {
+            it = std::find_if(layers.begin(), layers.end(),
+                              [](const Built& b) { return b.convective; });
+        }
+        if (it == layers.end()) {
+            it = std::find_if(layers.begin(), layers.end(),
+                              [](const Built& b) { return b.can_rain; });
+        }
+        if (it == layers.end()) {
+            it = std::find_if(layers.begin(), layers.end(),
+                              [](const Built& b) { return b.layer.name != "fog"; });
+        }
+        if (it != layers.end()) it->layer.precipitation = PrecipitationAmount(rain_intensity);
+    }
+
+    // Bottom to top without overlap (sky::clouds::Validate).
+    std::stable_sort(layers.begin(), layers.end(), [](const Built& a, const Built& b) {
+        return a.layer.base_altitude < b.layer.base_altitude;
+    });
+    std::vector<CloudLayer> result;
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+        CloudLayer l = layers[i].layer;
+        if (i + 1 < layers.size()) {
+            CloudLayer& next = layers[i + 1].layer;
+            if (l.top_altitude > next.base_altitude) l.top_altitude = next.base_altitude;
+            if (l.top_altitude - l.base_altitude < kMinThickness) {
+                out.notes.push_back(
+                    fmt::format("{} merged into the {} above it", l.name, next.name));
+                next.base_altitude = l.base_altitude;
+                next.coverage = std::max(next.coverage, l.coverage);
+                next.cloud_type = std::max(next.cloud_type, l.cloud_type);
+                next.precipitation = std::max(next.precipitation, l.precipitation);
+                if (next.top_altitude - next.base_altitude < kMinThickness) {
+                    next.top_altitude = next.base_altitude + kMinThickness;
+                }
+                continue;
+            }
+        }
+        l.wind_speed = wind_speed;
+        l.wind_from = wind_from;
+        result.push_back(std::move(l));
+    }
+    out.clouds.layers = std::move(result);
+
+    // A bound from above (P6SM) says only that the air is clearer than that.
+    if (metar.visibility && metar.visibility->bound != Bound::kMoreThan &&
+        metar.visibility->visibility_m < 10000.0 && metar.visibility->visibility_m > 0.0) {
+        out.visibility_m = metar.visibility->visibility_m;
+        out.ground_extinction_per_m = ExtinctionForVisibility(*out.visibility_m);
+    }
+    sky::clouds::Validate(out.clouds);
+    return out;
+}
+
+}  // namespace zenith::weather

@@ -1,0 +1,185 @@
+// METAR -> zenith weather (cloud_weather.h): the table's rules, checked as laws where there is
+// one (MOR and Koschmieder, okta ranges, heights above the station) and as the table elsewhere.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "zenith/base/units.h"
+#include "zenith/weather/cloud_weather.h"
+
+namespace zenith::weather {
+namespace {
+
+MetarWeather FromText(const std::string& text, double elevation_m = 0.0) {
+    return CloudWeatherFromMetar(DecodeMetar(text), elevation_m);
+}
+
+// The layer's mean coverage falls in the report's okta range, for each class.
+TEST(CloudWeather, CoverageIsInTheOktaRange) {
+    for (const Cover cover : {Cover::kFew, Cover::kScattered, Cover::kBroken, Cover::kOvercast}) {
+        const std::string code(CoverCode(cover));
+        SCOPED_TRACE(code);
+        const MetarWeather w = FromText("EGLL 211750Z 24012KT 9999 " + code + "035 18/09 Q1018");
+        ASSERT_EQ(w.clouds.layers.size(), 1u);
+        const double oktas = w.clouds.layers[0].coverage * 8.0;
+        EXPECT_GE(oktas, MinOktas(cover));
+        EXPECT_LE(oktas, MaxOktas(cover));
+    }
+}
+
+// Bases are the report's heights above the station, placed on the station's elevation.
+TEST(CloudWeather, BaseIsAboveTheStation) {
+    const MetarWeather w =
+        FromText("LFMY 141200Z 31010KT 9999 FEW045 BKN080 OVC250 29/12 Q1016", 98.0);
+    ASSERT_EQ(w.clouds.layers.size(), 3u);
+    EXPECT_DOUBLE_EQ(w.clouds.layers[0].base_altitude, 98.0 + 4500 * kMetresPerFoot);
+    EXPECT_DOUBLE_EQ(w.clouds.layers[1].base_altitude, 98.0 + 8000 * kMetresPerFoot);
+    EXPECT_DOUBLE_EQ(w.clouds.layers[2].base_altitude, 98.0 + 25000 * kMetresPerFoot);
+    EXPECT_EQ(w.clouds.layers[0].name, "cumulus");
+    EXPECT_EQ(w.clouds.layers[1].name, "altocumulus");
+    EXPECT_EQ(w.clouds.layers[2].name, "high cloud");
+    // The cumulus reach the altocumulus' base; alone, on a warm day (29 degC), they are deeper
+    // than the 1000 m of a 15 degC day.
+    EXPECT_DOUBLE_EQ(w.clouds.layers[0].top_altitude, w.clouds.layers[1].base_altitude);
+    const MetarWeather alone = FromText("LFMY 141200Z 31010KT 9999 FEW045 29/12 Q1016", 98.0);
+    EXPECT_NEAR(alone.clouds.layers[0].top_altitude - alone.clouds.layers[0].base_altitude, 1700.0,
+                1e-9);
+    for (const auto& l : w.clouds.layers) {
+        EXPECT_NEAR(l.wind_from, Radians(310.0), 1e-12);
+        EXPECT_NEAR(l.wind_speed, 10 * kMetresPerSecondPerKnot, 1e-12);
+    }
+}
+
+// CAVOK and the clear-sky codes give exactly the clear preset's layers (none) and no extinction.
+TEST(CloudWeather, ClearReportsAreTheClearSky) {
+    const sky::clouds::Weather clear = sky::clouds::LoadWeather("clear");
+    for (const char* body : {"CAVOK", "9999 SKC", "10SM CLR", "9999 NSC", "9999 NCD", "P6SM"}) {
+        SCOPED_TRACE(body);
+        const MetarWeather w =
+            FromText(std::string("KXYZ 010000Z 27005KT ") + body + " 10/05 Q1000");
+        EXPECT_EQ(w.clouds.layers, clear.layers);
+        EXPECT_FALSE(w.ground_extinction_per_m);
+        EXPECT_FALSE(w.fog);
+        EXPECT_TRUE(w.notes.empty());
+    }
+}
+
+// MOR: a black target at the reported distance keeps 5 % contrast (Koschmieder).
+TEST(CloudWeather, ExtinctionGivesTheReportedVisualRange) {
+    for (const double v : {200.0, 800.0, 1609.344, 5000.0, 9000.0}) {
+        EXPECT_NEAR(std::exp(-ExtinctionForVisibility(v) * v), 0.05, 1e-12);
+    }
+    const MetarWeather w = FromText("KXYZ 010000Z 27005KT 1/2SM BR OVC004 10/09 A3000");
+    ASSERT_TRUE(w.ground_extinction_per_m);
+    EXPECT_NEAR(*w.ground_extinction_per_m * 0.5 * kMetresPerStatuteMile, std::log(20.0), 1e-12);
+    EXPECT_TRUE(w.haze);
+    EXPECT_THROW(ExtinctionForVisibility(0.0), ArgumentError);
+    EXPECT_THROW(ExtinctionForVisibility(std::nan("")), ArgumentError);
+}
+
+TEST(CloudWeather, VerticalVisibilityAndFogAreAFogLayer) {
+    const MetarWeather vv = FromText("EDDF 010000Z 00000KT 0100 FG VV002 05/05 Q1020", 111.0);
+    ASSERT_EQ(vv.clouds.layers.size(), 1u);
+    const auto& fog = vv.clouds.layers[0];
+    EXPECT_EQ(fog.name, "fog");
+    EXPECT_DOUBLE_EQ(fog.base_altitude, 111.0);
+    EXPECT_DOUBLE_EQ(fog.top_altitude, 111.0 + 200 * kMetresPerFoot);
+    EXPECT_EQ(fog.coverage, 1.0);
+    EXPECT_TRUE(vv.fog);
+    EXPECT_NEAR(*vv.ground_extinction_per_m, std::log(20.0) / 100.0, 1e-12);
+    const MetarWeather patches = FromText("EDDF 010000Z 00000KT 3000 BCFG FEW005 05/05 Q1020");
+    ASSERT_EQ(patches.clouds.layers.size(), 2u);
+    EXPECT_EQ(patches.clouds.layers[0].coverage, 0.5);
+    EXPECT_DOUBLE_EQ(patches.clouds.layers[0].top_altitude, 100.0);
+    // Fog in the vicinity is not at the station.
+    EXPECT_FALSE(FromText("EDDF 010000Z 00000KT 3000 VCFG FEW005 05/05 Q1020").fog);
+}
+
+TEST(CloudWeather, CumulonimbusRainsAndTowers) {
+    const MetarWeather w = FromText(
+        "KABC 121755Z 21016G24KT 3/4SM +TSRA BR FEW008 BKN020 OVC040CB 18/17 A2970", 150.0);
+    ASSERT_EQ(w.clouds.layers.size(), 3u);
+    const auto& cb = w.clouds.layers[2];
+    EXPECT_EQ(cb.name, "cumulonimbus");
+    EXPECT_EQ(cb.cloud_type, 1.0);
+    EXPECT_EQ(cb.map.kind, sky::clouds::WeatherMapSource::Kind::kCells);
+    EXPECT_DOUBLE_EQ(cb.top_altitude, 150.0 + 10000.0);
+    EXPECT_EQ(cb.precipitation, 0.9);  // heavy, from the CB for a thunderstorm
+    EXPECT_EQ(w.clouds.layers[1].precipitation, 0.0);
+    EXPECT_EQ(w.precipitation, 0.9);
+    EXPECT_FALSE(w.snow);
+    // Steady snow from the lowest BKN/OVC layer, a nimbostratus.
+    const MetarWeather sn = FromText("KGTF 170322Z 33014KT 1 3/4SM -SN BR OVC005 A2991");
+    EXPECT_EQ(sn.clouds.layers[0].name, "nimbostratus");
+    EXPECT_EQ(sn.clouds.layers[0].precipitation, 0.3);
+    EXPECT_TRUE(sn.snow);
+    const MetarWeather tcu = FromText("KXYZ 010000Z 27005KT 10SM SCT040TCU 30/20 A3000");
+    EXPECT_EQ(tcu.clouds.layers[0].cloud_type, 0.75);
+}
+
+// Overlapping layers are cut at the next base; one too thin to march is merged upwards.
+TEST(CloudWeather, LayersDoNotOverlap) {
+    const MetarWeather cut = FromText("KXYZ 010000Z 27005KT 10SM FEW020 SCT030 BKN040 20/10 A3000");
+    ASSERT_EQ(cut.clouds.layers.size(), 3u);
+    EXPECT_DOUBLE_EQ(cut.clouds.layers[0].top_altitude, cut.clouds.layers[1].base_altitude);
+    const MetarWeather merged = FromText("KXYZ 010000Z 27005KT 10SM FEW020 BKN020 20/10 A3000");
+    ASSERT_EQ(merged.clouds.layers.size(), 1u);
+    EXPECT_EQ(merged.clouds.layers[0].coverage, 0.75);
+    EXPECT_FALSE(merged.notes.empty());
+}
+
+TEST(CloudWeather, EveryReportGivesAValidWeather) {
+    const char* reports[] = {
+        "METAR KABC 121755Z AUTO 21016G24KT 180V240 1SM R11/P6000FT -RA BR BKN015 OVC025 06/04 "
+        "A2990",
+        "KABQ 100156Z 32010KT 280V340 10SM TS FEW033 BKN075CB OVC100 19/14 A2999",
+        "EDDF 010000Z AUTO 27005KT //// // ////// ///// Q////",
+        "EDDF 010000Z AUTO 27005KT 9999 BKN/// ///050 FEW///CB 10/05 Q1000",
+        "KXYZ 010000Z 27005KT 1/4SM FG VV/// FEW001 OVC002 OVC002 OVC003 M01/M01 A3000",
+        "KXYZ 010000Z 27005KT 10SM FEW600 OVC700 20/10 A3000",
+        "KXYZ 010000Z 27005KT 10SM SCT300CB 20/10 A3000",
+        "METAR EDDF 010000Z NIL=",
+    };
+    for (const char* r : reports) {
+        for (const double elevation : {-400.0, 0.0, 4000.0, 9000.0}) {
+            SCOPED_TRACE(std::string(r) + " at " + std::to_string(elevation));
+            EXPECT_NO_THROW(FromText(r, elevation));
+        }
+    }
+    EXPECT_THROW(FromText(reports[0], 9001.0), ArgumentError);
+    EXPECT_THROW(FromText(reports[0], std::nan("")), ArgumentError);
+}
+
+// Whatever the decoder accepts maps to a valid Weather at any allowed elevation: the fuzz seeds,
+// or a whole fuzz corpus given in $ZENITH_METAR_CORPUS.
+TEST(CloudWeather, FuzzCorpusMapsToValidWeather) {
+    const char* env = std::getenv("ZENITH_METAR_CORPUS");
+    const std::filesystem::path dir =
+        env ? std::filesystem::path(env)
+            : std::filesystem::path(ZENITH_SOURCE_DIR) / "tests/fuzz/corpus/metar";
+    int decoded = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        Metar m;
+        try {
+            m = DecodeMetar(text.str());
+        } catch (const MetarError&) {
+            continue;
+        }
+        ++decoded;
+        for (const double elevation : {-500.0, 0.0, 9000.0}) {
+            EXPECT_NO_THROW(CloudWeatherFromMetar(m, elevation)) << entry.path();
+        }
+    }
+    EXPECT_GT(decoded, 0);
+}
+
+}  // namespace
+}  // namespace zenith::weather
