@@ -1,5 +1,5 @@
-// Everything the sky needs to know about where the Sun, the Moon and the stars are, for one
-// instant and one observer.
+// Everything the sky needs to know about where the Sun, the Moon, the planets and the stars are,
+// for one instant and one observer.
 #pragma once
 
 #include <optional>
@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "zenith/geo/observer.h"
+#include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
 #include "zenith/geo/time.h"
 
@@ -24,6 +25,9 @@ struct EphemerisOptions {
     std::optional<RefractionOptions> refraction;  // elevations are geometric when absent
     bool diurnal_aberration = true;
     double star_min_elevation = 0.0;  // radians: stars below are dropped from the result
+    // Mercury to Neptune (planets.h). Between 1950 and 2100 only (the window the truncated
+    // VSOP87 series are measured for); outside it SkyEphemeris::planets stays empty.
+    bool planets = true;
 };
 
 struct BodyState {
@@ -58,6 +62,9 @@ struct SkyEphemeris {
     BodyState moon;
     MoonPhase moon_phase;
     std::vector<StarState> stars;  // above star_min_elevation, brightest first
+    // Mercury ... Neptune in kSkyPlanets order, all of them whatever their elevation; empty when
+    // EphemerisOptions::planets is off or the instant is outside 1950-2100.
+    std::vector<PlanetPosition> planets;
 };
 
 // Phase and bright limb from geocentric apparent positions (TOD, metres). `zenith_tod` is the
