@@ -9,9 +9,9 @@ kstars-data (/usr/share/kstars, one file per coordinate and power: <body>.L0.vso
 <body>.R5.vsop, columns A B C; a power with no terms has no file, e.g. uranus.B4/B5).
 
 Those files are version B of VSOP87, referred to the fixed dynamical ecliptic and equinox of
-J2000 (not version D, ecliptic of date): the leading L1 term is 6283.0758 rad/millennium, the
-sidereal mean motion without the 5029"/millennium of general precession, and B1 carries the
-0.00228 rad ecliptic-motion term. check_version() below refuses anything else, since the C++
+J2000 (not version D, ecliptic of date): the Earth's leading L1 term is 6283.0758
+rad/millennium, the sidereal mean motion without the 5029"/millennium of general precession,
+and B1 carries the 0.00228 rad ecliptic-motion term (VSOP87B_L1 holds every body's). check_version() below refuses anything else, since the C++
 side precesses from J2000 to date itself (geo/src/sun.cpp, geo/src/planets.cpp).
 
 A term is kept when its amplitude at the edge of the validity window, A * |tau_max|^i, is at

@@ -18,7 +18,7 @@
 // seen from the Earth (Mercury's and Venus's full phase curves included), Saturn with its rings
 // (the ring tilt as the geometric mean of the saturnicentric latitudes of the Sun and the Earth),
 // Uranus with its sub-Sun/sub-Earth planetographic latitudes and Neptune with its secular term.
-// Mars's rotation and orbital-position corrections (Mallama 2007 tables, up to about +-0.09 mag)
+// Mars's rotation and orbital-position corrections (Mallama 2007 tables, each within +-0.09 mag)
 // are applied when the caller gives the angles (PlanetMagnitudeAspect); the ephemeris computes
 // them from the IAU 2009 rotation model of Mars (Archinal et al. 2011).
 #pragma once
