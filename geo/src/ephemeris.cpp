@@ -82,6 +82,16 @@ SkyEphemeris Ephemeris::Compute(const Time& t, const Observer& observer,
     const glm::dvec3 zenith_tod = tod_from_ecef * observer.ecef_from_enu()[2];
     result.moon_phase = ComputeMoonPhase(sun_tod, moon_tod, zenith_tod);
 
+    if (options.planets) {
+        result.planets = PlanetsTopocentric(t, observer, options.diurnal_aberration);
+        if (options.refraction) {
+            for (PlanetPosition& p : result.planets) {
+                p.elevation += RefractionBennett(p.elevation, options.refraction->pressure_hpa,
+                                                 options.refraction->temperature_c);
+            }
+        }
+    }
+
     if (catalog_ != nullptr) {
         std::vector<glm::dvec3> exact;
         if (star_epoch_s_ > 0.0) {

@@ -72,7 +72,13 @@ Observer::Observer(double lat_deg, double lon_deg, double height_m)
 
 Topocentric TopocentricFromGeocentricTod(const glm::dvec3& geocentric_tod, const Time& t,
                                          const Observer& observer, bool diurnal_aberration) {
-    const glm::dmat3 ecef_from_tod = EcefFromTod(t);
+    return TopocentricFromGeocentricTod(geocentric_tod, EcefFromTod(t), observer,
+                                        diurnal_aberration);
+}
+
+Topocentric TopocentricFromGeocentricTod(const glm::dvec3& geocentric_tod,
+                                         const glm::dmat3& ecef_from_tod, const Observer& observer,
+                                         bool diurnal_aberration) {
     const glm::dmat3 tod_from_ecef = glm::transpose(ecef_from_tod);
     const glm::dvec3 observer_tod = tod_from_ecef * observer.ecef();
 

@@ -22,60 +22,26 @@
 
 #include <cmath>
 #include <numbers>
-#include <span>
 
 #include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
+#include "vsop87.h"
 
 namespace zenith::geo {
 namespace {
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
-constexpr double kDaysPerMillennium = 365250.0;
 
-struct VsopTerm {
-    double a, b, c;  // term = a cos(b + c tau)
-};
+using detail::EarthHeliocentricEclipticJ2000;
+using detail::FromSpherical;
+using detail::GcrsFromEclipticJ2000;
+using detail::VsopTerm;
 
 #include "vsop87b_earth.inc"
-
-// sum_i tau^i sum_k a cos(b + c tau), by Horner's rule over the powers of tau.
-double EvaluateVsop(std::span<const std::span<const VsopTerm>> series, double tau) {
-    double result = 0.0;
-    for (auto power = series.rbegin(); power != series.rend(); ++power) {
-        double sum = 0.0;
-        // Smallest terms (stored last) first, for rounding.
-        for (auto term = power->rbegin(); term != power->rend(); ++term) {
-            sum += term->a * std::cos(term->b + term->c * tau);
-        }
-        result = result * tau + sum;
-    }
-    return result;
-}
-
-glm::dvec3 FromSpherical(double longitude, double latitude, double distance) {
-    const double cb = std::cos(latitude);
-    return distance *
-           glm::dvec3(cb * std::cos(longitude), cb * std::sin(longitude), std::sin(latitude));
-}
 
 // Mean ecliptic and equinox of date <- GCRS (IAU 2006, frame bias included).
 glm::dmat3 EclipticOfDateFromGcrs(double jd_tt) {
     return glm::transpose(TodFromEclipticOfDate(jd_tt)) * TodFromGcrs(jd_tt);
-}
-
-// GCRS <- VSOP87 ecliptic and equinox of J2000, taken as the IAU 2006 ecliptic of J2000 (the
-// VSOP87/DE200 and DE405-based frames differ by a few 0.01").
-const glm::dmat3& GcrsFromEclipticJ2000() {
-    static const glm::dmat3 m = glm::transpose(EclipticOfDateFromGcrs(kJ2000));
-    return m;
-}
-
-// Heliocentric Earth, VSOP87B frame (ecliptic and equinox J2000), metres.
-glm::dvec3 EarthHeliocentricEclipticJ2000(double jd_tt) {
-    const double tau = (jd_tt - kJ2000) / kDaysPerMillennium;
-    return FromSpherical(EvaluateVsop(kEarthL, tau), EvaluateVsop(kEarthB, tau),
-                         EvaluateVsop(kEarthR, tau) * kAstronomicalUnit);
 }
 
 // The apparent Sun referred to the mean equinox of date: geometric VSOP87 position, FK5 frame
@@ -102,6 +68,27 @@ EclipticPosition SunAberratedMeanEcliptic(double jd_tt) {
 }
 
 }  // namespace
+
+namespace detail {
+
+// GCRS <- VSOP87 ecliptic and equinox of J2000, taken as the IAU 2006 ecliptic of J2000 (the
+// VSOP87/DE200 and DE405-based frames differ by a few 0.01").
+const glm::dmat3& GcrsFromEclipticJ2000() {
+    static const glm::dmat3 m = glm::transpose(EclipticOfDateFromGcrs(kJ2000));
+    return m;
+}
+
+glm::dvec3 EarthHeliocentricEclipticJ2000(double jd_tt) {
+    const double tau = (jd_tt - kJ2000) / kDaysPerMillennium;
+    return FromSpherical(EvaluateVsop(kEarthL, tau), EvaluateVsop(kEarthB, tau),
+                         EvaluateVsop(kEarthR, tau) * kAstronomicalUnit);
+}
+
+}  // namespace detail
+
+glm::dvec3 EarthHeliocentricGcrs(double jd_tt) {
+    return GcrsFromEclipticJ2000() * EarthHeliocentricEclipticJ2000(jd_tt);
+}
 
 EclipticPosition EarthHeliocentricVsop87(double jd_tt) {
     const glm::dvec3 p = EclipticOfDateFromGcrs(jd_tt) * GcrsFromEclipticJ2000() *

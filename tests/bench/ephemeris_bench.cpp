@@ -1,4 +1,5 @@
-// Positions per second, single thread: Sun, Moon, stars and the whole topocentric ephemeris.
+// Positions per second, single thread: Sun, Moon, planets, stars and the whole topocentric
+// ephemeris.
 // Baseline in the same process: ERFA's IAU 2006/2000A chain for the Sun (eraEpv00 + eraPnm06a +
 // eraAb), the reference implementation the tests compare against. Report ratios, not absolutes
 // (see BENCHMARKS.md).
@@ -11,6 +12,7 @@
 
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/moon.h"
+#include "zenith/geo/planets.h"
 #include "zenith/geo/sun.h"
 
 namespace {
@@ -58,8 +60,24 @@ void BM_MoonApparentTod(benchmark::State& state) {
 }
 BENCHMARK(BM_MoonApparentTod);
 
-// Sun + Moon + phase, topocentric, no stars: what a host calls per frame.
+// Sun + Moon + phase, topocentric, no stars, no planets: the per-frame call before planets.
 void BM_EphemerisSunMoon(benchmark::State& state) {
+    const Observer observer(47.26, 11.35, 3000.0);
+    const Ephemeris ephemeris;
+    EphemerisOptions options;
+    options.planets = false;
+    double jd = kStartJd;
+    for (auto _ : state) {
+        const Time t = TimeFromUtc(CivilFromJulianDate(jd));
+        benchmark::DoNotOptimize(ephemeris.Compute(t, observer, options));
+        jd += kStepDays;
+    }
+}
+BENCHMARK(BM_EphemerisSunMoon);
+
+// The same call with the default options, which add Mercury to Neptune (light time, apparent
+// place, topocentric, magnitudes): the ratio to BM_EphemerisSunMoon is the planets' cost.
+void BM_EphemerisSunMoonPlanets(benchmark::State& state) {
     const Observer observer(47.26, 11.35, 3000.0);
     const Ephemeris ephemeris;
     double jd = kStartJd;
@@ -69,7 +87,19 @@ void BM_EphemerisSunMoon(benchmark::State& state) {
         jd += kStepDays;
     }
 }
-BENCHMARK(BM_EphemerisSunMoon);
+BENCHMARK(BM_EphemerisSunMoonPlanets);
+
+// The planets alone, for the record.
+void BM_PlanetsTopocentric(benchmark::State& state) {
+    const Observer observer(47.26, 11.35, 3000.0);
+    double jd = kStartJd;
+    for (auto _ : state) {
+        const Time t = TimeFromUtc(CivilFromJulianDate(jd));
+        benchmark::DoNotOptimize(PlanetsTopocentric(t, observer));
+        jd += kStepDays;
+    }
+}
+BENCHMARK(BM_PlanetsTopocentric);
 
 // Everything, with all stars to magnitude 6.5 reduced to ENU; items/s counts stars.
 void BM_EphemerisWithStars(benchmark::State& state) {

@@ -1,5 +1,5 @@
-// Everything the sky needs to know about where the Sun, the Moon and the stars are, for one
-// instant and one observer.
+// Everything the sky needs to know about where the Sun, the Moon, the planets and the stars are,
+// for one instant and one observer.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "zenith/geo/observer.h"
+#include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
 #include "zenith/geo/time.h"
 
@@ -23,6 +24,9 @@ struct EphemerisOptions {
     std::optional<RefractionOptions> refraction;  // elevations are geometric when absent
     bool diurnal_aberration = true;
     double star_min_elevation = 0.0;  // radians: stars below are dropped from the result
+    // Mercury to Neptune (planets.h). Between 1950 and 2100 only (the window the truncated
+    // VSOP87 series are measured for); outside it SkyEphemeris::planets stays empty.
+    bool planets = true;
 };
 
 struct BodyState {
@@ -57,6 +61,9 @@ struct SkyEphemeris {
     BodyState moon;
     MoonPhase moon_phase;
     std::vector<StarState> stars;  // above star_min_elevation, brightest first
+    // Mercury ... Neptune in kSkyPlanets order, all of them whatever their elevation; empty when
+    // EphemerisOptions::planets is off or the instant is outside 1950-2100.
+    std::vector<PlanetPosition> planets;
 };
 
 // Phase and bright limb from geocentric apparent positions (TOD, metres). `zenith_tod` is the

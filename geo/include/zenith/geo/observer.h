@@ -70,6 +70,11 @@ struct Topocentric {
 Topocentric TopocentricFromGeocentricTod(const glm::dvec3& geocentric_tod, const Time& t,
                                          const Observer& observer,
                                          bool diurnal_aberration = true);
+// The same with EcefFromTod(t) already computed (earth_orientation.h), for many bodies at one
+// instant: the sidereal time and nutation behind it are most of the cost.
+Topocentric TopocentricFromGeocentricTod(const glm::dvec3& geocentric_tod,
+                                         const glm::dmat3& ecef_from_tod, const Observer& observer,
+                                         bool diurnal_aberration = true);
 
 // Azimuth/elevation of a vector in the observer's ENU frame; distance is its length.
 Horizontal HorizontalFromEnu(const glm::dvec3& enu);

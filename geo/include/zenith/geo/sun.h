@@ -28,6 +28,10 @@ struct EclipticPosition {
 // geometric position, no FK5 correction), distance in metres.
 EclipticPosition EarthHeliocentricVsop87(double jd_tt);
 
+// Heliocentric Earth (geometric, VSOP87B as above) in GCRS axes, metres: the J2000 ecliptic frame
+// rotated by the IAU 2006 obliquity and frame bias, no precession.
+glm::dvec3 EarthHeliocentricGcrs(double jd_tt);
+
 // Geocentric apparent ecliptic coordinates of the Sun, true equinox of date (Meeus ch. 25 chain).
 EclipticPosition SunApparentEcliptic(double jd_tt);
 
