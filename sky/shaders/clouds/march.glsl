@@ -116,8 +116,10 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture
 
 // Luminance scattered per km (sigma_s L_i, cd/m^2/km) at a cloud sample p of density `s` seen
 // along `view`: for each light, its illuminance at the top of the atmosphere, the atmosphere's
-// transmittance from p toward it (which colours sunsets), the clouds' own shadow and the
-// multiple-scattering octaves (F16 §5.8), darkened at the base of raining clouds (H16 §4.4.1);
+// transmittance from p toward it (which colours sunsets), and CloudSunScattering's first order
+// in the clouds' own shadow plus the diffuse light of the slab through p, whose depth below p
+// comes from the same short march straight down; darkened at the base of raining clouds
+// (H16 §4.4.1);
 // plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an isotropic
 // radiance, weighted by the layer's height gradient (F16 §5.5.1).
 vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
@@ -129,6 +131,10 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(CloudMarchParameters) march, IN(LightSet) lights, int light_count,
                        IN(CloudSample) s, vec3 p, vec3 view) {
     Number r = length(p);
+    vec3 up = p / r;
+    Number depth_below = CloudShadowOpticalDepth(layer, weather_map, shape_noise, detail_noise,
+                                                 march, p, -up);
+    Number mu_view = dot(view, up);
     vec3 direct = vec3(0.0);
     vec3 ambient = vec3(0.0);
     for (int l = 0; l < light_count; ++l) {
@@ -139,7 +145,8 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         Number optical_depth = CloudShadowOpticalDepth(layer, weather_map, shape_noise,
                                                        detail_noise, march, p, direction);
         direct += lights.light[l].illuminance * atmosphere_transmittance *
-                  CloudOctaveSunScattering(scattering, optical_depth, dot(view, direction));
+                  CloudSunScattering(scattering, optical_depth, depth_below, mu_l,
+                                     dot(view, direction), mu_view);
         ambient += lights.light[l].illuminance *
                    GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) / kPi;
     }
