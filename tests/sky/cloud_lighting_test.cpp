@@ -136,6 +136,25 @@ TEST(CloudSunScattering, FirstOrderAloneInThinCloudsAndTheDiffuseLightInThickOne
               0.3 * CloudSunScattering(full, 0.1, 40.0, 1.0, 0.0, -1.0));
 }
 
+TEST(CloudSkyScattering, HalfTheSkyInThinCloudsAllOfItOverWhiteGroundDarkBasesInThickOnes) {
+    CloudScatteringParameters p = Scattering();
+    // A wisp sees the sky above and nothing below: the mean radiance is half the sky's.
+    EXPECT_NEAR(CloudSkyScattering(p, 0.0, 0.0, 0.0), 0.5, 1e-12);
+    // Its top reflects pi (I0 - 2/3 I1) = R of the sky's pi L: nothing for a wisp, most of it
+    // for a thick deck (R = (1 - g) tau / (4/3 + (1 - g) tau) for diffuse light).
+    const double g = CloudAsymmetry(p);
+    for (const double tau : {0.0, 2.0, 20.0, 200.0}) {
+        const double i0 = CloudSkyScattering(p, 0.0, tau, 0.0);
+        const double i1 = (CloudSkyScattering(p, 0.0, tau, 1.0) - i0) / g;
+        EXPECT_NEAR(i0 - 2.0 / 3.0 * i1, (1.0 - g) * tau / (4.0 / 3.0 + (1.0 - g) * tau), 1e-12);
+    }
+    EXPECT_LT(CloudSkyScattering(p, 40.0, 40.0, 1.0), 0.1 * CloudSkyScattering(p, 0.0, 40.0, -1.0));
+    p.ground_albedo = 1.0;  // nothing leaves: the field is the sky's radiance everywhere
+    for (const double tau : {0.0, 5.0, 50.0}) {
+        EXPECT_NEAR(CloudSkyScattering(p, 0.5 * tau, tau, 0.7), 1.0, 1e-12);
+    }
+}
+
 // --- integration ------------------------------------------------------------------------------
 
 struct Scene {

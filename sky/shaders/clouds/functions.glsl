@@ -220,12 +220,6 @@ Number CloudPrecipitationLightScale(Number precipitation, Number cloud_fraction)
                      (1.0 - CloudSaturate(cloud_fraction));
 }
 
-// F16 §5.5.1, H16 §5.5.3: ambient light weighted by a linear gradient from the layer's bottom
-// to its top; `bottom` in [0, 1] is the share left at the base (F16's bias for ground bounce).
-Number CloudAmbientGradient(Number height_fraction, Number bottom) {
-    return mix(bottom, 1.0, CloudSaturate(height_fraction));
-}
-
 // ---------------------------------------------------------------------------------------------
 // Phase functions (sr^-1; each integrates to 1 over the sphere)
 
@@ -310,6 +304,21 @@ vec2 CloudSlabReflectanceTransmittance(Number g, Number tau_total, Number mu0) {
     Number r = ((1.0 - g) * tau_total + (2.0 / 3.0 - mu0) * (1.0 - e_total)) /
                (4.0 / 3.0 + (1.0 - g) * tau_total);
     return vec2(r, 1.0 - r);
+}
+
+// The sky's light, an isotropic radiance L on the slab's top, per unit L and unit sigma_s,
+// scattered toward the viewer: JWW76 with diffuse incidence, pi (I0 + 2/3 I1) = pi L at the
+// top and the ground's condition at the base, (1 - a) I0 = 2/3 (1 + a) I1, give a constant flux
+// and a linear mean radiance:
+//   I1 = A = (1 - a) L / (4/3 + (1 - a)(1 - g) tau_total),  I0 = L - 2/3 A - (1 - g) A tau,
+// and I0 + g mu_view I1 as for the sun. This replaces F16 §5.5.1's linear gradient over the
+// layer's height, which dimmed the top of a deck filling the layer's bottom quarter to half.
+Number CloudSkyScattering(IN(CloudScatteringParameters) p, Number tau, Number tau_total,
+                          Number mu_view) {
+    Number g = CloudAsymmetry(p);
+    Number absorbed = 1.0 - CloudSaturate(p.ground_albedo);
+    Number a = absorbed / (4.0 / 3.0 + absorbed * (1.0 - g) * tau_total);
+    return max(1.0 - 2.0 / 3.0 * a - (1.0 - g) * a * tau + g * mu_view * a, 0.0);
 }
 
 // Light scattered toward the viewer per unit sigma_s and unit illuminance (normal to the light)

@@ -20,7 +20,7 @@ struct CloudMarchParameters {
     Number shadow_first_step;  // km, the first step toward the light...
     Number shadow_growth;      // ...and the factor each next one grows by
     Number ambient_scale;      // F16 §5.5.1's scale of the sky's ambient light, 1 = as estimated
-    Number ambient_bottom;     // share of the ambient left at the layer's base (F16 §5.5.1)
+    Number padding2;
     Number min_transmittance;  // the march stops below this (H16 §6.2 early exit)
     Number max_distance;       // km marched in one layer at most (from where the ray enters it)
     Number padding0;
@@ -121,7 +121,7 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture
 // comes from the same short march straight down; darkened at the base of raining clouds
 // (H16 §4.4.1);
 // plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an isotropic
-// radiance, weighted by the layer's height gradient (F16 §5.5.1).
+// radiance on the same slab's top (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1).
 vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
                        IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
@@ -147,13 +147,16 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         direct += lights.light[l].illuminance * atmosphere_transmittance *
                   CloudSunScattering(scattering, optical_depth, depth_below, mu_l,
                                      dot(view, direction), mu_view);
+        // The depth below the cloud's top as the sun's slab has it.
+        Number depth_above = optical_depth * max(mu_l, 0.05);
         ambient += lights.light[l].illuminance *
-                   GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) / kPi;
+                   GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) / kPi *
+                   CloudSkyScattering(scattering, depth_above, depth_above + depth_below,
+                                      mu_view);
     }
     Number sigma_s = scattering.albedo * s.density * march.extinction;
     return sigma_s * (direct * CloudPrecipitationLightScale(s.precipitation, s.cloud_fraction) +
-                      ambient * march.ambient_scale *
-                          CloudAmbientGradient(s.height_fraction, march.ambient_bottom));
+                      ambient * march.ambient_scale);
 }
 
 // Marches [interval.x, interval.y] of the ray origin + t view through one layer with

@@ -30,8 +30,6 @@ void CloudSettings::Validate() const {
             multiple_scattering, "[0, 1]");
     Require(ambient_scale >= 0.0 && ambient_scale <= 10.0, "ambient_scale", ambient_scale,
             "[0, 10]");
-    Require(ambient_bottom >= 0.0 && ambient_bottom <= 1.0, "ambient_bottom", ambient_bottom,
-            "[0, 1]");
     Require(shape_period >= 100.0 && shape_period <= 1e6, "shape_period", shape_period,
             "100 m .. 1000 km");
     Require(detail_period >= 10.0 && detail_period <= 1e5, "detail_period", detail_period,

@@ -40,7 +40,6 @@ struct CloudSettings {
     // field of clouds/functions.glsl (CloudSunScattering); 1 is physical, 0 single scattering.
     double multiple_scattering = 1.0;
     double ambient_scale = 1.0;  // F16 §5.5.1: scale of the sky's ambient light
-    double ambient_bottom = 0.4; // share of the ambient left at a layer's base
     // Shape: world size of one tile of each noise (H16 §4.3: the shape volume is 4x wider than
     // tall, so it covers shape_period x shape_period / 4 x shape_period)
     double shape_period = 14000.0;  // m
