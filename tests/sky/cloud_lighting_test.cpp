@@ -1,7 +1,8 @@
 // Laws of the cloud light transport (sky/shaders/clouds/functions.glsl compiled as C++): phase
 // functions integrate to 1, the delta-Eddington diffuse field meets its boundary conditions and
-// conserves flux, the sun's scattering has its thin and thick limits, and the energy-conserving analytic integration (F16 §5.6.3) converges with ~20 samples through
-// the real heterogeneous cloud field where the naive sum does not.
+// conserves flux, the sun's and the sky's scattering have their thin and thick limits, and the
+// energy-conserving analytic integration (F16 §5.6.3) converges with ~20 samples through the
+// real heterogeneous cloud field where the naive sum does not.
 #include <gtest/gtest.h>
 
 #include <cstdio>

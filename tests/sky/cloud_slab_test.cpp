@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "clouds/cloud_parameters.h"
 #include "cloud_test_support.h"
+#include "clouds/cloud_parameters.h"
 #include "reference/cloud_march.h"
 
 namespace zenith::sky::ref {
@@ -100,9 +100,9 @@ struct Slab {
         double sum = 0.0;
         for (int i = 0; i < n; ++i) {
             const double altitude = 1.0 + 0.5 * (i + 0.5) / n;
-            sum += SampleCloudDensityAt(layer, weather, shape, detail, vec2(0.0), altitude)
-                       .density *
-                   march.extinction * 0.5 / n;
+            sum +=
+                SampleCloudDensityAt(layer, weather, shape, detail, vec2(0.0), altitude).density *
+                march.extinction * 0.5 / n;
         }
         return sum;
     }
@@ -110,14 +110,12 @@ struct Slab {
     // Hemispheric flux per unit horizontal sun illuminance leaving the top (above = true) or the
     // base: Gauss-Legendre in the zenith cosine, the midpoint rule in azimuth.
     double Flux(const Sunlight& sun, double mu0, bool above) const {
-        static const double kNodes[] = {0.0198550717512319, 0.1016667612931866,
-                                        0.2372337950418355, 0.4082826787521751,
-                                        0.5917173212478249, 0.7627662049581645,
+        static const double kNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                                        0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
                                         0.8983332387068134, 0.9801449282487681};
-        static const double kWeights[] = {0.0506142681451881, 0.1111905172266872,
-                                          0.1568533229389436, 0.1813418916891810,
-                                          0.1813418916891810, 0.1568533229389436,
-                                          0.1111905172266872, 0.0506142681451881};
+        static const double kWeights[] = {
+            0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
+            0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
         const int azimuths = 12;
         const vec3 camera(0.0, 0.0, kR + (above ? 5.0 : 0.5));
         const CloudScatteringParameters scattering = DefaultScattering();
@@ -205,9 +203,10 @@ TEST(CloudSlab, OvercastStratusEffectiveAlbedoFromAboveAndBelow) {
     }
     const double albedo_above = kPi * above / points / mu0;
     const double albedo_below = kPi * below / points / mu0;
-    std::printf("overcast_stratus, pi L / E of the clouds in sunlight: above %.3f (path tracer "
-                "0.667), below %.3f (0.71 with sky and ground)\n",
-                albedo_above, albedo_below);
+    std::printf(
+        "overcast_stratus, pi L / E of the clouds in sunlight: above %.3f (path tracer "
+        "0.667), below %.3f (0.71 with sky and ground)\n",
+        albedo_above, albedo_below);
     EXPECT_NEAR(albedo_above, 0.667, 0.15 * 0.667);
     // Without the sky light above the deck (the renderer adds it as ambient), below is short
     // of 0.71 by about that light's share; the octaves gave 0.12.
