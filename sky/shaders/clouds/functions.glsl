@@ -160,6 +160,7 @@ struct CloudSample {
     Number height_fraction;
     Number cloud_fraction;
     Number precipitation;
+    Number type;  // the weather's cloud type, which sets the height gradient
 };
 
 // H16 Alg. 4.1 at a ground position and altitude:
@@ -176,10 +177,12 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
         (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
     s.cloud_fraction = 0.0;
     s.precipitation = 0.0;
+    s.type = 0.0;
     if (!(altitude > layer.base_altitude && altitude < layer.top_altitude)) return s;
 
     CloudWeather weather = CloudWeatherAt(layer, weather_map, ground);
     s.precipitation = weather.precipitation;
+    s.type = weather.type;
     if (!(weather.coverage > 0.0)) return s;
 
     Number cloud_height = (layer.top_altitude - layer.base_altitude) *
@@ -213,6 +216,26 @@ CloudSample SampleCloudDensity(IN(CloudLayerParameters) layer, IN(WeatherTexture
                                 CloudAltitude(layer, position));
 }
 
+// Optical depth from a cloud sample straight down to its cloud's base, without a march: the
+// density model's own vertical profile, H16 Eq. 5.1's parabola times the height gradient,
+// 4 x (1 - x) (b + (1 - b) x) at cloud_fraction x, integrated from the base,
+//   4 (b (x^2 / 2 - x^3 / 3) + (1 - b)(x^3 / 3 - x^4 / 4)),
+// and scaled by the sample's density over that profile, as if the column below had the sample's
+// shape and coverage. Exact for a cloud whose density is the profile alone (a flat deck of
+// uniform noise); a march of four more density samples cost 25 % of the trace.
+Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number altitude,
+                       Number extinction) {
+    Number x = CloudSaturate(s.cloud_fraction);
+    if (!(x > 0.0) || !(s.density > 0.0)) return 0.0;
+    Number b = CloudHeightGradient(s.type, 0.0);
+    Number profile = 4.0 * x * (1.0 - x) * mix(b, 1.0, x);
+    Number x2 = x * x;
+    Number integral =
+        4.0 * (b * (x2 / 2.0 - x2 * x / 3.0) + (1.0 - b) * (x2 * x / 3.0 - x2 * x2 / 4.0));
+    Number cloud_height = (altitude - layer.base_altitude) / x;
+    return extinction * min(s.density / max(profile, 0.05), 1.0) * cloud_height * integral;
+}
+
 // H16 §4.4.1: rain clouds are darkened by a gradient, strongest at their base, multiplied with
 // the light they scatter; all clouds keep one absorption coefficient. 1 without precipitation.
 Number CloudPrecipitationLightScale(Number precipitation, Number cloud_fraction) {
@@ -244,7 +267,8 @@ Number CloudDualLobePhase(Number g0, Number g1, Number w, Number nu) {
 // the first scattering of the sunlight, with the dual-lobe phase and the march's own shadow
 // (silver lining, back-lit detail), and the diffuse light of all higher orders from the
 // delta-Eddington solution of a plane-parallel slab through the sample, whose optical depths
-// to the cloud's top (toward the sun) and base (straight down) the march measures.
+// to the cloud's top (toward the sun) the shadow march measures and to its base (straight down)
+// the density profile gives (CloudDepthBelow).
 //
 // JWW76  Joseph, Wiscombe & Weinman, "The delta-Eddington approximation for radiative flux
 //        transfer", J. Atmos. Sci. 33, 1976.

@@ -118,7 +118,7 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture
 // along `view`: for each light, its illuminance at the top of the atmosphere, the atmosphere's
 // transmittance from p toward it (which colours sunsets), and CloudSunScattering's first order
 // in the clouds' own shadow plus the diffuse light of the slab through p, whose depth below p
-// comes from the same short march straight down; darkened at the base of raining clouds
+// comes from the density profile (CloudDepthBelow); darkened at the base of raining clouds
 // (H16 §4.4.1);
 // plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an isotropic
 // radiance on the same slab's top (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1).
@@ -132,8 +132,7 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(CloudSample) s, vec3 p, vec3 view) {
     Number r = length(p);
     vec3 up = p / r;
-    Number depth_below = CloudShadowOpticalDepth(layer, weather_map, shape_noise, detail_noise,
-                                                 march, p, -up);
+    Number depth_below = CloudDepthBelow(layer, s, r - layer.bottom_radius, march.extinction);
     Number mu_view = dot(view, up);
     vec3 direct = vec3(0.0);
     vec3 ambient = vec3(0.0);
