@@ -1,7 +1,8 @@
 // Laws of the cloud light transport (sky/shaders/clouds/functions.glsl compiled as C++): phase
-// functions integrate to 1, multiple-scattering octaves conserve energy with a <= b enforced,
-// and the energy-conserving analytic integration (F16 §5.6.3) converges with ~20 samples through
-// the real heterogeneous cloud field where the naive sum does not.
+// functions integrate to 1, the delta-Eddington diffuse field meets its boundary conditions and
+// conserves flux, the sun's and the sky's scattering have their thin and thick limits, and the
+// energy-conserving analytic integration (F16 §5.6.3) converges with ~20 samples through the
+// real heterogeneous cloud field where the naive sum does not.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -53,89 +54,106 @@ TEST(CloudPhase, HenyeyGreensteinAndDualLobeIntegrateToOne) {
     EXPECT_GT(CloudDualLobePhase(0.8, -0.5, 0.2, -1.0), CloudHenyeyGreensteinPhase(0.8, -1.0));
 }
 
-CloudScatteringParameters Scattering(double a, double b, double c, int count, double albedo = 1.0,
-                                     double g0 = 0.8, double g1 = -0.5, double w = 0.2) {
+CloudScatteringParameters Scattering(double multiple_scattering = 1.0, double g0 = 0.8,
+                                     double g1 = -0.5, double w = 0.2) {
     CloudScatteringParameters p{};
     p.forward_g = g0;
     p.backward_g = g1;
     p.lobe_weight = w;
-    p.albedo = albedo;
-    p.octave_a = a;
-    p.octave_b = b;
-    p.octave_c = c;
-    p.octave_count = count;
+    p.albedo = 1.0;
+    p.multiple_scattering = multiple_scattering;
+    p.ground_albedo = 0.0;
     return p;
 }
 
-TEST(CloudOctaves, AIsNeverAboveBAndTheOctavesAlbedosSumToAtMostOne) {
-    for (const double a : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-        for (const double b : {0.1, 0.5, 0.9, 1.0}) {
-            for (int count = 1; count <= kCloudMaxOctaves; ++count) {
-                for (const double albedo : {0.5, 0.9, 1.0}) {
-                    const CloudScatteringParameters p = Scattering(a, b, 0.5, count, albedo);
-                    double sum = 0.0;
-                    for (int n = 0; n < count; ++n) {
-                        // a <= b enforced: no octave scatters more than it extinguishes.
-                        ASSERT_LE(CloudOctaveAlbedo(p, n), albedo + 1e-15);
-                        sum += CloudOctaveAlbedo(p, n);
-                    }
-                    ASSERT_LE(sum * CloudOctaveEnergyNormalization(p), 1.0 + 1e-12)
-                        << a << " " << b << " " << count << " " << albedo;
-                    // Untouched when it already conserves energy.
-                    if (sum <= 1.0) {
-                        ASSERT_EQ(CloudOctaveEnergyNormalization(p), 1.0);
-                    }
+// The delta-Eddington slab (JWW76) from its own radiance: the Marshak conditions at both faces,
+// the fluxes that give R and T, a net flux that stays constant through a non-absorbing slab, and
+// R from the closed form worked out by hand for g = 0.85, tau = 10, mu0 = 1.
+TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConservesFlux) {
+    for (const double g : {0.0, 0.47, 0.85}) {
+        for (const double tau_total : {0.5, 5.0, 10.0, 50.0}) {
+            for (const double mu0 : {1.0, 0.5, 0.15}) {
+                const double f = g * g;
+                const auto direct = [&](double tau) {  // scaled beam, horizontal flux per E
+                    return mu0 * std::exp(-(1.0 - f) * tau / mu0);
+                };
+                const vec2 top = CloudDiffuseRadiance(g, 0.0, tau_total, mu0, 0.0);
+                const vec2 bottom = CloudDiffuseRadiance(g, tau_total, tau_total, mu0, 0.0);
+                EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
+                EXPECT_NEAR(bottom.x - 2.0 / 3.0 * bottom.y, 0.0, 1e-12);
+                const vec2 rt = CloudSlabReflectanceTransmittance(g, tau_total, mu0);
+                // Upward flux pi (I0 - 2/3 I1) at the top, downward pi (I0 + 2/3 I1) plus the
+                // beam at the base.
+                EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), rt.x * mu0, 1e-12);
+                EXPECT_NEAR(kPi * (bottom.x + 2.0 / 3.0 * bottom.y) + direct(tau_total),
+                            rt.y * mu0, 1e-12);
+                for (const double x : {0.0, 0.3, 0.7, 1.0}) {
+                    const vec2 i = CloudDiffuseRadiance(g, x * tau_total, tau_total, mu0, 0.0);
+                    // Net downward flux 4 pi / 3 I1 plus the beam: constant, (1 - R) mu0.
+                    EXPECT_NEAR(4.0 * kPi / 3.0 * i.y + direct(x * tau_total),
+                                (1.0 - rt.x) * mu0, 1e-12);
+                    EXPECT_GE(i.x, 0.0);
                 }
+                EXPECT_GT(rt.x, 0.0);
+                EXPECT_LT(rt.x, 1.0);
             }
         }
     }
-    // F16's a = b = 0.5 with N = 3 would scatter 3x what the sun delivers without the
-    // normalisation; single scattering (N = 1) is left as it is.
-    EXPECT_NEAR(CloudOctaveEnergyNormalization(Scattering(0.5, 0.5, 0.5, 3)), 1.0 / 3.0, 1e-15);
-    EXPECT_EQ(CloudOctaveEnergyNormalization(Scattering(0.5, 0.5, 0.5, 1)), 1.0);
-}
-
-TEST(CloudOctaves, ScatteredPowerAlongADeepSunRayNeverExceedsTheIncident) {
-    // Isotropic lobes: 4π p = 1, so ∫ σ_s · 4π · CloudOctaveSunScattering ds along a sun ray into
-    // a semi-infinite cloud is the power all octaves scatter, per unit incident power. Taking it
-    // as emission with no extinction on the way out (the worst case: a grazing sun at the top of
-    // the cloud) it must stay <= 1.
-    for (const double a : {0.25, 0.5, 0.9}) {
-        for (const double b : {0.25, 0.5, 1.0}) {
-            for (const int count : {1, 2, 3, 6}) {
-                const CloudScatteringParameters p =
-                    Scattering(a, b, 0.5, count, 1.0, 0.0, 0.0, 0.0);
-                const double sigma = 50.0;  // 1/km
-                vec3 power(0.0);
-                double transmittance = 1.0;
-                // Until the slowest octave, extinguished by sigma b^(N-1), has spent its light.
-                const double ds = 0.0005, length = 40.0 / (sigma * std::pow(b, count - 1));
-                for (double s = 0.0; s < length; s += ds) {
-                    const double source = sigma * 4.0 * kPi *
-                                          CloudOctaveSunScattering(p, sigma * (s + 0.5 * ds), 1.0);
-                    CloudIntegrateStep(vec3(source), 0.0, ds, power, transmittance);
-                }
-                double expected = 0.0;
-                for (int n = 0; n < count; ++n) expected += CloudOctaveAlbedo(p, n);
-                expected *= CloudOctaveEnergyNormalization(p);
-                EXPECT_NEAR(power.x, expected, 2e-3 * expected) << a << " " << b << " " << count;
-                EXPECT_LE(power.x, 1.0 + 1e-3) << a << " " << b << " " << count;
-            }
-        }
+    // A white ground returns all the light: nothing flows down through the slab, R = 1.
+    for (const double tau_total : {0.1, 3.0, 30.0}) {
+        const vec2 top = CloudDiffuseRadiance(0.47, 0.0, tau_total, 0.6, 1.0);
+        EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), 0.6, 1e-12);
+        // A grey one returns less, and more than a black one.
+        const vec2 grey = CloudDiffuseRadiance(0.47, 0.0, tau_total, 0.6, 0.3);
+        EXPECT_GT(grey.x, CloudDiffuseRadiance(0.47, 0.0, tau_total, 0.6, 0.0).x);
+        EXPECT_LT(grey.x, top.x);
     }
+    EXPECT_NEAR(CloudSlabReflectanceTransmittance(0.85, 10.0, 1.0).x,
+                (1.5 - (1.0 / 3.0) * (1.0 - std::exp(-2.775))) / (4.0 / 3.0 + 1.5), 1e-12);
+    // Thin clouds keep no diffuse light; thick ones reflect nearly all.
+    EXPECT_LT(CloudSlabReflectanceTransmittance(0.85, 1e-4, 1.0).x, 1e-4);
+    EXPECT_GT(CloudSlabReflectanceTransmittance(0.85, 1e5, 1.0).x, 0.9998);
 }
 
-TEST(CloudOctaves, HigherOctavesReachDeeperAndSpreadWider) {
-    const CloudScatteringParameters one = Scattering(0.5, 0.5, 0.5, 1);
-    const CloudScatteringParameters three = Scattering(0.5, 0.5, 0.5, 3);
-    // Deep inside, the octaves bring light that single scattering cannot (F16 Fig. 40).
-    EXPECT_GT(CloudOctaveSunScattering(three, 20.0, 0.0),
-              1e3 * CloudOctaveSunScattering(one, 20.0, 0.0));
-    // Phase of octave n has g c^n: flatter, still normalised (the sum at τ = 0 integrates to the
-    // normalised octave weights).
-    const double total =
-        IntegrateSphere([&](double nu) { return CloudOctaveSunScattering(three, 0.0, nu); });
-    EXPECT_NEAR(total, (1.0 + 0.5 + 0.25) / 3.0, 1e-6);
+TEST(CloudSunScattering, FirstOrderAloneInThinCloudsAndTheDiffuseLightInThickOnes) {
+    const CloudScatteringParameters full = Scattering(1.0);
+    const CloudScatteringParameters single = Scattering(0.0);
+    for (const double nu : {-1.0, -0.3, 0.4, 0.99}) {
+        // Single scattering: the dual lobe in the shadow.
+        EXPECT_NEAR(CloudSunScattering(single, 2.0, 3.0, 0.8, nu, 0.5),
+                    CloudDualLobePhase(0.8, -0.5, 0.2, nu) * std::exp(-2.0), 1e-15);
+        // The thin limit: at the top of a slab of no depth the diffuse field is nothing.
+        EXPECT_NEAR(CloudSunScattering(full, 0.0, 0.0, 0.8, nu, -nu),
+                    CloudSunScattering(single, 0.0, 0.0, 0.8, nu, -nu), 1e-12);
+        // Deep inside a thick cloud the first order is gone and the diffuse light remains.
+        EXPECT_GT(CloudSunScattering(full, 20.0, 20.0, 0.8, nu, -nu),
+                  1e3 * CloudSunScattering(single, 20.0, 20.0, 0.8, nu, -nu));
+    }
+    // Silver lining kept: looking toward the sun at the sunlit edge, forward scattering wins.
+    EXPECT_GT(CloudSunScattering(full, 0.2, 10.0, 0.8, 0.99, 0.8),
+              3.0 * CloudSunScattering(full, 0.2, 10.0, 0.8, -0.3, 0.8));
+    // The base of a thick cloud is darker than its top.
+    EXPECT_LT(CloudSunScattering(full, 40.0, 0.1, 1.0, 0.0, 1.0),
+              0.3 * CloudSunScattering(full, 0.1, 40.0, 1.0, 0.0, -1.0));
+}
+
+TEST(CloudSkyScattering, HalfTheSkyInThinCloudsAllOfItOverWhiteGroundDarkBasesInThickOnes) {
+    CloudScatteringParameters p = Scattering();
+    // A wisp sees the sky above and nothing below: the mean radiance is half the sky's.
+    EXPECT_NEAR(CloudSkyScattering(p, 0.0, 0.0, 0.0), 0.5, 1e-12);
+    // Its top reflects pi (I0 - 2/3 I1) = R of the sky's pi L: nothing for a wisp, most of it
+    // for a thick deck (R = (1 - g) tau / (4/3 + (1 - g) tau) for diffuse light).
+    const double g = CloudAsymmetry(p);
+    for (const double tau : {0.0, 2.0, 20.0, 200.0}) {
+        const double i0 = CloudSkyScattering(p, 0.0, tau, 0.0);
+        const double i1 = (CloudSkyScattering(p, 0.0, tau, 1.0) - i0) / g;
+        EXPECT_NEAR(i0 - 2.0 / 3.0 * i1, (1.0 - g) * tau / (4.0 / 3.0 + (1.0 - g) * tau), 1e-12);
+    }
+    EXPECT_LT(CloudSkyScattering(p, 40.0, 40.0, 1.0), 0.1 * CloudSkyScattering(p, 0.0, 40.0, -1.0));
+    p.ground_albedo = 1.0;  // nothing leaves: the field is the sky's radiance everywhere
+    for (const double tau : {0.0, 5.0, 50.0}) {
+        EXPECT_NEAR(CloudSkyScattering(p, 0.5 * tau, tau, 0.7), 1.0, 1e-12);
+    }
 }
 
 // --- integration ------------------------------------------------------------------------------
@@ -144,7 +162,7 @@ struct Scene {
     CloudLayerParameters layer;
     RepeatTexture2D weather;
     Texture3D shape, detail;
-    CloudScatteringParameters scattering = Scattering(0.5, 0.5, 0.5, 3);
+    CloudScatteringParameters scattering = Scattering();
     double sigma_t = 0.0;  // 1/km at density 1
     vec3 sun;
 
@@ -181,7 +199,8 @@ struct Scene {
             s += step;
             step *= 2.0;
         }
-        return CloudOctaveSunScattering(scattering, depth, nu);
+        // The cloud below p plays no part here: a fixed slab of depth 10 under it.
+        return CloudSunScattering(scattering, depth, 10.0, sun.y, nu, 0.0);
     }
 
     // Scattered luminance along a ray through the layer (altitudes as flat y: the shell's

@@ -110,9 +110,7 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
     scattering.forward_g = 0.0;
     scattering.backward_g = 0.0;
     scattering.albedo = 1.0;
-    scattering.octave_a = 1.0;
-    scattering.octave_b = 1.0;
-    scattering.octave_count = 1;
+    scattering.multiple_scattering = 0.0;  // single scattering: the closed form below
     CloudMarchParameters march{};
     march.extinction = 1.0;  // 1/km: an optical depth of 1.7 through the layer's top 3.5 km
     march.min_step = 1e-4;
@@ -170,13 +168,16 @@ TEST(CloudLayerOrder, CameraLayerAndBelowDownwardThenAboveUpward) {
 TEST(CloudSettings, RejectsOutOfRangeValuesByName) {
     CloudSettings s;
     EXPECT_NO_THROW(s.Validate());
-    s.octave_b = 0.0;
+    s.multiple_scattering = 1.5;
     try {
         s.Validate();
         FAIL();
     } catch (const zenith::ArgumentError& e) {
-        EXPECT_STREQ(e.what(), "CloudSettings::octave_b = 0 (expected (0, 1])");
+        EXPECT_STREQ(e.what(), "CloudSettings::multiple_scattering = 1.5 (expected [0, 1])");
     }
+    s = CloudSettings{};
+    s.multiple_scattering = std::nan("");
+    EXPECT_THROW(s.Validate(), zenith::ArgumentError);
     s = CloudSettings{};
     s.max_steps = 0;
     EXPECT_THROW(s.Validate(), zenith::ArgumentError);

@@ -550,6 +550,35 @@ TEST_F(CloudRenderGlTest, ShadeHoldsBetweenItsUpdates) {
     }
 }
 
+// Issue 15: the thick overcast seen from above at noon is brighter than the albedo-0.3 ground
+// beside it (the octave lighting made it a third as bright). The whole frame, straight down from
+// 8 km over overcast_stratus and over the clear ground, sun 65 deg high.
+TEST_F(CloudRenderGlTest, OvercastStratusFromAboveIsBrighterThanTheGround) {
+    const Atmosphere earth;
+    AtmosphereRenderer renderer(earth);
+    Lights noon;
+    const double elevation = glm::radians(65.0);
+    noon.sun_direction = glm::dvec3(0.0, std::cos(elevation), std::sin(elevation));
+    const Camera camera = CameraAt(8000.0, 0.0, -glm::radians(90.0) + 1e-3, 0.35);
+    RenderOptions options = Options({32, 18});
+    const auto frame_luminance = [&](const clouds::Weather& weather) {
+        renderer.SetWeather(weather, Settings());
+        options.clouds.reset_history = true;
+        renderer.UpdateFrameLuts(camera, noon, options.clouds);
+        renderer.Render(camera, noon, options);
+        const LutImage frame = renderer.ReadFrame();
+        double sum = 0.0;
+        for (const glm::vec4& t : frame.texels) sum += 0.2126 * t.r + 0.7152 * t.g + 0.0722 * t.b;
+        return sum / static_cast<double>(frame.texels.size());
+    };
+    const double deck = frame_luminance(clouds::LoadWeather("overcast_stratus"));
+    const double ground = frame_luminance(clouds::Weather{});
+    // pi L / E of the deck, with E from the ground's pi L / 0.3 (its air light included).
+    std::printf("overcast_stratus from 8 km: %.0f cd/m^2, clear ground %.0f cd/m^2 (deck pi L / E "
+                "~ %.2f)\n", deck, ground, 0.3 * deck / ground);
+    EXPECT_GT(deck, 1.3 * ground);
+}
+
 TEST_F(CloudRenderGlTest, OvercastShadowsTheGroundAndTheSettingsAreChecked) {
     const Atmosphere earth;
     clouds::Weather overcast = Cumulus(1.0);

@@ -43,7 +43,6 @@ struct CloudLayerParameters {
 const Number kCloudMaxErosion = 0.9;
 // The largest light reduction at the base of a raining cloud (H16 §4.4.1).
 const Number kCloudMaxPrecipitationDarkening = 0.8;
-const int kCloudMaxOctaves = 8;
 
 Number CloudSaturate(Number x) { return clamp(x, 0.0, 1.0); }
 
@@ -161,6 +160,7 @@ struct CloudSample {
     Number height_fraction;
     Number cloud_fraction;
     Number precipitation;
+    Number type;  // the weather's cloud type, which sets the height gradient
 };
 
 // H16 Alg. 4.1 at a ground position and altitude:
@@ -177,10 +177,12 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
         (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
     s.cloud_fraction = 0.0;
     s.precipitation = 0.0;
+    s.type = 0.0;
     if (!(altitude > layer.base_altitude && altitude < layer.top_altitude)) return s;
 
     CloudWeather weather = CloudWeatherAt(layer, weather_map, ground);
     s.precipitation = weather.precipitation;
+    s.type = weather.type;
     if (!(weather.coverage > 0.0)) return s;
 
     Number cloud_height = (layer.top_altitude - layer.base_altitude) *
@@ -214,17 +216,31 @@ CloudSample SampleCloudDensity(IN(CloudLayerParameters) layer, IN(WeatherTexture
                                 CloudAltitude(layer, position));
 }
 
+// Optical depth from a cloud sample straight down to its cloud's base, without a march: the
+// density model's own vertical profile, H16 Eq. 5.1's parabola times the height gradient,
+// 4 x (1 - x) (b + (1 - b) x) at cloud_fraction x, integrated from the base,
+//   4 (b (x^2 / 2 - x^3 / 3) + (1 - b)(x^3 / 3 - x^4 / 4)),
+// and scaled by the sample's density over that profile, as if the column below had the sample's
+// shape and coverage. Exact for a cloud whose density is the profile alone (a flat deck of
+// uniform noise); a march of four more density samples cost 25 % of the trace.
+Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number altitude,
+                       Number extinction) {
+    Number x = CloudSaturate(s.cloud_fraction);
+    if (!(x > 0.0) || !(s.density > 0.0)) return 0.0;
+    Number b = CloudHeightGradient(s.type, 0.0);
+    Number profile = 4.0 * x * (1.0 - x) * mix(b, 1.0, x);
+    Number x2 = x * x;
+    Number integral =
+        4.0 * (b * (x2 / 2.0 - x2 * x / 3.0) + (1.0 - b) * (x2 * x / 3.0 - x2 * x2 / 4.0));
+    Number cloud_height = (altitude - layer.base_altitude) / x;
+    return extinction * min(s.density / max(profile, 0.05), 1.0) * cloud_height * integral;
+}
+
 // H16 §4.4.1: rain clouds are darkened by a gradient, strongest at their base, multiplied with
 // the light they scatter; all clouds keep one absorption coefficient. 1 without precipitation.
 Number CloudPrecipitationLightScale(Number precipitation, Number cloud_fraction) {
     return 1.0 - kCloudMaxPrecipitationDarkening * CloudSaturate(precipitation) *
                      (1.0 - CloudSaturate(cloud_fraction));
-}
-
-// F16 §5.5.1, H16 §5.5.3: ambient light weighted by a linear gradient from the layer's bottom
-// to its top; `bottom` in [0, 1] is the share left at the base (F16's bias for ground bounce).
-Number CloudAmbientGradient(Number height_fraction, Number bottom) {
-    return mix(bottom, 1.0, CloudSaturate(height_fraction));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -243,73 +259,117 @@ Number CloudDualLobePhase(Number g0, Number g1, Number w, Number nu) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Scattering: the cloud material (F16 §5.2, §5.4.1) and multiple-scattering octaves (F16 §5.8)
+// Scattering: the cloud material (F16 §5.2, §5.4.1) and its multiple scattering
+//
+// F16 §5.8's octaves cannot carry the light a thick cloud reflects: normalised so that they
+// never scatter more than the sun delivers, an overcast deck lost four fifths of its light
+// (effective albedo 0.12 where a path tracer finds 0.67). The light is split instead by order:
+// the first scattering of the sunlight, with the dual-lobe phase and the march's own shadow
+// (silver lining, back-lit detail), and the diffuse light of all higher orders from the
+// delta-Eddington solution of a plane-parallel slab through the sample, whose optical depths
+// to the cloud's top (toward the sun) the shadow march measures and to its base (straight down)
+// the density profile gives (CloudDepthBelow).
+//
+// JWW76  Joseph, Wiscombe & Weinman, "The delta-Eddington approximation for radiative flux
+//        transfer", J. Atmos. Sci. 33, 1976.
+// Glossary: tau vertical optical depth from the slab's top, tau_total the slab's, mu0 the
+// cosine of the light's zenith angle, g the asymmetry (mean cosine) of the phase function;
+// delta-scaled with f = g^2: tau' = (1 - f) tau, g' = g / (1 + g), so (1 - g') tau' = (1 - g) tau.
 
 struct CloudScatteringParameters {
-    Number forward_g;     // g0 of the dual lobe, (-1, 1)
-    Number backward_g;    // g1, (-1, 1)
-    Number lobe_weight;   // w, [0, 1]
-    Number albedo;        // sigma_s / sigma_t, [0, 1] (F16 §5.2: ~1 for water clouds)
-    Number octave_a;      // scattering factor per octave, used as min(a, b)
-    Number octave_b;      // extinction factor per octave, (0, 1]
-    Number octave_c;      // phase eccentricity factor per octave, [0, 1]
-    Number octave_count;  // N in Eq. 19, 1..kCloudMaxOctaves (a Number to keep std140 simple)
+    Number forward_g;            // g0 of the dual lobe, (-1, 1)
+    Number backward_g;           // g1, (-1, 1)
+    Number lobe_weight;          // w, [0, 1]
+    Number albedo;               // sigma_s / sigma_t, [0, 1] (F16 §5.2: ~1 for water clouds)
+    Number multiple_scattering;  // [0, 1]: share of the diffuse field added (1 physical, 0 none)
+    Number ground_albedo;        // [0, 1]: the Lambertian ground under the slab (luminance)
+    Number padding1;
+    Number padding2;
 };
 
-// F16 §5.8: octave n scatters with sigma_s a^n and is extinguished with sigma_t b^n (Eq. 20).
-// a <= b is enforced here, so no octave scatters more than it extinguishes.
-Number CloudOctaveScatteringRatio(IN(CloudScatteringParameters) p) {
-    return p.octave_b > 0.0 ? min(p.octave_a, p.octave_b) / p.octave_b : 0.0;
+// The dual lobe's mean cosine, (1 - w) g0 + w g1: all that the diffuse field keeps of the phase
+// function. Clamped at 0: delta-scaling is for forward-peaked phase functions.
+Number CloudAsymmetry(IN(CloudScatteringParameters) p) {
+    return clamp(mix(p.forward_g, p.backward_g, p.lobe_weight), 0.0, 0.99);
 }
 
-int CloudOctaveCount(IN(CloudScatteringParameters) p) {
-    return clamp(int(p.octave_count), 1, kCloudMaxOctaves);
+// JWW76 Eq. 2-5 for single-scattering albedo 1: the Eddington radiance I0 + mu I1 of the
+// diffuse light (mu along the downward vertical) at depth tau in a slab of depth tau_total,
+// per unit illuminance normal to the light, with no diffuse light entering at the top
+// (I0 + 2/3 I1 = 0) (Marshak) and a Lambertian ground of albedo a at the base, which returns
+// a times the diffuse and direct flux it gets: (1 - a) I0 - 2/3 (1 + a) I1 = a mu0 e / pi. The
+// conservative solution is linear in depth plus the direct beam's exponential; with
+// k = 3 mu0 / (4 pi) and e(tau) = exp(-tau' / mu0):
+//   I1 = A - k e(tau),  I0 = B - (1 - g) A tau - k mu0 e(tau),
+//   A = (1 - a) k ((mu0 + 2/3) - e(tau_total) (mu0 - 2/3)) / (4/3 + (1 - a)(1 - g) tau_total),
+//   B = k (mu0 + 2/3) - 2/3 A.
+// Returns (I0, I1); both vanish as tau_total -> 0 over a black ground (thin clouds scatter
+// once).
+vec2 CloudDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
+                          Number ground_albedo) {
+    Number f = g * g;
+    Number k = 3.0 * mu0 / (4.0 * kPi);
+    Number e = exp(-(1.0 - f) * tau / mu0);
+    Number e_total = exp(-(1.0 - f) * tau_total / mu0);
+    Number absorbed = 1.0 - CloudSaturate(ground_albedo);
+    Number a = absorbed * k * ((mu0 + 2.0 / 3.0) - e_total * (mu0 - 2.0 / 3.0)) /
+               (4.0 / 3.0 + absorbed * (1.0 - g) * tau_total);
+    Number b = k * (mu0 + 2.0 / 3.0) - 2.0 / 3.0 * a;
+    return vec2(b - (1.0 - g) * a * tau - k * mu0 * e, a - k * e);
 }
 
-// The single-scattering albedo of octave n, albedo (a / b)^n: the share of the light the octave
-// removes from a sun ray that it scatters.
-Number CloudOctaveAlbedo(IN(CloudScatteringParameters) p, int n) {
-    return p.albedo * pow(CloudOctaveScatteringRatio(p), Number(n));
+// The slab's reflectance R (upward flux at the top over mu0 E) and transmittance T = 1 - R
+// (direct and diffuse) over a black ground from the same solution: the closed form the march is
+// tested against.
+//   R = ((1 - g) tau_total + (2/3 - mu0)(1 - e(tau_total))) / (4/3 + (1 - g) tau_total).
+vec2 CloudSlabReflectanceTransmittance(Number g, Number tau_total, Number mu0) {
+    Number f = g * g;
+    Number e_total = exp(-(1.0 - f) * tau_total / mu0);
+    Number r = ((1.0 - g) * tau_total + (2.0 / 3.0 - mu0) * (1.0 - e_total)) /
+               (4.0 / 3.0 + (1.0 - g) * tau_total);
+    return vec2(r, 1.0 - r);
 }
 
-// a <= b keeps each octave within its own albedo, but the octaves add: along a sun ray into a
-// deep cloud they scatter sum_n albedo (a/b)^n of the light, which exceeds 1 already for F16's
-// a = b = 0.5 with N = 2. Every octave is scaled by 1 / max(1, that sum) so the total scattered
-// never exceeds what the sun delivers.
-Number CloudOctaveEnergyNormalization(IN(CloudScatteringParameters) p) {
-    Number sum = 0.0;
-    Number ratio_n = 1.0;
-    int count = CloudOctaveCount(p);
-    for (int n = 0; n < kCloudMaxOctaves; ++n) {
-        if (n >= count) break;
-        sum += p.albedo * ratio_n;
-        ratio_n *= CloudOctaveScatteringRatio(p);
-    }
-    return 1.0 / max(sum, 1.0);
+// The sky's light, an isotropic radiance L on the slab's top, per unit L and unit sigma_s,
+// scattered toward the viewer: JWW76 with diffuse incidence, pi (I0 + 2/3 I1) = pi L at the
+// top and the ground's condition at the base, (1 - a) I0 = 2/3 (1 + a) I1, give a constant flux
+// and a linear mean radiance:
+//   I1 = A = (1 - a) L / (4/3 + (1 - a)(1 - g) tau_total),  I0 = L - 2/3 A - (1 - g) A tau,
+// and I0 + g mu_view I1 as for the sun. This replaces F16 §5.5.1's linear gradient over the
+// layer's height, which dimmed the top of a deck filling the layer's bottom quarter to half.
+Number CloudSkyScattering(IN(CloudScatteringParameters) p, Number tau, Number tau_total,
+                          Number mu_view) {
+    Number g = CloudAsymmetry(p);
+    Number absorbed = 1.0 - CloudSaturate(p.ground_albedo);
+    Number a = absorbed / (4.0 / 3.0 + absorbed * (1.0 - g) * tau_total);
+    return max(1.0 - 2.0 / 3.0 * a - (1.0 - g) * a * tau + g * mu_view * a, 0.0);
 }
 
-// Sum over octaves (F16 Eq. 19-20) of a^n T_sun^(b^n) p_n(nu), per unit sigma_s and unit sun
-// illuminance: the sun light a sample scatters toward the viewer. sun_optical_depth is the
-// optical depth toward the sun (the shadow march); the phase of octave n has its g scaled by
-// c^n, the form of Wrenninge et al. (2013) that F16 cites, which keeps every lobe normalised
-// (scaling the angle, as F16 Eq. 20 is printed, would not).
-Number CloudOctaveSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_depth,
-                                Number nu) {
-    Number a = min(p.octave_a, p.octave_b);
-    Number a_n = 1.0;
-    Number b_n = 1.0;
-    Number c_n = 1.0;
-    Number sum = 0.0;
-    int count = CloudOctaveCount(p);
-    for (int n = 0; n < kCloudMaxOctaves; ++n) {
-        if (n >= count) break;
-        sum += a_n * exp(-b_n * sun_optical_depth) *
-               CloudDualLobePhase(p.forward_g * c_n, p.backward_g * c_n, p.lobe_weight, nu);
-        a_n *= a;
-        b_n *= p.octave_b;
-        c_n *= p.octave_c;
-    }
-    return sum * CloudOctaveEnergyNormalization(p);
+// Light scattered toward the viewer per unit sigma_s and unit illuminance (normal to the light)
+// by a cloud sample with optical depth sun_optical_depth toward the light (the shadow march) and
+// depth_below straight down to the cloud's base, the light at zenith cosine mu0:
+// - first order: the sunlight left after the shadow, with the dual-lobe phase p(nu);
+// - higher orders: the sample's slab, tau = sun_optical_depth mu0 below the top, tau_total =
+//   tau + depth_below. Its diffuse light, scattered with the true phase, adds I0 + g mu_view I1
+//   (the delta peak, f of the scattering, only passes the diffuse light on, which the view's
+//   unscaled extinction needs back: f I + (1 - f)(I0 + g' mu I1) = I0 + g mu I1 in P1). The
+//   light the delta peak kept in the scaled beam, exp(-tau' / mu0) - exp(-tau / mu0), scatters
+//   out of it with (1 - f) and the scaled lobe g'.
+// nu = dot(view, light); mu_view = dot(view, up), the cosine between the light's way to the
+// camera (-view) and down. mu0 is clamped to 0.05: a light at the horizon still enters sides.
+Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_depth,
+                          Number depth_below, Number mu0, Number nu, Number mu_view) {
+    Number single = CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
+                    exp(-sun_optical_depth);
+    Number g = CloudAsymmetry(p);
+    Number f = g * g;
+    Number mu = max(mu0, 0.05);
+    Number tau = sun_optical_depth * mu;
+    vec2 diffuse = CloudDiffuseRadiance(g, tau, tau + depth_below, mu, p.ground_albedo);
+    Number peak = (1.0 - f) * CloudHenyeyGreensteinPhase(g / (1.0 + g), nu) *
+                  (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
+    return single +
+           p.multiple_scattering * max(diffuse.x + g * mu_view * diffuse.y + peak, 0.0);
 }
 
 // ---------------------------------------------------------------------------------------------

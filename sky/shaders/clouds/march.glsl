@@ -20,7 +20,7 @@ struct CloudMarchParameters {
     Number shadow_first_step;  // km, the first step toward the light...
     Number shadow_growth;      // ...and the factor each next one grows by
     Number ambient_scale;      // F16 §5.5.1's scale of the sky's ambient light, 1 = as estimated
-    Number ambient_bottom;     // share of the ambient left at the layer's base (F16 §5.5.1)
+    Number padding2;
     Number min_transmittance;  // the march stops below this (H16 §6.2 early exit)
     Number max_distance;       // km marched in one layer at most (from where the ray enters it)
     Number padding0;
@@ -116,10 +116,12 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture
 
 // Luminance scattered per km (sigma_s L_i, cd/m^2/km) at a cloud sample p of density `s` seen
 // along `view`: for each light, its illuminance at the top of the atmosphere, the atmosphere's
-// transmittance from p toward it (which colours sunsets), the clouds' own shadow and the
-// multiple-scattering octaves (F16 §5.8), darkened at the base of raining clouds (H16 §4.4.1);
+// transmittance from p toward it (which colours sunsets), and CloudSunScattering's first order
+// in the clouds' own shadow plus the diffuse light of the slab through p, whose depth below p
+// comes from the density profile (CloudDepthBelow); darkened at the base of raining clouds
+// (H16 §4.4.1);
 // plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an isotropic
-// radiance, weighted by the layer's height gradient (F16 §5.5.1).
+// radiance on the same slab's top (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1).
 vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
                        IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
@@ -129,6 +131,9 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(CloudMarchParameters) march, IN(LightSet) lights, int light_count,
                        IN(CloudSample) s, vec3 p, vec3 view) {
     Number r = length(p);
+    vec3 up = p / r;
+    Number depth_below = CloudDepthBelow(layer, s, r - layer.bottom_radius, march.extinction);
+    Number mu_view = dot(view, up);
     vec3 direct = vec3(0.0);
     vec3 ambient = vec3(0.0);
     for (int l = 0; l < light_count; ++l) {
@@ -139,14 +144,18 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         Number optical_depth = CloudShadowOpticalDepth(layer, weather_map, shape_noise,
                                                        detail_noise, march, p, direction);
         direct += lights.light[l].illuminance * atmosphere_transmittance *
-                  CloudOctaveSunScattering(scattering, optical_depth, dot(view, direction));
+                  CloudSunScattering(scattering, optical_depth, depth_below, mu_l,
+                                     dot(view, direction), mu_view);
+        // The depth below the cloud's top as the sun's slab has it.
+        Number depth_above = optical_depth * max(mu_l, 0.05);
         ambient += lights.light[l].illuminance *
-                   GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) / kPi;
+                   GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) / kPi *
+                   CloudSkyScattering(scattering, depth_above, depth_above + depth_below,
+                                      mu_view);
     }
     Number sigma_s = scattering.albedo * s.density * march.extinction;
     return sigma_s * (direct * CloudPrecipitationLightScale(s.precipitation, s.cloud_fraction) +
-                      ambient * march.ambient_scale *
-                          CloudAmbientGradient(s.height_fraction, march.ambient_bottom));
+                      ambient * march.ambient_scale);
 }
 
 // Marches [interval.x, interval.y] of the ray origin + t view through one layer with

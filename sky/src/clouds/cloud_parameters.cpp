@@ -28,14 +28,10 @@ void CloudSettings::Validate() const {
     Require(forward_g > -1.0 && forward_g < 1.0, "forward_g", forward_g, "(-1, 1)");
     Require(backward_g > -1.0 && backward_g < 1.0, "backward_g", backward_g, "(-1, 1)");
     Require(lobe_weight >= 0.0 && lobe_weight <= 1.0, "lobe_weight", lobe_weight, "[0, 1]");
-    Require(octave_a >= 0.0 && octave_a <= 1.0, "octave_a", octave_a, "[0, 1]");
-    Require(octave_b > 0.0 && octave_b <= 1.0, "octave_b", octave_b, "(0, 1]");
-    Require(octave_c >= 0.0 && octave_c <= 1.0, "octave_c", octave_c, "[0, 1]");
-    Require(octaves >= 1 && octaves <= 8, "octaves", octaves, "1..8");
+    Require(multiple_scattering >= 0.0 && multiple_scattering <= 1.0, "multiple_scattering",
+            multiple_scattering, "[0, 1]");
     Require(ambient_scale >= 0.0 && ambient_scale <= 10.0, "ambient_scale", ambient_scale,
             "[0, 10]");
-    Require(ambient_bottom >= 0.0 && ambient_bottom <= 1.0, "ambient_bottom", ambient_bottom,
-            "[0, 1]");
     Require(shape_period >= 100.0 && shape_period <= 1e6, "shape_period", shape_period,
             "100 m .. 1000 km");
     Require(detail_period >= 10.0 && detail_period <= 1e5, "detail_period", detail_period,

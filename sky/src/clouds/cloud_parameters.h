@@ -39,18 +39,19 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_
     return p;
 }
 
+// ground_albedo: the atmosphere's (per channel), which the clouds' diffuse light sees as its
+// luminance, Rec. 709 weights.
 template <typename Parameters>
-Parameters MakeCloudScatteringParameters(const CloudSettings& s) {
+Parameters MakeCloudScatteringParameters(const CloudSettings& s,
+                                         const glm::dvec3& ground_albedo) {
     using Scalar = decltype(Parameters{}.albedo);
     Parameters p{};
     p.forward_g = Scalar(s.forward_g);
     p.backward_g = Scalar(s.backward_g);
     p.lobe_weight = Scalar(s.lobe_weight);
     p.albedo = Scalar(s.albedo);
-    p.octave_a = Scalar(s.octave_a);
-    p.octave_b = Scalar(s.octave_b);
-    p.octave_c = Scalar(s.octave_c);
-    p.octave_count = Scalar(s.octaves);
+    p.multiple_scattering = Scalar(s.multiple_scattering);
+    p.ground_albedo = Scalar(glm::dot(ground_albedo, glm::dvec3(0.2126, 0.7152, 0.0722)));
     return p;
 }
 
@@ -66,7 +67,6 @@ Parameters MakeCloudMarchParameters(const CloudSettings& s) {
     p.shadow_first_step = Scalar(s.shadow_first_step / kKm);
     p.shadow_growth = Scalar(s.shadow_growth);
     p.ambient_scale = Scalar(s.ambient_scale);
-    p.ambient_bottom = Scalar(s.ambient_bottom);
     p.min_transmittance = Scalar(s.min_transmittance);
     p.max_distance = Scalar(s.max_distance / kKm);
     return p;

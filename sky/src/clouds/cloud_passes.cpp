@@ -192,7 +192,8 @@ void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& cam
         u.layers[i] = MakeCloudLayerParameters<gl::CloudLayerUniforms>(
             weather_.layers[i], cloud_tops_[i], settings_, atmosphere.bottom_radius, view.time);
     }
-    u.scattering = MakeCloudScatteringParameters<gl::CloudScatteringUniforms>(settings_);
+    u.scattering = MakeCloudScatteringParameters<gl::CloudScatteringUniforms>(settings_,
+                                                                       atmosphere.ground_albedo);
     u.march = MakeCloudMarchParameters<gl::CloudMarchUniforms>(settings_);
     u.lights = MakeCloudLightSet<gl::LightUniforms>(lights, camera.position,
                                                    view.weather_from_world);

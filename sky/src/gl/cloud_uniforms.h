@@ -31,10 +31,10 @@ struct CloudScatteringUniforms {  // clouds/functions.glsl: struct CloudScatteri
     float backward_g;
     float lobe_weight;
     float albedo;
-    float octave_a;
-    float octave_b;
-    float octave_c;
-    float octave_count;
+    float multiple_scattering;
+    float ground_albedo;
+    float padding1;
+    float padding2;
 };
 static_assert(sizeof(CloudScatteringUniforms) == 32);
 
@@ -46,7 +46,7 @@ struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float shadow_first_step;
     float shadow_growth;
     float ambient_scale;
-    float ambient_bottom;
+    float padding2;
     float min_transmittance;
     float max_distance;
     float padding0;

@@ -143,7 +143,8 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
     }
     scene.shape = ToTexture(noise.shape);
     scene.detail = ToTexture(noise.detail);
-    scene.scattering = MakeCloudScatteringParameters<CloudScatteringParameters>(settings);
+    scene.scattering = MakeCloudScatteringParameters<CloudScatteringParameters>(
+        settings, atmosphere.ground_albedo);
     scene.march = MakeCloudMarchParameters<CloudMarchParameters>(settings);
     scene.lights = MakeLightSet<LightSet>(lights, camera.position);
     scene.cloud_lights =

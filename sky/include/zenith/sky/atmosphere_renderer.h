@@ -31,18 +31,16 @@ struct SceneDepth {
 // The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
 // units; the defaults are what `zenith render --weather` uses.
 struct CloudSettings {
-    // Material (F16 §5.4.1, §5.7, §5.8)
+    // Material (F16 §5.4.1, §5.7)
     double extinction = 0.04;    // 1/m at density 1: a mean free path of 25 m in a dense core
     double albedo = 1.0;         // water droplets scatter nearly all they remove (F16 §5.2)
     double forward_g = 0.8;      // dual-lobe Henyey-Greenstein (F16 Eq. 18): silver lining...
     double backward_g = -0.3;    // ...and the back-lit side
     double lobe_weight = 0.3;    // share of the backward lobe
-    double octave_a = 0.5;       // multiple-scattering octaves (F16 §5.8); a <= b is enforced
-    double octave_b = 0.5;
-    double octave_c = 0.5;
-    int octaves = 3;             // 1..8
+    // Share of the light scattered more than once that is added: the delta-Eddington diffuse
+    // field of clouds/functions.glsl (CloudSunScattering); 1 is physical, 0 single scattering.
+    double multiple_scattering = 1.0;
     double ambient_scale = 1.0;  // F16 §5.5.1: scale of the sky's ambient light
-    double ambient_bottom = 0.4; // share of the ambient left at a layer's base
     // Shape: world size of one tile of each noise (H16 §4.3: the shape volume is 4x wider than
     // tall, so it covers shape_period x shape_period / 4 x shape_period)
     double shape_period = 14000.0;  // m

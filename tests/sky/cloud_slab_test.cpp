@@ -1,0 +1,218 @@
+// What the renderer's cloud march (clouds/march.glsl compiled as C++, the CPU mirror of the GL
+// trace) makes of thick clouds: the reflectance and transmittance of a non-absorbing slab,
+// integrated over the hemisphere from the march's own radiances at the renderer's default step
+// sizes, against the delta-Eddington closed form (Joseph, Wiscombe & Weinman 1976) and the
+// conservation of energy (R + T = 1 over a black ground); and the effective albedo pi L / E of
+// the overcast_stratus deck from above and below against the path-traced values of issue 15.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "cloud_test_support.h"
+#include "clouds/cloud_parameters.h"
+#include "reference/cloud_march.h"
+
+namespace zenith::sky::ref {
+namespace {
+
+constexpr double kR = 6360.0;  // km
+
+// A sun of unit illuminance normal to its rays through a transparent atmosphere with no sky
+// light: what the march returns is the clouds' share of the sunlight alone.
+struct Sunlight {
+    AtmosphereParameters atmosphere{};
+    Texture2D transmittance{1, 1}, irradiance{1, 1};
+    LightSet lights{};
+
+    explicit Sunlight(double mu0) {
+        atmosphere.bottom_radius = kR;
+        atmosphere.top_radius = kR + 100.0;
+        atmosphere.sun_angular_radius = 0.00465;
+        transmittance.at(0, 0) = vec4(1.0);
+        irradiance.at(0, 0) = vec4(0.0);
+        lights.light[0].direction = vec3(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
+        lights.light[0].illuminance = vec3(1.0);
+        lights.count = 1;
+    }
+};
+
+// The renderer's defaults (CloudSettings{}), in the shaders' units, over a grey ground.
+CloudScatteringParameters DefaultScattering(double ground_albedo = 0.0) {
+    return MakeCloudScatteringParameters<CloudScatteringParameters>(CloudSettings{},
+                                                                    vec3(ground_albedo));
+}
+CloudMarchParameters DefaultMarch() {
+    CloudMarchParameters march = MakeCloudMarchParameters<CloudMarchParameters>(CloudSettings{});
+    march.min_transmittance = 0.0;  // the flux below a thick slab is what is measured
+    return march;
+}
+
+// Luminance of the clouds alone along `view` from `camera` (cloud frame, km), averaged over
+// `jitters` sample offsets in the step as the renderer's reprojection averages them.
+double CloudLuminance(const Sunlight& sun, const CloudLayerParameters& layer,
+                      const RepeatTexture2D& weather, const Texture3D& shape,
+                      const Texture3D& detail, const CloudScatteringParameters& scattering,
+                      const CloudMarchParameters& march, vec3 camera, vec3 view, int jitters) {
+    const double r = length(camera);
+    const vec2 interval =
+        CloudLayerInterval(layer, r, dot(camera, view) / r, r - kR, march.max_distance);
+    double sum = 0.0;
+    for (int j = 0; j < jitters; ++j) {
+        CloudMarchState state = CloudMarchStart();
+        MarchCloudLayer(sun.atmosphere, sun.transmittance, {1, 1}, sun.irradiance, {1, 1}, layer,
+                        weather, shape, detail, scattering, march, sun.lights, 1, camera, view,
+                        interval, (j + 0.5) / jitters, state);
+        sum += state.luminance.x;
+    }
+    return sum / jitters;
+}
+
+// A plane-parallel slab of optical depth tau: a stratus layer 1-3 km whose clouds fill its
+// bottom quarter (1-1.5 km) with the height signal's parabola, uniform across the ground. Its
+// transfer depends only on the optical depth, so it is the homogeneous slab of the closed form.
+struct Slab {
+    CloudLayerParameters layer{};
+    RepeatTexture2D weather{1, 1};
+    Texture3D shape{1, 1, 1, true}, detail{1, 1, 1, true};
+    CloudMarchParameters march = DefaultMarch();
+
+    explicit Slab(double tau) {
+        layer.bottom_radius = kR;
+        layer.base_altitude = 1.0;
+        layer.top_altitude = 3.0;
+        layer.cloud_top_altitude = 1.5;
+        layer.weather_period = 40.0;
+        layer.shape_period = 14.0;
+        layer.shape_period_y = 3.5;
+        layer.detail_period = 1.8;
+        weather.at(0, 0) = vec4(1.0, 0.0, 0.0, 1.0);  // coverage 1, no rain, stratus, full height
+        shape.at(0, 0, 0) = vec4(1.0);
+        detail.at(0, 0, 0) = vec4(0.0, 0.0, 0.0, 1.0);
+        // The parabola's mean over the cloud's 0.5 km is 2/3.
+        march.extinction = tau / (0.5 * 2.0 / 3.0);
+    }
+
+    double OpticalDepth() const {
+        const int n = 20000;
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double altitude = 1.0 + 0.5 * (i + 0.5) / n;
+            sum +=
+                SampleCloudDensityAt(layer, weather, shape, detail, vec2(0.0), altitude).density *
+                march.extinction * 0.5 / n;
+        }
+        return sum;
+    }
+
+    // Hemispheric flux per unit horizontal sun illuminance leaving the top (above = true) or the
+    // base: Gauss-Legendre in the zenith cosine, the midpoint rule in azimuth.
+    double Flux(const Sunlight& sun, double mu0, bool above) const {
+        static const double kNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                                        0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
+                                        0.8983332387068134, 0.9801449282487681};
+        static const double kWeights[] = {
+            0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
+            0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
+        const int azimuths = 12;
+        const vec3 camera(0.0, 0.0, kR + (above ? 5.0 : 0.5));
+        const CloudScatteringParameters scattering = DefaultScattering();
+        double flux = 0.0;
+        for (int i = 0; i < 8; ++i) {
+            const double mu = kNodes[i];
+            const double sin_theta = std::sqrt(1.0 - mu * mu);
+            for (int k = 0; k < azimuths; ++k) {
+                const double phi = 2.0 * kPi * (k + 0.5) / azimuths;
+                const vec3 view(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
+                                above ? -mu : mu);
+                flux += kWeights[i] * (2.0 * kPi / azimuths) * mu *
+                        CloudLuminance(sun, layer, weather, shape, detail, scattering, march,
+                                       camera, view, 4);
+            }
+        }
+        return flux / mu0;
+    }
+};
+
+TEST(CloudSlab, ReflectsAndTransmitsAsTheDeltaEddingtonSlabAndConservesEnergy) {
+    const double g = CloudAsymmetry(DefaultScattering());
+    std::printf("renderer's slab (default march) vs delta-Eddington, g = %.2f:\n", g);
+    std::printf("  tau   mu0   R march  R closed   T march  T closed   R+T march\n");
+    for (const double tau : {5.0, 10.0, 20.0, 50.0}) {
+        const Slab slab(tau);
+        ASSERT_NEAR(slab.OpticalDepth(), tau, 1e-3 * tau);
+        for (const double mu0 : {1.0, 0.5}) {
+            const Sunlight sun(mu0);
+            const double r = slab.Flux(sun, mu0, true);
+            // The direct beam through the slab (the renderer draws it as the sun's disk behind
+            // the clouds' transmittance) plus the diffuse light.
+            const double t = slab.Flux(sun, mu0, false) + std::exp(-tau / mu0);
+            const vec2 closed = CloudSlabReflectanceTransmittance(g, tau, mu0);
+            std::printf("  %4.0f  %.2f   %.4f   %.4f    %.4f   %.4f    %.4f\n", tau, mu0, r,
+                        closed.x, t, closed.y, r + t);
+            // Measured: T within 0.025 of the closed form; R 3-4 % low at mu0 = 1 and 10-11 %
+            // at mu0 = 0.5, whatever tau: the march's formal solution of the Eddington field
+            // near the top, not its step size (a fine march gives the same).
+            EXPECT_NEAR(r, closed.x, 0.15 * closed.x) << "tau " << tau << " mu0 " << mu0;
+            EXPECT_NEAR(t, closed.y, 0.03) << "tau " << tau << " mu0 " << mu0;
+            EXPECT_NEAR(r + t, 1.0, 0.1) << "tau " << tau << " mu0 " << mu0;
+            if (mu0 == 1.0) {
+                EXPECT_NEAR(r + t, 1.0, 0.04) << "tau " << tau;
+            }
+        }
+    }
+}
+
+// overcast_stratus at noon on 21 June at Zurich (sun elevation 65 deg), the clouds alone in the
+// sunlight (no sky light, no atmosphere): pi L / E of the deck seen straight down from 8 km and
+// straight up from the ground, over the points of one weather tile. Issue 15's path tracer
+// measured 0.667 from above and 0.71 from below (with the sky, the atmosphere and a ground of
+// albedo 0.3; the clouds here have that ground under them but no sky light).
+TEST(CloudSlab, OvercastStratusEffectiveAlbedoFromAboveAndBelow) {
+    const clouds::Weather weather = clouds::LoadWeather("overcast_stratus");
+    ASSERT_EQ(weather.layers.size(), 1u);
+    const CloudSettings settings;
+    const clouds::WeatherMap map = clouds::BuildWeatherMap(weather.layers[0]);
+    const CloudLayerParameters layer = MakeCloudLayerParameters<CloudLayerParameters>(
+        weather.layers[0], clouds::CloudTopFraction(map), settings, kR * 1000.0, 0.0);
+    const RepeatTexture2D weather_texture = ToTexture(map);
+    const Texture3D shape = ToTexture(clouds::test::CachedNoise().shape);
+    const Texture3D detail = ToTexture(clouds::test::CachedNoise().detail);
+    // The Earth preset's ground, albedo 0.3, as the path tracer had.
+    const CloudScatteringParameters scattering = DefaultScattering(Atmosphere{}.ground_albedo.y);
+    const CloudMarchParameters march = MakeCloudMarchParameters<CloudMarchParameters>(settings);
+    const double mu0 = std::sin(65.0 * kPi / 180.0);
+    const Sunlight sun(mu0);
+
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    const int points = 300;
+    double above = 0.0, below = 0.0;
+    for (int i = 0; i < points; ++i) {
+        // Nearly straight down/up (a 20 deg field of view), across the tile.
+        const double x = u(rng) * layer.weather_period, y = u(rng) * layer.weather_period;
+        const vec3 ground = normalize(vec3(x, y, kR)) * kR;
+        const vec3 up = normalize(ground);
+        const vec3 tilt = 0.17 * vec3(u(rng), u(rng), 0.0);
+        above += CloudLuminance(sun, layer, weather_texture, shape, detail, scattering, march,
+                                ground + 8.0 * up, normalize(-up + tilt), 2);
+        below += CloudLuminance(sun, layer, weather_texture, shape, detail, scattering, march,
+                                ground + 0.01 * up, normalize(up + tilt), 2);
+    }
+    const double albedo_above = kPi * above / points / mu0;
+    const double albedo_below = kPi * below / points / mu0;
+    std::printf(
+        "overcast_stratus, pi L / E of the clouds in sunlight: above %.3f (path tracer "
+        "0.667), below %.3f (0.71 with sky and ground)\n",
+        albedo_above, albedo_below);
+    EXPECT_NEAR(albedo_above, 0.667, 0.15 * 0.667);
+    // Without the sky light above the deck (the renderer adds it as ambient), below is short
+    // of 0.71 by about that light's share; the octaves gave 0.12.
+    EXPECT_GT(albedo_below, 0.45);
+    EXPECT_LT(albedo_below, 0.71 * 1.15);
+}
+
+}  // namespace
+}  // namespace zenith::sky::ref
