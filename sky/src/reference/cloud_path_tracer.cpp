@@ -497,7 +497,7 @@ struct CloudField::Impl {
                 return ref::SampleCloudDensity(layers[i], weather_maps[i], shape, detail, km);
             }
         }
-        return ref::CloudSample{0.0, 0.0, 0.0, 0.0};
+        return ref::CloudSample{0.0, 0.0, 0.0, 0.0, 0.0};
     }
 };
 
