@@ -1,0 +1,24 @@
+// The `zenith` command line, one file per subcommand: each registers its options on the
+// application and returns what runs it once the command line is parsed.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+namespace zenith::cli {
+
+struct Command {
+    CLI::App* app = nullptr;  // the subcommand, to see whether it was chosen
+    std::function<int()> run;
+};
+
+Command AddEphemerisCommand(CLI::App& app);  // ephemeris_command.cpp
+Command AddRenderCommand(CLI::App& app);     // render_command.cpp
+Command AddReplayCommand(CLI::App& app);     // replay_command.cpp
+Command AddInfoCommand(CLI::App& app);       // info_command.cpp
+
+// The command-line option of a library field named in an ArgumentError ("" if none).
+std::string FlagForField(const std::string& field);
+
+}  // namespace zenith::cli

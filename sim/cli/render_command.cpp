@@ -1,0 +1,86 @@
+// `zenith render`: one frame offscreen to EXR or PNG.
+#include <fmt/format.h>
+
+#include <memory>
+#include <string>
+
+#include "commands.h"
+#include "zenith/base/error.h"
+#include "zenith/sim/render_frame.h"
+
+namespace zenith::cli {
+namespace {
+
+int RunRender(sim::FrameRequest request, const std::string& size, const std::string& exposure,
+              const std::string& quality) {
+    request.size = sim::ParseFrameSize(size);
+    request.exposure = sky::ExposureFromString(exposure);
+    if (quality == "mobile") {
+        request.lut_settings = sky::LutSettings::Mobile();
+    } else if (quality != "pc") {
+        throw ArgumentError("quality",
+                            "quality = " + quality + " is not known (expected pc or mobile)");
+    }
+    std::string warning;
+    const sim::FrameResult result = sim::RenderFrame(request, &warning);
+    if (!warning.empty()) fmt::print(stderr, "zenith render: {}\n", warning);
+    fmt::print(stderr,
+               "zenith render: {} ({}x{}, sun elevation {:.2f} deg, {} stars, EV100 {:.2f}) "
+               "on {}\n",
+               request.out.string(), request.size.x, request.size.y, result.sun_elevation_deg,
+               result.stars_drawn, result.ev100, result.gl_description);
+    return 0;
+}
+
+}  // namespace
+
+Command AddRenderCommand(CLI::App& app) {
+    struct Args {
+        sim::FrameRequest frame;
+        std::string size = "1280x720", exposure = "auto", quality = "pc", out = "zenith.png";
+    };
+    const auto args = std::make_shared<Args>();
+    sim::FrameRequest& frame = args->frame;
+    CLI::App* render = app.add_subcommand(
+        "render",
+        "Render one frame of sky offscreen to EXR (linear cd/m^2) or PNG (exposed, tone mapped); "
+        "with no options, a built-in scene: sunset over Zurich at 10 km");
+    render->add_option("--utc", frame.utc, "UTC instant, ISO 8601")->capture_default_str();
+    render->add_option("--lat", frame.lat_deg, "geodetic latitude, degrees")->capture_default_str();
+    render->add_option("--lon", frame.lon_deg, "longitude, degrees")->capture_default_str();
+    render->add_option("--height", frame.height_m, "height above the WGS84 ellipsoid, metres")
+        ->capture_default_str();
+    render->add_option("--heading", frame.heading_deg, "degrees from true north, clockwise")
+        ->capture_default_str();
+    render->add_option("--pitch", frame.pitch_deg, "degrees, nose up positive")
+        ->capture_default_str();
+    render->add_option("--roll", frame.roll_deg, "degrees, right wing down positive")
+        ->capture_default_str();
+    render->add_option("--fov", frame.fov_deg, "vertical field of view, degrees")
+        ->capture_default_str();
+    render->add_option("--size", args->size, "image size WxH")->capture_default_str();
+    render
+        ->add_option("--weather", frame.weather,
+                     "clouds: clear, scattered_cumulus, broken, overcast_stratus, "
+                     "cumulonimbus or a weather JSON file")
+        ->capture_default_str();
+    render->add_option("--preset", frame.preset, "atmosphere: earth, mars, thick or a JSON file")
+        ->capture_default_str();
+    render->add_option("--exposure", args->exposure, "EV100 for PNG output, or auto")
+        ->capture_default_str();
+    render
+        ->add_option("--quality", args->quality,
+                     "LUT sizes and steps: pc or mobile (Hillaire 2020 "
+                     "Table 2)")
+        ->capture_default_str();
+    render->add_flag("--ray-march", frame.force_ray_march,
+                     "ray march every pixel instead of using the Sky-View LUT");
+    render->add_option("--out", args->out, "output file, .exr or .png")->capture_default_str();
+    return {render, [args] {
+                sim::FrameRequest request = args->frame;
+                request.out = args->out;
+                return RunRender(request, args->size, args->exposure, args->quality);
+            }};
+}
+
+}  // namespace zenith::cli
