@@ -38,6 +38,10 @@ std::string FlagForField(const std::string& field) {
         {"pitch_deg", "--pitch"},
         {"roll_deg", "--roll"},
         {"out", "--out"},
+        {"weather", "--weather"},
+        {"metar_file", "--metar-file"},
+        {"station_elevation", "--station-elevation"},
+        {"visibility", "--metar"},
     };
     const auto it = kFlags.find(field);
     return it == kFlags.end() ? std::string() : it->second;

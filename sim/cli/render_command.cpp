@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "zenith/base/error.h"
 #include "zenith/sim/render_frame.h"
+#include "zenith/weather/metar_file.h"
 
 namespace zenith::cli {
 namespace {
@@ -38,6 +39,7 @@ Command AddRenderCommand(CLI::App& app) {
     struct Args {
         sim::FrameRequest frame;
         std::string size = "1280x720", exposure = "auto", quality = "pc", out = "zenith.png";
+        std::string metar, metar_file;
     };
     const auto args = std::make_shared<Args>();
     sim::FrameRequest& frame = args->frame;
@@ -76,8 +78,26 @@ Command AddRenderCommand(CLI::App& app) {
     render->add_flag("--ray-march", frame.force_ray_march,
                      "ray march every pixel instead of using the Sky-View LUT");
     render->add_option("--out", args->out, "output file, .exr or .png")->capture_default_str();
+    auto* metar = render->add_option(
+        "--metar", args->metar,
+        "the weather of a METAR report (\"EGLL 211750Z 24012KT 9999 FEW035 18/09 Q1018\"): its "
+        "clouds over the observer and its visibility");
+    render->add_option("--metar-file", args->metar_file,
+                       "the first report of a METAR file (one per line, # comments)")
+        ->excludes(metar);
+    render->add_option("--station-elevation", frame.station_elevation_m,
+                       "the METAR station's elevation above mean sea level, metres (default: "
+                       "the ground under the observer)");
     return {render, [args] {
                 sim::FrameRequest request = args->frame;
+                if (!args->metar.empty()) request.metar = weather::DecodeMetar(args->metar);
+                if (!args->metar_file.empty()) {
+                    const weather::MetarFile file = weather::ReadMetarLines(args->metar_file);
+                    if (file.records.empty()) {
+                        throw ArgumentError("metar_file", file.Summary());
+                    }
+                    request.metar = file.records.front().metar;
+                }
                 request.out = args->out;
                 return RunRender(request, args->size, args->exposure, args->quality);
             }};

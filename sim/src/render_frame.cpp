@@ -5,6 +5,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -12,6 +14,8 @@
 #include "zenith/geo/observer.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
+#include "zenith/weather/cloud_weather.h"
+#include "zenith/weather/metar.h"
 #include "zenith/base/error.h"
 #include "zenith/base/units.h"
 
@@ -51,8 +55,35 @@ void ValidateFrameRequest(const FrameRequest& r) {
 
 FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     ValidateFrameRequest(request);
-    const sky::Atmosphere atmosphere = sky::LoadAtmosphere(request.preset);
-    const sky::clouds::Weather weather = sky::clouds::LoadWeather(request.weather);
+    sky::Atmosphere atmosphere = sky::LoadAtmosphere(request.preset);
+    sky::clouds::Weather weather;
+    std::vector<std::string> notes;
+    if (request.metar) {
+        if (request.weather != "clear") {
+            throw ArgumentError("weather", "weather = " + request.weather +
+                                               " and a METAR report: give one of them");
+        }
+        const weather::Metar& metar = *request.metar;
+        for (const weather::MetarWarning& w : metar.warnings) {
+            notes.push_back("METAR: " + w.ToString());
+        }
+        double station = 0.0;
+        if (request.station_elevation_m) {
+            station = *request.station_elevation_m;
+        } else {
+            notes.push_back("METAR heights are taken above the ground under the observer (0 m, "
+                            "zenith's ground); give the station's elevation to place them");
+        }
+        weather::MetarWeather from_report = weather::CloudWeatherFromMetar(metar, station);
+        notes.insert(notes.end(), from_report.notes.begin(), from_report.notes.end());
+        weather = std::move(from_report.clouds);
+        if (from_report.visibility_m) {
+            atmosphere = weather::AtmosphereForVisibility(atmosphere, *from_report.visibility_m,
+                                                          from_report.fog, &notes);
+        }
+    } else {
+        weather = sky::clouds::LoadWeather(request.weather);
+    }
     const geo::Time time = geo::TimeFromIso8601(request.utc);
     const geo::Observer observer(request.lat_deg, request.lon_deg, request.height_m);
 
@@ -60,7 +91,7 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     try {
         catalog = geo::StarCatalog::Load(request.star_magnitude_limit);
     } catch (const geo::CatalogError& e) {
-        if (warning != nullptr) *warning = std::string("stars not drawn: ") + e.what();
+        notes.push_back(std::string("stars not drawn: ") + e.what());
     }
     const geo::Ephemeris ephemeris(catalog ? &*catalog : nullptr);
     geo::EphemerisOptions ephemeris_options;
@@ -100,6 +131,10 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     sky::ImageWriteOptions write_options;
     write_options.exposure = sky::Exposure{false, result.ev100};
     sky::WriteImage(request.out, result.image, write_options);
+    if (warning != nullptr) {
+        warning->clear();
+        for (const std::string& note : notes) *warning += (warning->empty() ? "" : "\n") + note;
+    }
     return result;
 }
 

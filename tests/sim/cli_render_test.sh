@@ -2,7 +2,7 @@
 # `zenith render` end to end: files written, clear errors and no partial output for bad input.
 # Usage: cli_render_test.sh path/to/zenith
 set -uo pipefail
-zenith=$1
+zenith=$(realpath "$1")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 source "$(dirname "$0")/check.sh"
@@ -28,6 +28,24 @@ err=$("$zenith" render --preset nowhere --out "$work/n.png" 2>&1)
 check "unknown preset names it" grep -qi "nowhere" <<<"$err"
 err=$("$zenith" render --exposure bright --out "$work/e.png" 2>&1)
 check "bad exposure names --exposure" grep -q -- "--exposure" <<<"$err"
-check "no output for any failed run" bash -c "! ls '$work' | grep -qE '^(frame|p|s|n|e)\.|partial'"
+# Weather from a METAR report: its clouds and its visibility.
+"$zenith" render --size 64x36 --metar "EGLL 211750Z 24012KT 9999 FEW035 SCT250 18/09 Q1018" \
+    --station-elevation 25 --out "$work/metar.png" >/dev/null 2>&1
+check "a METAR report renders" test -s "$work/metar.png"
+err=$("$zenith" render --size 64x36 --metar "EGLL 211200Z 24012KT 2500 BR BKN008 12/11 Q1008" \
+    --out "$work/mist.png" 2>&1)
+check "without --station-elevation it says where the heights are taken from" \
+    grep -q "above the ground under the observer" <<<"$err"
+printf '# a comment\nEGLL 211200Z 24012KT 0300 FG VV002 10/10 Q1008\n' >"$work/reports.txt"
+"$zenith" render --size 64x36 --metar-file "$work/reports.txt" --out "$work/fog.png" >/dev/null 2>&1
+check "--metar-file renders its first report" test -s "$work/fog.png"
+err=$("$zenith" render --size 64x36 --metar "EGLL 211200Z 9999" --weather broken \
+    --out "$work/w.png" 2>&1); rc=$?
+check "--metar with --weather exits 2 naming --weather" \
+    bash -c "test $rc -eq 2 && grep -q -- '--weather' <<<'$err'"
+err=$("$zenith" render --size 64x36 --metar "12 nonsense" --out "$work/m.png" 2>&1); rc=$?
+check "a report without a station exits 2 naming the group" \
+    bash -c "test $rc -eq 2 && grep -q -- '12' <<<'$err'"
+check "no output for any failed run" bash -c "! ls '$work' | grep -qE '^(frame|p|s|n|e|w|m)\.|partial'"
 
 report

@@ -183,3 +183,64 @@ TEST(CloudWeather, FuzzCorpusMapsToValidWeather) {
 
 }  // namespace
 }  // namespace zenith::weather
+
+namespace zenith::weather {
+namespace {
+
+// Koschmieder's law on the atmosphere itself: along a horizontal chord from the ground, the
+// transmittance over the reported visibility V is 1/20 (a black target's contrast of 5 %). The
+// extinction is integrated here from the preset's own profiles (exponential Rayleigh and
+// aerosols, the ozone tent) along the curved-Earth chord, independently of how the factor was
+// found. MOR is local (a transmissometer's baseline): the chord rises V^2 / 2R, 8 m at 10 km,
+// inside the 1 % asked, but 280 m at 60 km, where the aerosols thin, so longer V are not used.
+double HorizontalTransmittance(const sky::Atmosphere& a, double distance_m) {
+    const int steps = 4000;
+    double optical_depth = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        const double x = (i + 0.5) * distance_m / steps;
+        const double h = std::hypot(a.bottom_radius, x) - a.bottom_radius;
+        const double tent = std::max(
+            0.0, 1.0 - std::abs(h - a.absorption_center) / (0.5 * a.absorption_width));
+        const double sigma = a.rayleigh_scattering.y * std::exp(-h / a.rayleigh_scale_height) +
+                             a.MieExtinction().y * std::exp(-h / a.mie_scale_height) +
+                             tent * a.absorption_extinction.y;
+        optical_depth += sigma * distance_m / steps;
+    }
+    return std::exp(-optical_depth);
+}
+
+TEST(Visibility, TheAirTransmitsOneTwentiethOverTheReportedVisibility) {
+    const sky::Atmosphere earth = sky::LoadAtmosphere("earth");
+    for (const double v : {800.0, 1500.0, 3000.0, 5000.0, 8000.0, 10000.0}) {
+        std::vector<std::string> notes;
+        const sky::Atmosphere air = AtmosphereForVisibility(earth, v, false, &notes);
+        EXPECT_NEAR(HorizontalTransmittance(air, v), 0.05, 0.0005) << "V = " << v << " m";
+        EXPECT_TRUE(notes.empty());
+        // Only the aerosols' amount changed: their albedo and the rest of the air did not.
+        const double albedo = earth.mie_scattering.y / earth.MieExtinction().y;
+        EXPECT_NEAR(air.mie_scattering.y / air.MieExtinction().y, albedo, 1e-12);
+        EXPECT_EQ(air.rayleigh_scattering, earth.rayleigh_scattering);
+        EXPECT_EQ(air.mie_scale_height, earth.mie_scale_height);
+    }
+}
+
+TEST(Visibility, FogIsTheLayersAndClearAirCannotBeClearerThanRayleigh) {
+    const sky::Atmosphere earth = sky::LoadAtmosphere("earth");
+    std::vector<std::string> notes;
+    const sky::Atmosphere fog = AtmosphereForVisibility(earth, 200.0, true, &notes);
+    EXPECT_NEAR(HorizontalTransmittance(fog, kFogAerosolVisibility), 0.05, 0.0005);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("fog layer"), std::string::npos) << notes[0];
+
+    notes.clear();
+    const sky::Atmosphere clean = AtmosphereForVisibility(earth, 900e3, false, &notes);
+    EXPECT_EQ(clean.MieExtinction(), glm::dvec3(0.0));
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("no aerosols"), std::string::npos) << notes[0];
+
+    EXPECT_THROW(AtmosphereForVisibility(earth, 0.0, false, nullptr), ArgumentError);
+    EXPECT_THROW(AtmosphereForVisibility(earth, std::nan(""), false, nullptr), ArgumentError);
+}
+
+}  // namespace
+}  // namespace zenith::weather

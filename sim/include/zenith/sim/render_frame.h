@@ -14,6 +14,7 @@
 #include "zenith/sky/image_io.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
+#include "zenith/weather/metar.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sim {
@@ -44,6 +45,12 @@ struct FrameRequest {
     // pixel is traced (block 1), cloud_passes times with the jitter moved each time, averaged
     // by the renderer's history (grain instead of banding from the equal steps).
     std::string weather = "clear";
+    // Or the weather of a METAR report (zenith::weather::CloudWeatherFromMetar): its clouds, and
+    // its visibility as the aerosols near the ground (AtmosphereForVisibility). The report's
+    // heights are above the station: station_elevation_m (above mean sea level), else the ground
+    // under the observer (zenith's ground is the ellipsoid: 0 m), which the warning then says.
+    std::optional<weather::Metar> metar;  // weather::DecodeMetar
+    std::optional<double> station_elevation_m;
     sky::CloudSettings clouds = SingleFrameCloudSettings();
     int cloud_passes = 4;
 
@@ -68,7 +75,8 @@ struct FrameResult {
 
 // Renders (creating a headless GL context: $ZENITH_GL = osmesa|egl) and writes request.out
 // atomically. Stars are drawn when the catalogue is installed; without it, a warning goes to
-// `warning` (if given) and the frame is still rendered.
+// `warning` (if given: one line per note; also the METAR's warnings and the choices its
+// mapping made) and the frame is still rendered.
 FrameResult RenderFrame(const FrameRequest& request, std::string* warning = nullptr);
 
 }  // namespace zenith::sim

@@ -313,4 +313,45 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
     return out;
 }
 
+double GroundExtinctionGreen(const sky::Atmosphere& atmosphere) {
+    // The absorbing layer is a tent of full width absorption_width around absorption_center.
+    const double half_width = 0.5 * atmosphere.absorption_width;
+    const double tent = std::max(0.0, 1.0 - std::abs(atmosphere.absorption_center) / half_width);
+    return atmosphere.rayleigh_scattering.y + atmosphere.MieExtinction().y +
+           tent * atmosphere.absorption_extinction.y;
+}
+
+sky::Atmosphere AtmosphereForVisibility(const sky::Atmosphere& base, double visibility_m, bool fog,
+                                        std::vector<std::string>* notes) {
+    Require("visibility", visibility_m, "m", Range::LeftOpen(0.0, 1e6));
+    double target_visibility = visibility_m;
+    if (fog && visibility_m < kFogAerosolVisibility) {
+        target_visibility = kFogAerosolVisibility;
+        if (notes != nullptr) {
+            notes->push_back(fmt::format(
+                "visibility {:.0f} m is the fog layer's; the air above and around it is set to "
+                "{:.0f} m",
+                visibility_m, kFogAerosolVisibility));
+        }
+    }
+    const double target = ExtinctionForVisibility(target_visibility);
+    sky::Atmosphere air = base;
+    const double mie = base.MieExtinction().y;
+    const double clean = GroundExtinctionGreen(base) - mie;
+    double factor = 0.0;
+    if (target > clean && mie > 0.0) {
+        factor = (target - clean) / mie;
+    } else if (notes != nullptr) {
+        notes->push_back(fmt::format(
+            "visibility {:.0f} m is beyond what the clean air of '{}' allows ({:.0f} m): no "
+            "aerosols",
+            target_visibility, base.name, std::log(20.0) / clean));
+    }
+    air.mie_scattering = base.mie_scattering * factor;
+    air.mie_absorption = base.mie_absorption * factor;
+    air.name = base.name + fmt::format(" (visibility {:.0f} m)", target_visibility);
+    sky::Validate(air);
+    return air;
+}
+
 }  // namespace zenith::weather

@@ -41,14 +41,14 @@
 // law C = exp(-sigma x) that gives sigma = ln 20 / V. A report of 10 km or more (9999, CAVOK,
 // 10SM and beyond), or one given as a lower bound (P6SM), sets no extinction: the atmosphere
 // preset's own aerosols apply. A report below a bound (M1/4SM, 0000) uses the bound. Turning
-// sigma into the atmosphere's aerosol or fog density near the ground (minus the clear air's
-// own extinction) is the renderer's side, not done here.
+// sigma into the atmosphere's aerosol density near the ground is AtmosphereForVisibility.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "zenith/sky/atmosphere.h"
 #include "zenith/sky/clouds/weather.h"
 #include "zenith/weather/metar.h"
 
@@ -73,5 +73,22 @@ double ExtinctionForVisibility(double visibility_m);
 // See the table above. station_elevation_m: the station's height above the planet's sphere
 // (mean sea level), [-500, 9000] m; throws ArgumentError outside.
 MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_m);
+
+// The extinction coefficient of `atmosphere` at its ground in the green channel, 1/m: Rayleigh,
+// aerosol extinction and the absorbing layer's share there. The meteorological optical range is
+// photopic (WMO No. 8 defines it for a colour temperature of 2700 K, through the eye's response);
+// the renderer's green channel is the middle of that response.
+double GroundExtinctionGreen(const sky::Atmosphere& atmosphere);
+
+// `base` with its aerosols (Mie scattering and absorption, one factor for both, so their albedo,
+// phase and profile stay) scaled so that GroundExtinctionGreen is ln 20 / V: the air of the
+// report. Fog is the fog layer's (CloudWeatherFromMetar), so with `fog` the aerosols are set for
+// at least kFogAerosolVisibility: aerosols with a 1.2 km scale height that alone made 200 m would
+// block the Sun far above the fog's top. A V the clean air alone cannot reach (Rayleigh and
+// ozone at the ground exceed ln 20 / V: ~200 km on Earth) leaves no aerosol. Each such choice is
+// added to `notes`. Throws ArgumentError unless 0 < V <= 1000 km.
+inline constexpr double kFogAerosolVisibility = 1000.0;  // m
+sky::Atmosphere AtmosphereForVisibility(const sky::Atmosphere& base, double visibility_m, bool fog,
+                                        std::vector<std::string>* notes);
 
 }  // namespace zenith::weather
