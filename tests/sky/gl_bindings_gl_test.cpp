@@ -10,13 +10,12 @@
 
 #include <cstddef>
 #include <cstdio>
+#include <glm/glm.hpp>
 #include <map>
 #include <set>
 #include <string>
 #include <type_traits>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "bindings.h"
 #include "gl/atmosphere_uniforms.h"
@@ -30,15 +29,24 @@ namespace {
 // GL's type of a block member for the C++ type that mirrors it.
 template <typename T>
 constexpr GLenum GlType() {
-    if constexpr (std::is_same_v<T, float>) return GL_FLOAT;
-    else if constexpr (std::is_same_v<T, int>) return GL_INT;
-    else if constexpr (std::is_same_v<T, glm::vec2>) return GL_FLOAT_VEC2;
-    else if constexpr (std::is_same_v<T, glm::vec3>) return GL_FLOAT_VEC3;
-    else if constexpr (std::is_same_v<T, glm::vec4>) return GL_FLOAT_VEC4;
-    else if constexpr (std::is_same_v<T, glm::ivec2>) return GL_INT_VEC2;
-    else if constexpr (std::is_same_v<T, glm::ivec3>) return GL_INT_VEC3;
-    else if constexpr (std::is_same_v<T, glm::ivec4>) return GL_INT_VEC4;
-    else static_assert(sizeof(T) == 0, "a mirror member type this test does not know");
+    if constexpr (std::is_same_v<T, float>)
+        return GL_FLOAT;
+    else if constexpr (std::is_same_v<T, int>)
+        return GL_INT;
+    else if constexpr (std::is_same_v<T, glm::vec2>)
+        return GL_FLOAT_VEC2;
+    else if constexpr (std::is_same_v<T, glm::vec3>)
+        return GL_FLOAT_VEC3;
+    else if constexpr (std::is_same_v<T, glm::vec4>)
+        return GL_FLOAT_VEC4;
+    else if constexpr (std::is_same_v<T, glm::ivec2>)
+        return GL_INT_VEC2;
+    else if constexpr (std::is_same_v<T, glm::ivec3>)
+        return GL_INT_VEC3;
+    else if constexpr (std::is_same_v<T, glm::ivec4>)
+        return GL_INT_VEC4;
+    else
+        static_assert(sizeof(T) == 0, "a mirror member type this test does not know");
 }
 
 struct Expected {
@@ -90,8 +98,8 @@ void AddLights(Layout& layout, const std::string& prefix, std::size_t base) {
     using S = LightUniforms;
     for (int i = 0; i < kMaxLights; ++i) {
         const std::string light = prefix + "light[" + std::to_string(i) + "].";
-        const std::size_t at = base + offsetof(S, light) +
-                               static_cast<std::size_t>(i) * sizeof(S::Light);
+        const std::size_t at =
+            base + offsetof(S, light) + static_cast<std::size_t>(i) * sizeof(S::Light);
         Add<decltype(S::Light::direction)>(layout, light + "direction",
                                            at + offsetof(S::Light, direction));
         Add<decltype(S::Light::padding0)>(layout, light + "padding0",
@@ -201,9 +209,9 @@ void AddCloudMarch(Layout& layout, const std::string& prefix, std::size_t base) 
 void AddCloud(Layout& layout, const std::string& prefix, std::size_t base) {
     using S = CloudUniforms;
     for (int i = 0; i < kCloudMaxLayers; ++i) {
-        AddCloudLayer(layout, prefix + "cloud_layers[" + std::to_string(i) + "].",
-                      base + offsetof(S, layers) +
-                          static_cast<std::size_t>(i) * sizeof(CloudLayerUniforms));
+        AddCloudLayer(
+            layout, prefix + "cloud_layers[" + std::to_string(i) + "].",
+            base + offsetof(S, layers) + static_cast<std::size_t>(i) * sizeof(CloudLayerUniforms));
     }
     AddCloudScattering(layout, prefix + "cloud_scattering.", base + offsetof(S, scattering));
     AddCloudMarch(layout, prefix + "cloud_march.", base + offsetof(S, march));
@@ -245,10 +253,12 @@ template <typename Mirror>
 BlockMirror MakeBlock(GLenum block_interface, int binding,
                       void (*add)(Layout&, const std::string&, std::size_t),
                       const std::string& prefix) {
-    BlockMirror block{block_interface,
-                      block_interface == GL_UNIFORM_BLOCK ? GLenum{GL_UNIFORM}
-                                                          : GLenum{GL_BUFFER_VARIABLE},
-                      binding, sizeof(Mirror), {}};
+    BlockMirror block{
+        block_interface,
+        block_interface == GL_UNIFORM_BLOCK ? GLenum{GL_UNIFORM} : GLenum{GL_BUFFER_VARIABLE},
+        binding,
+        sizeof(Mirror),
+        {}};
     add(block.members, prefix, 0);
     return block;
 }
@@ -256,13 +266,13 @@ BlockMirror MakeBlock(GLenum block_interface, int binding,
 // Every block of bindings.glsl, by its GLSL block name, with its C++ mirror.
 std::map<std::string, BlockMirror> Mirrors() {
     std::map<std::string, BlockMirror> m;
-    m.emplace("AtmosphereBlock", MakeBlock<AtmosphereUniforms>(
-                                     GL_UNIFORM_BLOCK, kAtmosphereBlockBinding, AddAtmosphere,
-                                     "atmosphere."));
-    m.emplace("LightBlock", MakeBlock<LightUniforms>(GL_UNIFORM_BLOCK, kLightBlockBinding,
-                                                     AddLights, "lights."));
-    m.emplace("SettingsBlock", MakeBlock<SettingsUniforms>(GL_UNIFORM_BLOCK,
-                                                           kSettingsBlockBinding, AddSettings, ""));
+    m.emplace("AtmosphereBlock",
+              MakeBlock<AtmosphereUniforms>(GL_UNIFORM_BLOCK, kAtmosphereBlockBinding,
+                                            AddAtmosphere, "atmosphere."));
+    m.emplace("LightBlock",
+              MakeBlock<LightUniforms>(GL_UNIFORM_BLOCK, kLightBlockBinding, AddLights, "lights."));
+    m.emplace("SettingsBlock", MakeBlock<SettingsUniforms>(GL_UNIFORM_BLOCK, kSettingsBlockBinding,
+                                                           AddSettings, ""));
     m.emplace("FrameBlock",
               MakeBlock<FrameUniforms>(GL_UNIFORM_BLOCK, kFrameBlockBinding, AddFrame, ""));
     m.emplace("CloudBlock",
@@ -362,8 +372,7 @@ std::vector<std::string> CheckBlocks(const Program& program,
                 errors.push_back(where + block + " binding " + std::to_string(binding) +
                                  ", bindings.glsl " + std::to_string(m.binding));
             }
-            const GLint size = ResourceInt(program.name(), block_interface, b,
-                                           GL_BUFFER_DATA_SIZE);
+            const GLint size = ResourceInt(program.name(), block_interface, b, GL_BUFFER_DATA_SIZE);
             if (static_cast<std::size_t>(size) != m.size) {
                 errors.push_back(where + block + " is " + std::to_string(size) +
                                  " bytes, its C++ mirror " + std::to_string(m.size));
@@ -372,8 +381,8 @@ std::vector<std::string> CheckBlocks(const Program& program,
                 ResourceInt(program.name(), block_interface, b, GL_NUM_ACTIVE_VARIABLES);
             std::vector<GLint> indices(static_cast<std::size_t>(count));
             const GLenum active = GL_ACTIVE_VARIABLES;
-            glGetProgramResourceiv(program.name(), block_interface, b, 1, &active, count,
-                                   nullptr, indices.data());
+            glGetProgramResourceiv(program.name(), block_interface, b, 1, &active, count, nullptr,
+                                   indices.data());
             std::set<std::string> members;
             for (GLint index : indices) {
                 const GLuint i = static_cast<GLuint>(index);
@@ -397,8 +406,8 @@ std::vector<std::string> CheckBlocks(const Program& program,
                                      std::to_string(e.offset));
                 }
                 if (static_cast<GLenum>(type) != e.type) {
-                    errors.push_back(where + block + "." + name + " has GL type " +
-                                     Hex(type) + ", its C++ mirror " + Hex(e.type));
+                    errors.push_back(where + block + "." + name + " has GL type " + Hex(type) +
+                                     ", its C++ mirror " + Hex(e.type));
                 }
                 if (static_cast<std::size_t>(array_stride) != e.array_stride) {
                     errors.push_back(where + block + "." + name + " array stride " +
