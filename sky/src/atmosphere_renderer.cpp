@@ -10,6 +10,7 @@
 #include <string_view>
 #include <utility>
 
+#include "bindings.h"
 #include "clouds/cloud_parameters.h"
 #include "clouds/cloud_passes.h"
 #include "gl/atmosphere_uniforms.h"
@@ -19,6 +20,7 @@
 #include "reference/atmosphere_functions.h"
 #include "reference/cloud_march.h"
 #include "reference/lut_texture.h"
+#include "renderer_programs.h"
 #include "shader_parameters.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/gl/shader.h"
@@ -58,6 +60,48 @@ constexpr std::array<std::string_view, kPassCount> kPassFiles = {
 };
 
 GLuint Groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
+
+// The composite `pass` (kRenderPass...), with or without the clouds laid over it.
+gl::Program Composite(Pass pass, bool clouds) {
+    const auto define = [](std::string_view name, bool value) {
+        return "#define " + std::string(name) + (value ? " 1\n" : " 0\n");
+    };
+    const std::string defines =
+        define("ZENITH_RAY_MARCH", pass == kRenderRayMarchPass ||
+                                       pass == kRenderRayMarchDepthPass) +
+        define("ZENITH_SCENE_DEPTH", pass == kRenderDepthPass ||
+                                         pass == kRenderRayMarchDepthPass ||
+                                         pass == kDiskDepthPass) +
+        define("ZENITH_DISKS", pass == kDiskPass || pass == kDiskDepthPass) +
+        define("ZENITH_CLOUDS", clouds);
+    return gl::FullscreenProgram(kPassFiles[pass], defines,
+                                 clouds ? CloudShaderParts() : std::span<const std::string_view>{});
+}
+
+std::array<gl::Program, kPassCount> BuildPrograms() {
+    return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
+            gl::ComputeProgram(kPassFiles[2]), gl::ComputeProgram(kPassFiles[3]),
+            gl::ComputeProgram(kPassFiles[4]),
+            // Six programs from one source: llvmpipe runs both sides of a branch under a mask,
+            // so a per-frame choice made in the shader cost every pixel the 32-step ray march
+            // (or the disks); chosen here it costs nothing.
+            Composite(kRenderPass, false), Composite(kRenderRayMarchPass, false),
+            Composite(kRenderDepthPass, false), Composite(kRenderRayMarchDepthPass, false),
+            Composite(kDiskPass, false), Composite(kDiskDepthPass, false)};
+}
+
+// The six composites again, laying the clouds over the sky and the disks.
+std::vector<gl::Program> BuildCloudComposites() {
+    std::vector<gl::Program> programs;
+    for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
+        programs.push_back(Composite(static_cast<Pass>(pass), true));
+    }
+    return programs;
+}
+
+// The binding point of each of AtmosphereRenderer's uniform buffers, in the order of `buffers`.
+constexpr std::array<GLuint, 4> kBufferBindings = {kAtmosphereBlockBinding, kLightBlockBinding,
+                                                   kSettingsBlockBinding, kFrameBlockBinding};
 
 // Adds each point source to the pixel its direction falls in, as luminance T E / (pixel solid
 // angle), so the image integrates to the source's illuminance seen through the atmosphere
@@ -166,6 +210,14 @@ struct CpuClouds {
 
 }  // namespace
 
+std::vector<gl::Program> BuildRendererPrograms() {
+    std::vector<gl::Program> programs;
+    for (gl::Program& p : BuildPrograms()) programs.push_back(std::move(p));
+    for (gl::Program& p : BuildCloudComposites()) programs.push_back(std::move(p));
+    for (gl::Program& p : CloudPasses::BuildPrograms()) programs.push_back(std::move(p));
+    return programs;
+}
+
 struct AtmosphereRenderer::Impl {
     Atmosphere atmosphere;
     LutSettings settings;
@@ -188,35 +240,6 @@ struct AtmosphereRenderer::Impl {
     clouds::Weather weather;              // as last set (also when clear)
     CloudSettings cloud_settings;
 
-    static std::array<gl::Program, kPassCount> BuildPrograms() {
-        return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
-                gl::ComputeProgram(kPassFiles[2]), gl::ComputeProgram(kPassFiles[3]),
-                gl::ComputeProgram(kPassFiles[4]),
-                // Six programs from one source: llvmpipe runs both sides of a branch under a
-                // mask, so a per-frame choice made in the shader cost every pixel the 32-step
-                // ray march (or the disks); chosen here it costs nothing.
-                Composite(kRenderPass, false), Composite(kRenderRayMarchPass, false),
-                Composite(kRenderDepthPass, false), Composite(kRenderRayMarchDepthPass, false),
-                Composite(kDiskPass, false), Composite(kDiskDepthPass, false)};
-    }
-
-    static gl::Program Composite(Pass pass, bool clouds) {
-        const auto define = [](std::string_view name, bool value) {
-            return "#define " + std::string(name) + (value ? " 1\n" : " 0\n");
-        };
-        const std::string defines =
-            define("ZENITH_RAY_MARCH", pass == kRenderRayMarchPass ||
-                                           pass == kRenderRayMarchDepthPass) +
-            define("ZENITH_SCENE_DEPTH", pass == kRenderDepthPass ||
-                                             pass == kRenderRayMarchDepthPass ||
-                                             pass == kDiskDepthPass) +
-            define("ZENITH_DISKS", pass == kDiskPass || pass == kDiskDepthPass) +
-            define("ZENITH_CLOUDS", clouds);
-        return gl::FullscreenProgram(kPassFiles[pass], defines,
-                                     clouds ? CloudShaderParts()
-                                            : std::span<const std::string_view>{});
-    }
-
     Impl(const Atmosphere& a, const LutSettings& s)
         : atmosphere(a), settings(s), programs(BuildPrograms()) {
         glCreateBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
@@ -228,8 +251,8 @@ struct AtmosphereRenderer::Impl {
                              GL_DYNAMIC_STORAGE_BIT);
         glNamedBufferStorage(buffers[3], sizeof(gl::FrameUniforms), nullptr,
                              GL_DYNAMIC_STORAGE_BIT);
-        for (GLuint i = 0; i < buffers.size(); ++i) {
-            glBindBufferBase(GL_UNIFORM_BUFFER, i, buffers[i]);
+        for (std::size_t i = 0; i < buffers.size(); ++i) {
+            glBindBufferBase(GL_UNIFORM_BUFFER, kBufferBindings[i], buffers[i]);
         }
         transmittance = gl::CreateTexture2D(s.transmittance_size);
         multiple_scattering = gl::CreateTexture2D(s.multiple_scattering_size);
@@ -271,23 +294,23 @@ struct AtmosphereRenderer::Impl {
     }
 
     void BindInputs() const {
-        for (GLuint i = 0; i < buffers.size(); ++i) {
-            glBindBufferBase(GL_UNIFORM_BUFFER, i, buffers[i]);
+        for (std::size_t i = 0; i < buffers.size(); ++i) {
+            glBindBufferBase(GL_UNIFORM_BUFFER, kBufferBindings[i], buffers[i]);
         }
-        glBindTextureUnit(0, transmittance);
-        glBindTextureUnit(1, multiple_scattering);
-        glBindTextureUnit(2, irradiance);
-        glBindTextureUnit(3, sky_view);
-        glBindTextureUnit(4, stars != 0 ? stars : transmittance);  // unused when no stars
-        glBindTextureUnit(6, aerial_perspective);
+        glBindTextureUnit(kTransmittanceUnit, transmittance);
+        glBindTextureUnit(kMultipleScatteringUnit, multiple_scattering);
+        glBindTextureUnit(kIrradianceUnit, irradiance);
+        glBindTextureUnit(kSkyViewUnit, sky_view);
+        glBindTextureUnit(kStarUnit, stars != 0 ? stars : transmittance);  // unused when no stars
+        glBindTextureUnit(kAerialPerspectiveUnit, aerial_perspective);
     }
 
-    // Runs one compute pass writing `output` (bound as image unit 0), timed by a query.
+    // Runs one compute pass writing `output` (bound as kOutputImageUnit), timed by a query.
     void Dispatch(Pass pass, GLuint output, bool layered, GLuint gx, GLuint gy, GLuint gz) {
         BindInputs();
         programs[pass].Use();
-        glBindImageTexture(0, output, 0, layered ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
-                           GL_RGBA32F);
+        glBindImageTexture(kOutputImageUnit, output, 0, layered ? GL_TRUE : GL_FALSE, 0,
+                           GL_WRITE_ONLY, GL_RGBA32F);
         glBeginQuery(GL_TIME_ELAPSED, queries[pass]);
         glDispatchCompute(gx, gy, gz);
         glEndQuery(GL_TIME_ELAPSED);
@@ -306,7 +329,7 @@ struct AtmosphereRenderer::Impl {
               GLuint scene_depth = 0, std::optional<glm::ivec4> scissor = std::nullopt) {
         BindInputs();
         if (clouds) clouds->BindForComposite();
-        if (scene_depth != 0) glBindTextureUnit(5, scene_depth);
+        if (scene_depth != 0) glBindTextureUnit(kSceneDepthUnit, scene_depth);
         // Over the host's geometry the sky pass is premultiplied: (L, T) over geometry and
         // (sky, 0) elsewhere.
         const gl::Blend blend = pass == kDiskPass || pass == kDiskDepthPass ? gl::Blend::kAdd
@@ -370,12 +393,14 @@ struct AtmosphereRenderer::Impl {
     void BuildStaticLuts() {
         UploadAtmosphere();
         const LutSettings& s = settings;
-        Dispatch(kTransmittancePass, transmittance, false, Groups(s.transmittance_size.x, 8),
-                 Groups(s.transmittance_size.y, 8), 1);
+        Dispatch(kTransmittancePass, transmittance, false,
+                 Groups(s.transmittance_size.x, kLutGroupSize),
+                 Groups(s.transmittance_size.y, kLutGroupSize), 1);
         Dispatch(kMultipleScatteringPass, multiple_scattering, false,
-                 Groups(s.multiple_scattering_size.x, 8), Groups(s.multiple_scattering_size.y, 8),
-                 1);
-        Dispatch(kIrradiancePass, irradiance, false, Groups(s.irradiance_size.x, 64),
+                 Groups(s.multiple_scattering_size.x, kLutGroupSize),
+                 Groups(s.multiple_scattering_size.y, kLutGroupSize), 1);
+        Dispatch(kIrradiancePass, irradiance, false,
+                 Groups(s.irradiance_size.x, kIrradianceGroupSize),
                  static_cast<GLuint>(s.irradiance_size.y), 1);
         transmittance_cpu =
             ref::FromImage(gl::ReadTexture(transmittance, glm::ivec3(s.transmittance_size, 1)));
@@ -417,11 +442,7 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
             clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory);
         passes = std::make_unique<CloudPasses>(weather, settings, maps, tops, noise.noise);
         cpu = std::make_unique<CpuClouds>(maps, std::move(tops), noise.noise);
-        if (d.cloud_composites.empty()) {
-            for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
-                d.cloud_composites.push_back(Impl::Composite(static_cast<Pass>(pass), true));
-            }
-        }
+        if (d.cloud_composites.empty()) d.cloud_composites = BuildCloudComposites();
     }
     d.clouds = std::move(passes);
     d.cpu_clouds = std::move(cpu);
@@ -447,10 +468,11 @@ void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lig
     // With one light, each invocation marches a texel of the first half of the azimuths and
     // writes its mirror image too (sky_view.comp).
     const int columns = d.light_count == 1 ? (s.sky_view_size.x + 1) / 2 : s.sky_view_size.x;
-    d.Dispatch(kSkyViewPass, d.sky_view, false, Groups(columns, 8),
-               Groups(s.sky_view_size.y, 8), 1);
+    d.Dispatch(kSkyViewPass, d.sky_view, false, Groups(columns, kLutGroupSize),
+               Groups(s.sky_view_size.y, kLutGroupSize), 1);
     d.Dispatch(kAerialPerspectivePass, d.aerial_perspective, true,
-               Groups(s.aerial_perspective_size.x, 8), Groups(s.aerial_perspective_size.y, 8), 1);
+               Groups(s.aerial_perspective_size.x, kLutGroupSize),
+               Groups(s.aerial_perspective_size.y, kLutGroupSize), 1);
 }
 
 void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,

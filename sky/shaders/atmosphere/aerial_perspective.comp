@@ -1,6 +1,6 @@
 // One invocation per screen cell marches its column of froxels front to back.
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba32f) uniform writeonly image3D output_image;
+layout(local_size_x = kLutGroupSize, local_size_y = kLutGroupSize) in;
+layout(binding = kOutputImageUnit, rgba32f) uniform writeonly image3D output_image;
 
 void main() {
     ivec2 cell = ivec2(gl_GlobalInvocationID.xy);

@@ -456,7 +456,7 @@ struct Light {
 // transmittance over the upper hemisphere, and the clouds' own light is added as an isotropic
 // source: cloud_luminance, their mean luminance over that hemisphere (clouds/sky_shade.comp).
 struct LightSet {
-    Light light[2];
+    Light light[kMaxLights];
     int count;
     Number cloud_base;
     Number cloud_direct;

@@ -1,14 +1,15 @@
 // Uniform blocks and samplers of the atmosphere passes. Each block has one C++ mirror in
-// sky/src/gl/atmosphere_uniforms.h, checked with static_assert against std140.
-layout(std140, binding = 0) uniform AtmosphereBlock {
+// sky/src/gl/atmosphere_uniforms.h, checked with static_assert against std140 and by
+// tests/sky/gl_bindings_gl_test.cpp against the linked programs.
+layout(std140, binding = kAtmosphereBlockBinding) uniform AtmosphereBlock {
     AtmosphereParameters atmosphere;
 };
 
-layout(std140, binding = 1) uniform LightBlock {
+layout(std140, binding = kLightBlockBinding) uniform LightBlock {
     LightSet lights;
 };
 
-layout(std140, binding = 2) uniform SettingsBlock {
+layout(std140, binding = kSettingsBlockBinding) uniform SettingsBlock {
     ivec2 transmittance_size;
     ivec2 multiple_scattering_size;
     ivec2 irradiance_size;
@@ -24,7 +25,7 @@ layout(std140, binding = 2) uniform SettingsBlock {
     float aerial_perspective_range_km;
 };
 
-layout(std140, binding = 3) uniform FrameBlock {
+layout(std140, binding = kFrameBlockBinding) uniform FrameBlock {
     vec3 camera_km;  // planet-centred
     float tan_half_fov;
     vec4 world_from_view[3];  // columns right, up, backward (xyz)
@@ -51,13 +52,14 @@ layout(std140, binding = 3) uniform FrameBlock {
     int padding2;
 };
 
-layout(binding = 0) uniform sampler2D transmittance_texture;
-layout(binding = 1) uniform sampler2D multiple_scattering_texture;
-layout(binding = 2) uniform sampler2D irradiance_texture;
-layout(binding = 3) uniform sampler2D sky_view_texture;
-layout(binding = 4) uniform sampler2D star_texture;  // point sources as luminance, frame-sized
-layout(binding = 5) uniform sampler2D scene_depth_texture;  // the host's depth (0..1)
-layout(binding = 6) uniform sampler3D aerial_perspective_texture;
+// Units and bindings: bindings.glsl.
+layout(binding = kTransmittanceUnit) uniform sampler2D transmittance_texture;
+layout(binding = kMultipleScatteringUnit) uniform sampler2D multiple_scattering_texture;
+layout(binding = kIrradianceUnit) uniform sampler2D irradiance_texture;
+layout(binding = kSkyViewUnit) uniform sampler2D sky_view_texture;
+layout(binding = kStarUnit) uniform sampler2D star_texture;  // point sources, frame-sized
+layout(binding = kSceneDepthUnit) uniform sampler2D scene_depth_texture;  // the host's (0..1)
+layout(binding = kAerialPerspectiveUnit) uniform sampler3D aerial_perspective_texture;
 
 // World direction through the centre of pixel/cell `cell` of a grid of `grid` cells covering the
 // view (NDC y up, so row 0 is the bottom row, as in GL textures).

@@ -1,5 +1,5 @@
-layout(local_size_x = 64, local_size_y = 1) in;
-layout(binding = 0, rgba32f) uniform writeonly image2D output_image;
+layout(local_size_x = kIrradianceGroupSize, local_size_y = 1) in;
+layout(binding = kOutputImageUnit, rgba32f) uniform writeonly image2D output_image;
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

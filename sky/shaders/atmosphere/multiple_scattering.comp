@@ -1,5 +1,5 @@
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba32f) uniform writeonly image2D output_image;
+layout(local_size_x = kLutGroupSize, local_size_y = kLutGroupSize) in;
+layout(binding = kOutputImageUnit, rgba32f) uniform writeonly image2D output_image;
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

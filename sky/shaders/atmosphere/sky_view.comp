@@ -1,5 +1,5 @@
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba32f) uniform writeonly image2D output_image;
+layout(local_size_x = kLutGroupSize, local_size_y = kLutGroupSize) in;
+layout(binding = kOutputImageUnit, rgba32f) uniform writeonly image2D output_image;
 
 // With the Sun alone the sky is symmetric about the Sun's vertical plane: azimuth phi and
 // 2 pi - phi, texel columns x and width - 1 - x, see the same luminance. The host then dispatches

@@ -1,8 +1,9 @@
 // The cloud passes' uniform block and textures, after atmosphere/interface.glsl. One C++ mirror
-// in sky/src/gl/cloud_uniforms.h, checked with static_assert against std140.
-const int kCloudMaxLayers = 4;
+// in sky/src/gl/cloud_uniforms.h, checked with static_assert against std140 and by
+// tests/sky/gl_bindings_gl_test.cpp against the linked programs; units, bindings and
+// kCloudMaxLayers: bindings.glsl.
 
-layout(std140, binding = 4) uniform CloudBlock {
+layout(std140, binding = kCloudBlockBinding) uniform CloudBlock {
     CloudLayerParameters cloud_layers[kCloudMaxLayers];
     CloudScatteringParameters cloud_scattering;
     CloudMarchParameters cloud_march;
@@ -32,14 +33,17 @@ layout(std140, binding = 4) uniform CloudBlock {
     ivec4 cloud_ground_layer_order;  // the same from the ground (the sky shade's origin)
 };
 
-layout(binding = 7) uniform sampler3D shape_noise;
-layout(binding = 8) uniform sampler3D detail_noise;
-layout(binding = 9) uniform sampler2D weather_maps[kCloudMaxLayers];  // units 9-12
-layout(binding = 13) uniform sampler2D cloud_trace;        // rgb luminance, a transmittance
-layout(binding = 14) uniform sampler2D cloud_trace_depth;  // r: mean depth (km), -1 for none
-layout(binding = 15) uniform sampler2D cloud_history;
-layout(binding = 17) uniform sampler2D cloud_shadow_map;    // r: transmittance to the light
-layout(binding = 18) uniform sampler2D cloud_ground_shadow; // rgb: ground_shadow.frag, per cell
+layout(binding = kShapeNoiseUnit) uniform sampler3D shape_noise;
+layout(binding = kDetailNoiseUnit) uniform sampler3D detail_noise;
+layout(binding = kWeatherMapsUnit) uniform sampler2D weather_maps[kCloudMaxLayers];
+// cloud_trace: rgb luminance, a transmittance; cloud_trace_depth: r, mean depth (km), -1 for
+// none; cloud_shadow_map: r, transmittance to the light; cloud_ground_shadow: rgb,
+// ground_shadow.frag's values, one per trace cell.
+layout(binding = kCloudTraceUnit) uniform sampler2D cloud_trace;
+layout(binding = kCloudTraceDepthUnit) uniform sampler2D cloud_trace_depth;
+layout(binding = kCloudHistoryUnit) uniform sampler2D cloud_history;
+layout(binding = kCloudShadowMapUnit) uniform sampler2D cloud_shadow_map;
+layout(binding = kCloudGroundShadowUnit) uniform sampler2D cloud_ground_shadow;
 
 // The clouds' mean depth (km, -1 for none) at a full-resolution pixel: its trace cell's own, the
 // depth to reproject with and to test against a host's geometry (a bilinear one would mix clouds

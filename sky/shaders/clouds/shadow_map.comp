@@ -2,8 +2,8 @@
 // around the camera's ground point, the transmittance toward the main light (the Sun; the Moon
 // at night, MakeCloudLightSet) through every layer, marched with shadow_map_steps steps per layer
 // (density only).
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 0, rgba32f) uniform writeonly image2D shadow_map;
+layout(local_size_x = kShadowMapGroupSize, local_size_y = kShadowMapGroupSize) in;
+layout(binding = kOutputImageUnit, rgba32f) uniform writeonly image2D shadow_map;
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

@@ -5,11 +5,11 @@
 // for the later passes: the Sky-View and aerial-perspective LUTs, the composite's ray march and
 // the clouds' own aerial perspective. One invocation: some 16,000 texel reads.
 layout(local_size_x = 1) in;
-layout(std140, binding = 1) buffer LightStorage {
+layout(std140, binding = kLightStorageBinding) buffer LightStorage {
     LightSet shaded_lights;
 };
-layout(binding = 0, rgba32f) uniform readonly image2D shade_directions;
-layout(binding = 1, rgba32f) uniform readonly image2D shadow_map_image;
+layout(binding = kShadeDirectionsImageUnit, rgba32f) uniform readonly image2D shade_directions;
+layout(binding = kShadowMapImageUnit, rgba32f) uniform readonly image2D shadow_map_image;
 
 void main() {
     vec4 shade = vec4(0.0);

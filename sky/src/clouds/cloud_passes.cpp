@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "bindings.h"
 #include "clouds/cloud_parameters.h"
 #include "gl/atmosphere_uniforms.h"
 #include "gl/cloud_uniforms.h"
@@ -115,28 +116,63 @@ float VanDerCorput(unsigned long long n) {
     return static_cast<float>(result);
 }
 
+// The programs of CloudPasses, in the order of BuildPrograms().
+enum CloudProgram : std::size_t {
+    kTraceProgram,
+    kReconstructProgram,
+    kShadowMapProgram,
+    kShadeTraceProgram,
+    kShadeProgram,
+    kGroundShadowProgram,
+    kCloudProgramCount
+};
+
+gl::Program BuildCloudProgram(CloudProgram program) {
+    switch (program) {
+        case kTraceProgram: return gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts);
+        case kReconstructProgram:
+            return gl::FullscreenProgram("clouds/reconstruct.frag", {}, kCloudParts);
+        case kShadowMapProgram: return gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts);
+        case kShadeTraceProgram:
+            return gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts);
+        case kShadeProgram: return gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts);
+        case kGroundShadowProgram:
+            return gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts);
+        case kCloudProgramCount: break;
+    }
+    throw gl::GlError("no cloud program " + std::to_string(program));
+}
+
 }  // namespace
 
 std::span<const std::string_view> CloudShaderParts() { return kCloudParts; }
+
+std::vector<gl::Program> CloudPasses::BuildPrograms() {
+    std::vector<gl::Program> programs;
+    for (std::size_t i = 0; i < kCloudProgramCount; ++i) {
+        programs.push_back(BuildCloudProgram(static_cast<CloudProgram>(i)));
+    }
+    return programs;
+}
 
 CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& settings,
                          const std::vector<clouds::WeatherMap>& maps,
                          const std::vector<double>& tops, const clouds::CloudNoise& noise)
     : weather_(weather),
       settings_(settings),
-      trace_(gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts)),
-      reconstruct_(gl::FullscreenProgram("clouds/reconstruct.frag", {}, kCloudParts)),
-      shadow_pass_(gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts)),
-      shade_trace_pass_(gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts)),
-      shade_pass_(gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts)),
-      ground_shadow_(gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts)),
+      trace_(BuildCloudProgram(kTraceProgram)),
+      reconstruct_(BuildCloudProgram(kReconstructProgram)),
+      shadow_pass_(BuildCloudProgram(kShadowMapProgram)),
+      shade_trace_pass_(BuildCloudProgram(kShadeTraceProgram)),
+      shade_pass_(BuildCloudProgram(kShadeProgram)),
+      ground_shadow_(BuildCloudProgram(kGroundShadowProgram)),
       cloud_tops_(tops) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
-    if (weather_.layers.size() > static_cast<std::size_t>(gl::kCloudMaxLayers)) {
+    if (weather_.layers.size() > static_cast<std::size_t>(kCloudMaxLayers)) {
         throw ArgumentError("weather '" + weather_.name + "' has " +
                                     std::to_string(weather_.layers.size()) +
                                     " layers (the renderer draws at most " +
-                                    std::to_string(gl::kCloudMaxLayers) + ")");
+                                    std::to_string(kCloudMaxLayers) + ")");
     }
     for (const clouds::WeatherMap& map : maps) weather_maps_.push_back(UploadWeatherMap(map));
     shape_ = UploadNoise(noise.shape);
@@ -240,12 +276,13 @@ void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& cam
 }
 
 void CloudPasses::BindTextures() const {
-    glBindBufferBase(GL_UNIFORM_BUFFER, 4, uniforms_);
-    glBindTextureUnit(7, shape_);
-    glBindTextureUnit(8, detail_);
-    for (GLuint i = 0; i < static_cast<GLuint>(gl::kCloudMaxLayers); ++i) {
+    glBindBufferBase(GL_UNIFORM_BUFFER, kCloudBlockBinding, uniforms_);
+    glBindTextureUnit(kShapeNoiseUnit, shape_);
+    glBindTextureUnit(kDetailNoiseUnit, detail_);
+    for (GLuint i = 0; i < static_cast<GLuint>(kCloudMaxLayers); ++i) {
         // Units of absent layers get the first map, so every sampler is complete.
-        glBindTextureUnit(9 + i, i < weather_maps_.size() ? weather_maps_[i] : weather_maps_[0]);
+        glBindTextureUnit(kWeatherMapsUnit + i,
+                          i < weather_maps_.size() ? weather_maps_[i] : weather_maps_[0]);
     }
 }
 
@@ -264,9 +301,11 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera,
     const bool update = !history_valid || frame_index_ % settings_.shadow_map_interval == 0;
     if (update) {
         shadow_pass_.Use();
-        glBindImageTexture(0, shadow_map_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(kOutputImageUnit, shadow_map_, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RGBA32F);
         glBeginQuery(GL_TIME_ELAPSED, queries_[kShadowQuery]);
-        const GLuint groups = static_cast<GLuint>((settings_.shadow_map_size + 7) / 8);
+        const GLuint groups = static_cast<GLuint>(
+            (settings_.shadow_map_size + kShadowMapGroupSize - 1) / kShadowMapGroupSize);
         glDispatchCompute(groups, groups, 1);
         glEndQuery(GL_TIME_ELAPSED);
         query_used_[kShadowQuery] = true;
@@ -279,13 +318,15 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera,
                            gl::Blend::kReplace, 0);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         shade_pass_.Use();
-        glBindImageTexture(0, shade_directions_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindImageTexture(1, shadow_map_, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, shade_);
+        glBindImageTexture(kShadeDirectionsImageUnit, shade_directions_, 0, GL_FALSE, 0,
+                           GL_READ_ONLY, GL_RGBA32F);
+        glBindImageTexture(kShadowMapImageUnit, shadow_map_, 0, GL_FALSE, 0, GL_READ_ONLY,
+                           GL_RGBA32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightStorageBinding, shade_);
         glDispatchCompute(1, 1, 1);
         glEndQuery(GL_TIME_ELAPSED);
         query_used_[kShadeQuery] = true;
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightStorageBinding, 0);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     }
     // Every frame: the light block was just uploaded without the clouds; the last shade goes
@@ -308,15 +349,15 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
 
     const std::size_t previous = current_;
     current_ = 1 - current_;
-    glBindTextureUnit(13, trace_color_);
-    glBindTextureUnit(14, trace_depth_);
-    glBindTextureUnit(15, history_color_[previous]);
+    glBindTextureUnit(kCloudTraceUnit, trace_color_);
+    glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
+    glBindTextureUnit(kCloudHistoryUnit, history_color_[previous]);
     gl::DrawFullscreen(reconstruct_, vertex_array_,
                        history_framebuffer_[current_],
                        glm::ivec4(0, 0, size_), gl::Blend::kReplace, queries_[kReconstructQuery]);
     query_used_[kReconstructQuery] = true;
 
-    glBindTextureUnit(17, shadow_map_);
+    glBindTextureUnit(kCloudShadowMapUnit, shadow_map_);
     gl::DrawFullscreen(ground_shadow_, vertex_array_, ground_shadow_framebuffer_,
                        glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace,
                        queries_[kGroundShadowQuery]);
@@ -327,10 +368,10 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
 }
 
 void CloudPasses::BindForComposite() const {
-    glBindBufferBase(GL_UNIFORM_BUFFER, 4, uniforms_);
-    glBindTextureUnit(14, trace_depth_);
-    glBindTextureUnit(15, history_color_[current_]);
-    glBindTextureUnit(18, ground_shadow_color_);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kCloudBlockBinding, uniforms_);
+    glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
+    glBindTextureUnit(kCloudHistoryUnit, history_color_[current_]);
+    glBindTextureUnit(kCloudGroundShadowUnit, ground_shadow_color_);
 }
 
 LutImage CloudPasses::ReadClouds() const {

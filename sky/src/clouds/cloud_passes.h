@@ -2,8 +2,8 @@
 // textures, the reduced-resolution trace, the temporal reconstruction and the ground shadow map;
 // the atmosphere's sky pass composites them (atmosphere/render.frag with ZENITH_CLOUDS 1,
 // compiled with CloudShaderParts()). Owned by AtmosphereRenderer, which binds the atmosphere's
-// uniform blocks (0-3) and LUTs (units 0-6) before each call; the clouds use block 4 and units
-// 7-18.
+// uniform blocks and LUTs before each call; the clouds bind their own (bindings.glsl has them
+// all).
 #pragma once
 
 #include <glad/gl.h>
@@ -27,13 +27,17 @@ class CloudPasses {
   public:
     // For a validated weather with at least one layer, its maps (clouds::BuildWeatherMap of
     // each layer) and their clouds::CloudTopFraction, validated settings and the noise they
-    // give. Throws zenith::ArgumentError for more than 4 layers.
+    // give. Throws zenith::ArgumentError for more than kCloudMaxLayers.
     CloudPasses(const clouds::Weather& weather, const CloudSettings& settings,
                 const std::vector<clouds::WeatherMap>& maps, const std::vector<double>& tops,
                 const clouds::CloudNoise& noise);
     ~CloudPasses();
     CloudPasses(const CloudPasses&) = delete;
     CloudPasses& operator=(const CloudPasses&) = delete;
+
+    // The programs a CloudPasses builds (trace, reconstruct, shadow map, sky shade trace, sky
+    // shade, ground shadow), for tests of the GL contract (renderer_programs.h).
+    static std::vector<gl::Program> BuildPrograms();
 
     const clouds::Weather& weather() const { return weather_; }
     const CloudSettings& settings() const { return settings_; }

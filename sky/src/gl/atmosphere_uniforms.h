@@ -1,10 +1,13 @@
-// C++ mirrors of the uniform blocks in sky/shaders/atmosphere/interface.glsl (std140). Each
-// offset is checked at compile time, so a change on one side without the other does not build.
+// C++ mirrors of the uniform blocks in sky/shaders/atmosphere/interface.glsl (std140). Offsets
+// are checked here at compile time, and every member's against the linked programs by
+// tests/sky/gl_bindings_gl_test.cpp, so a change on one side without the other fails.
 #pragma once
 
 #include <cstddef>
 
 #include <glm/glm.hpp>
+
+#include "bindings.h"
 
 namespace zenith::sky::gl {
 
@@ -38,7 +41,7 @@ struct LightUniforms {  // functions.glsl: struct LightSet (array elements 16-by
         float padding0;
         glm::vec3 illuminance;
         float padding1;
-    } light[2];
+    } light[kMaxLights];
     int count;
     float cloud_base;
     float cloud_direct;

@@ -1,11 +1,12 @@
 // C++ mirror of the CloudBlock in sky/shaders/clouds/interface.glsl (std140), checked at
-// compile time like atmosphere_uniforms.h.
+// compile time and by tests/sky/gl_bindings_gl_test.cpp like atmosphere_uniforms.h.
 #pragma once
 
 #include <cstddef>
 
 #include <glm/glm.hpp>
 
+#include "bindings.h"
 #include "gl/atmosphere_uniforms.h"
 
 namespace zenith::sky::gl {
@@ -53,8 +54,6 @@ struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float padding1;
 };
 static_assert(sizeof(CloudMarchUniforms) == 48);
-
-inline constexpr int kCloudMaxLayers = 4;  // interface.glsl: kCloudMaxLayers
 
 struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     CloudLayerUniforms layers[kCloudMaxLayers];

@@ -10,8 +10,10 @@ namespace zenith::sky::gl {
 namespace {
 
 // Parts every atmosphere compute pass is made of, before the pass's own file.
-constexpr std::array<std::string_view, 3> kPrelude = {
-    "common/definitions.glsl", "atmosphere/functions.glsl", "atmosphere/interface.glsl"};
+// bindings.glsl comes first: the structs and blocks that follow are sized and bound by it.
+constexpr std::array<std::string_view, 4> kPrelude = {
+    "bindings.glsl", "common/definitions.glsl", "atmosphere/functions.glsl",
+    "atmosphere/interface.glsl"};
 
 }  // namespace
 

@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "bindings.h"  // kMaxLights sizes LightSet
+
 namespace zenith::sky::ref {
 
 using Number = double;

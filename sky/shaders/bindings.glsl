@@ -1,0 +1,54 @@
+// The GL contract between the renderer (C++) and the shaders: every texture unit, uniform and
+// storage block binding, image unit, work-group size and shared limit, written once. Both
+// compilers read this text: ComposeShader puts it first in every program (after #version), and
+// sky/src/bindings.h includes it as C++ in namespace zenith::sky (shared_math.h and the GL
+// mirrors include that). `const int` is a constant expression in both: GLSL 4.40+ accepts it in
+// layout qualifiers (binding, local_size_*), C++ as a constexpr-usable namespace constant.
+// No include guard: a guard would hide the constants from a second C++ namespace; bindings.h
+// has #pragma once instead.
+//
+// tests/sky/gl_bindings_gl_test.cpp checks every program the renderer builds against these
+// values and every block's layout against its C++ mirror.
+
+// Limits shared by the std140 blocks and the renderer.
+const int kMaxLights = 2;       // LightSet.light[]: the Sun and the Moon (H20's N_light = 2)
+const int kCloudMaxLayers = 4;  // CloudBlock.cloud_layers[], weather_maps[]
+
+// Uniform block binding points (std140).
+const int kAtmosphereBlockBinding = 0;  // atmosphere/interface.glsl: AtmosphereBlock
+const int kLightBlockBinding = 1;       // LightBlock
+const int kSettingsBlockBinding = 2;    // SettingsBlock
+const int kFrameBlockBinding = 3;       // FrameBlock
+const int kCloudBlockBinding = 4;       // clouds/interface.glsl: CloudBlock
+
+// Shader storage block binding points (std140).
+const int kLightStorageBinding = 1;  // clouds/sky_shade.comp: LightStorage (a LightSet)
+
+// Texture units of the samplers. The atmosphere's (0-6) are bound by AtmosphereRenderer before
+// every pass, the clouds' (7-18) by CloudPasses.
+const int kTransmittanceUnit = 0;
+const int kMultipleScatteringUnit = 1;
+const int kIrradianceUnit = 2;
+const int kSkyViewUnit = 3;
+const int kStarUnit = 4;
+const int kSceneDepthUnit = 5;
+const int kAerialPerspectiveUnit = 6;
+const int kShapeNoiseUnit = 7;
+const int kDetailNoiseUnit = 8;
+const int kWeatherMapsUnit = 9;  // the first of kCloudMaxLayers units (9-12)
+const int kCloudTraceUnit = 13;
+const int kCloudTraceDepthUnit = 14;
+const int kCloudHistoryUnit = 15;
+// Unit 16 is unused.
+const int kCloudShadowMapUnit = 17;
+const int kCloudGroundShadowUnit = 18;
+
+// Image units.
+const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
+const int kShadeDirectionsImageUnit = 0;  // clouds/sky_shade.comp reads
+const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
+
+// Compute work-group sizes, which the host's dispatches divide by.
+const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations
+const int kIrradianceGroupSize = 64;  // the irradiance LUT: 64 x 1
+const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
