@@ -11,6 +11,7 @@
 #include "zenith/base/json_text.h"
 #include "zenith/base/json_value.h"
 #include "zenith/base/error.h"
+#include "zenith/geo/planets.h"
 
 namespace zenith::sim {
 namespace {
@@ -66,7 +67,7 @@ geo::TimeOptions TimeOptionsFrom(const nlohmann::json& j) {
 nlohmann::json EphemerisRecord(const geo::SkyEphemeris& e) {
     const auto& sun = e.sun.topocentric.horizontal;
     const auto& moon = e.moon.topocentric.horizontal;
-    return {
+    nlohmann::json record = {
         {"sun_az_deg", Deg(sun.azimuth)},
         {"sun_el_deg", Deg(sun.elevation)},
         {"sun_dist_km", sun.distance / 1000.0},
@@ -79,6 +80,17 @@ nlohmann::json EphemerisRecord(const geo::SkyEphemeris& e) {
         {"moon_phase_angle_deg", Deg(e.moon_phase.phase_angle)},
         {"moon_bright_limb_deg", Deg(e.moon_phase.bright_limb_angle)},
     };
+    // Planets: <name>_az_deg, _el_deg, _dist_au, _mag, _illum_fraction ("venus_mag").
+    for (const geo::PlanetPosition& planet : e.planets) {
+        const std::string key(geo::PlanetName(planet.planet));
+        const auto& h = planet.topocentric.horizontal;
+        record[key + "_az_deg"] = Deg(h.azimuth);
+        record[key + "_el_deg"] = Deg(planet.elevation);
+        record[key + "_dist_au"] = planet.distance_au;
+        record[key + "_mag"] = planet.magnitude_v;
+        record[key + "_illum_fraction"] = planet.illuminated_fraction;
+    }
+    return record;
 }
 
 std::string EphemerisTable(const geo::SkyEphemeris& e, const geo::Observer& observer,
@@ -106,6 +118,18 @@ std::string EphemerisTable(const geo::SkyEphemeris& e, const geo::Observer& obse
                     "position angle {:.2f}° (from north), {:.2f}° from the zenith direction",
                     100.0 * p.illuminated_fraction, p.waxing ? "waxing" : "waning",
                     Deg(p.phase_angle), Deg(p.bright_limb_angle), Deg(p.bright_limb_from_zenith)));
+    if (!e.planets.empty()) {
+        line("");
+        line(fmt::format("  {:<8} {:>10} {:>10} {:>11} {:>6} {:>8} {:>9}", "planet", "azimuth °",
+                         "elev. °", "distance au", "V", "lit %", "diam. \""));
+        for (const geo::PlanetPosition& planet : e.planets) {
+            line(fmt::format("  {:<8} {:>10.4f} {:>10.4f} {:>11.6f} {:>6.2f} {:>8.1f} {:>9.2f}",
+                             geo::PlanetName(planet.planet),
+                             Deg(planet.topocentric.horizontal.azimuth), Deg(planet.elevation),
+                             planet.distance_au, planet.magnitude_v,
+                             100.0 * planet.illuminated_fraction, planet.angular_diameter_arcsec));
+        }
+    }
     if (max_stars > 0 && !e.stars.empty()) {
         line("");
         // Civil twilight ends at -6 deg: before that the eye sees at most the brightest planets.

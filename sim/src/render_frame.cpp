@@ -95,7 +95,7 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     }
     const geo::Ephemeris ephemeris(catalog ? &*catalog : nullptr);
     geo::EphemerisOptions ephemeris_options;
-    ephemeris_options.star_min_elevation = -0.1;  // below the horizon the planet hides them
+    ephemeris_options.star_min_elevation = sky::kMinStarElevation;
     const geo::SkyEphemeris sky_ephemeris = ephemeris.Compute(time, observer, ephemeris_options);
 
     const double aspect = static_cast<double>(request.size.x) / request.size.y;

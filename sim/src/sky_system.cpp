@@ -184,7 +184,7 @@ void SkySystem::ClearSceneDepth() { impl_->scene_depth.reset(); }
 void SkySystem::Update() {
     Impl& d = *impl_;
     geo::EphemerisOptions options;
-    options.star_min_elevation = -0.1;
+    options.star_min_elevation = sky::kMinStarElevation;
     d.ephemeris = d.calculator->Compute(d.time, d.observer, options);
     const geo::Attitude attitude = d.attitude.value_or(geo::Attitude{});
     d.state = sky::MakeSkyState(d.ephemeris, d.observer, d.atmosphere, attitude, d.vertical_fov,

@@ -7,6 +7,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "zenith/geo/moon.h"
+#include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
 #include "zenith/geo/sun.h"
 
@@ -26,6 +27,10 @@ glm::dvec3 StarColour(double b_minus_v) {
     const double index = std::round((b_minus_v + 0.40) / 0.01);
     return table[static_cast<std::size_t>(std::clamp(index, 0.0, 440.0))];
 }
+
+// Mean B-V colour indices of the planets (Allen's Astrophysical Quantities, 4th ed., Table 12.x
+// "Photometry of the planets"), in geo::Planet order; the Earth's entry is unused.
+constexpr std::array<double, 8> kPlanetBMinusV = {0.93, 0.82, 0.0, 1.36, 0.83, 1.04, 0.56, 0.41};
 
 }  // namespace
 
@@ -66,6 +71,15 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     for (const geo::StarState& star : e.stars) {
         s.stars.push_back({star.horizontal.direction_enu,
                            star.illuminance_lux * StarColour(star.star->b_minus_v)});
+    }
+    // Planets are drawn like stars (their disks, at most Venus's 66", are under a pixel at the
+    // usual fields of view): their magnitude as illuminance, their colour from B-V.
+    for (const geo::PlanetPosition& planet : e.planets) {
+        if (planet.topocentric.horizontal.elevation < kMinStarElevation) continue;
+        const double b_minus_v = kPlanetBMinusV[static_cast<std::size_t>(planet.planet)];
+        s.stars.push_back({planet.topocentric.horizontal.direction_enu,
+                           geo::IlluminanceFromMagnitude(planet.magnitude_v) *
+                               StarColour(b_minus_v)});
     }
     return s;
 }

@@ -78,5 +78,23 @@ TEST(EphemerisBatch, KeepsOrderAndReportsBadLinesInPlace) {
     EXPECT_NEAR(lines[6]["sun_az_deg"].get<double>(), 194.34024, 1.0 / 3600.0);
 }
 
+// Batch records and the table carry the planets (Venus at greatest brilliancy, 2020-04-28).
+TEST(EphemerisReport, PlanetsAreReported) {
+    std::istringstream in(
+        R"({"utc": "2020-04-28T19:45:00Z", "lat_deg": 45, "lon_deg": 7, "height_m": 500})"
+        "\n");
+    std::ostringstream out;
+    RunEphemerisBatch(in, out);
+    const nlohmann::json record = nlohmann::json::parse(out.str());
+    for (const char* planet : {"mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune"}) {
+        for (const char* field : {"_az_deg", "_el_deg", "_dist_au", "_mag", "_illum_fraction"}) {
+            EXPECT_TRUE(record.contains(std::string(planet) + field)) << planet << field;
+        }
+    }
+    EXPECT_NEAR(record["venus_mag"].get<double>(), -4.75, 0.05);
+    EXPECT_NEAR(record["venus_el_deg"].get<double>(), 23.3, 0.1);
+    EXPECT_NEAR(record["venus_illum_fraction"].get<double>(), 0.27, 0.01);
+}
+
 }  // namespace
 }  // namespace zenith::sim

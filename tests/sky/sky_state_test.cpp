@@ -1,10 +1,13 @@
 #include "zenith/sky/sky_state.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/constants.hpp>
 #include <gtest/gtest.h>
 
+#include "zenith/geo/planets.h"
+#include "zenith/geo/stars.h"
 #include "zenith/geo/sun.h"
 
 namespace zenith::sky {
@@ -44,6 +47,34 @@ TEST(SkyStateFromEphemeris, PlacesCameraAndScalesLights) {
     // atmosphere; the real Moon gives ~0.3 (opposition surge, not modelled).
     EXPECT_GT(state.lights.moon_illuminance.y, 0.15);
     EXPECT_LT(state.lights.moon_illuminance.y, 0.35);
+}
+
+// Venus at its greatest brilliancy (2020-04-28, V = -4.7), an hour after sunset over the Alps:
+// drawn as the brightest point of the sky, where the ephemeris puts it; planets under
+// kMinStarElevation are not drawn.
+TEST(SkyStateFromEphemeris, PlanetsAreDrawnLikeStars) {
+    const geo::Time t = geo::TimeFromIso8601("2020-04-28T19:45:00Z");
+    const geo::Observer observer(45.0, 7.0, 500.0);
+    const geo::SkyEphemeris e = geo::Ephemeris().Compute(t, observer);
+    ASSERT_EQ(e.planets.size(), geo::kSkyPlanets.size());
+    const SkyState state = MakeSkyState(e, observer, Atmosphere{}, {}, 1.0, 1.5);
+    std::size_t planets_up = 0;
+    for (const geo::PlanetPosition& p : e.planets) {
+        planets_up += p.topocentric.horizontal.elevation >= kMinStarElevation ? 1 : 0;
+    }
+    ASSERT_EQ(state.stars.size(), e.stars.size() + planets_up);
+    const geo::PlanetPosition& venus = e.planets[1];
+    ASSERT_EQ(venus.planet, geo::Planet::kVenus);
+    EXPECT_LT(venus.magnitude_v, -4.5);
+    EXPECT_GT(venus.topocentric.horizontal.elevation, 0.2);
+    const auto brightest = std::max_element(
+        state.stars.begin(), state.stars.end(),
+        [](const StarPoint& a, const StarPoint& b) { return a.illuminance.y < b.illuminance.y; });
+    ExpectNear(brightest->direction, venus.topocentric.horizontal.direction_enu, 1e-15);
+    // Its luminous part: the magnitude's illuminance, within its colour's green weight.
+    const double expected = geo::IlluminanceFromMagnitude(venus.magnitude_v);
+    EXPECT_NEAR(brightest->illuminance.y / expected, 1.0, 0.1);
+    EXPECT_GT(brightest->illuminance.y, 10.0 * geo::IlluminanceFromMagnitude(-1.46));  // Sirius
 }
 
 }  // namespace

@@ -41,7 +41,12 @@ double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double 
 glm::dmat3 WeatherFrame(const geo::Observer& observer, double origin_lat_deg,
                         double origin_lon_deg);
 
-// Builds the renderer's view of the sky from an ephemeris computed for `observer`. Sun and Moon
+// Stars and planets lower than this are not drawn (the planet hides them; refraction lifts them
+// by at most 0.6 deg).
+inline constexpr double kMinStarElevation = -0.1;  // rad
+
+// Builds the renderer's view of the sky from an ephemeris computed for `observer`; its stars
+// are the ephemeris's stars, then the planets above kMinStarElevation. Sun and Moon
 // illuminances scale with their distances (solar_illuminance is for 1 au).
 SkyState MakeSkyState(const geo::SkyEphemeris& ephemeris, const geo::Observer& observer,
                       const Atmosphere& atmosphere, const geo::Attitude& attitude,
