@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include <glad/gl.h>
 #include <glm/gtc/constants.hpp>
 
 #include "zenith/geo/earth_orientation.h"
@@ -264,6 +265,19 @@ void SkySystem::Update() {
     l.sun_elevation = d.ephemeris.sun.topocentric.horizontal.elevation;
     l.moon_illuminated_fraction = d.ephemeris.moon_phase.illuminated_fraction;
     l.phase = PhaseOf(l.sun_elevation);
+}
+
+void SkySystem::Prepare(const glm::ivec2& size) {
+    if (!(size.x > 0 && size.y > 0)) {
+        throw ArgumentError("Prepare: size " + std::to_string(size.x) + "x" +
+                            std::to_string(size.y) + " must be positive");
+    }
+    Update();
+    sky::RenderOptions options;
+    options.size = size;
+    impl_->Draw(options);
+    glFinish();  // the driver's compilation happens when the GPU runs the frame
+    impl_->cloud_view.reset_history = true;
 }
 
 void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {

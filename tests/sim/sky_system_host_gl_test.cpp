@@ -145,5 +145,23 @@ TEST_F(SkySystemHostTest, AMissingStarCatalogueIsNoticedOnce) {
     EXPECT_TRUE(sky_->ephemeris().stars.empty());
 }
 
+// Prepare is a warm-up, not a state change: the frame after it is the frame without it.
+TEST_F(SkySystemHostTest, PrepareLeavesTheNextFrameAsItWas) {
+    sky_->SetTime(geo::TimeFromIso8601("2024-06-21T17:00:00Z"));
+    sky_->SetAttitude(glm::radians(270.0), 0.05, 0.0);
+    sky_->Update();
+    const sky::LutImage before = sky_->RenderOffscreen({48, 32});
+    const glm::dvec3 sun_before = sky_->lighting().sun_illuminance;
+    sky_->Prepare({48, 32});
+    EXPECT_EQ(sky_->lighting().sun_illuminance, sun_before);
+    sky_->Update();
+    const sky::LutImage after = sky_->RenderOffscreen({48, 32});
+    ASSERT_EQ(after.texels.size(), before.texels.size());
+    for (std::size_t i = 0; i < before.texels.size(); ++i) {
+        ASSERT_EQ(after.texels[i], before.texels[i]) << "texel " << i;
+    }
+    EXPECT_THROW(sky_->Prepare({0, 32}), ArgumentError);
+}
+
 }  // namespace
 }  // namespace zenith::sim

@@ -164,6 +164,17 @@ public:
     void SetSceneDepth(unsigned depth_texture, double near_m, double far_m);
     void ClearSceneDepth();
 
+    // Warm-up before the first frame, so that it costs what any frame costs: the programs are
+    // compiled and the clouds' noise built (or read from its cache) at creation and SetWeather;
+    // what is left is what GL drivers do at first use, notably llvmpipe's JIT compilation of
+    // each shader at its first dispatch or draw, and the frame targets of a new size. Prepare
+    // runs Update and draws one frame of `size` (the host's viewport size) into the system's
+    // own target, then waits for the GPU. Time, place, view and lighting are as an Update would
+    // leave them; the clouds' history starts over (as after ResetCloudHistory), so the next
+    // frame is the one it would have been. A host with scene depth still compiles the depth
+    // variant at its first Render.
+    void Prepare(const glm::ivec2& size);
+
     // Ephemeris, lights, lighting and per-frame LUTs for the current state.
     void Update();
     // Draws the sky as linear luminance (cd/m^2) into the host's framebuffer object over
