@@ -122,10 +122,13 @@ TEST_F(SkySystemHostTest, LightingInEcef) {
     sky_->Update();
     const SkyLighting& l = sky_->lighting();
     const glm::dmat3 ecef_from_enu = geo::Observer(47.45, 8.56, 420.0).ecef_from_enu();
-    for (int c = 0; c < 3; ++c) EXPECT_LT(glm::length(l.ecef_from_enu[c] - ecef_from_enu[c]), 1e-15);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_LT(glm::length(l.ecef_from_enu[c] - ecef_from_enu[c]), 1e-15);
+    }
     EXPECT_LT(glm::length(l.sun_direction_ecef - ecef_from_enu * l.sun_direction_enu), 1e-15);
     EXPECT_LT(glm::length(l.moon_direction_ecef - ecef_from_enu * l.moon_direction_enu), 1e-15);
-    // The ECEF up at the aircraft is the ellipsoid normal: (cos lat cos lon, cos lat sin lon, sin lat).
+    // The ECEF up at the aircraft is the ellipsoid normal:
+    // (cos lat cos lon, cos lat sin lon, sin lat).
     const double lat = glm::radians(47.45), lon = glm::radians(8.56);
     EXPECT_LT(glm::length(l.ecef_from_enu[2] - glm::dvec3(std::cos(lat) * std::cos(lon),
                                                            std::cos(lat) * std::sin(lon),

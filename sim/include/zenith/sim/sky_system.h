@@ -142,10 +142,11 @@ public:
     // ellipsoid at the aircraft, the same reference as SetGeodetic's height_m: the planet is a
     // sphere (the atmosphere's bottom_radius) whose surface passes through the ellipsoid below
     // the aircraft. A host with heights above mean sea level adds the geoid undulation (-106 to
-    // +85 m, EGM96); cloud bases reported above ground (METAR) add the terrain's height. The weather map's origin stays where it is
-    // set (SetWeatherOrigin), else at the aircraft's position at the next Update; the wind
-    // carries the layers from the simulation time of that Update on. Throws
-    // sky::clouds::WeatherError or zenith::ArgumentError, keeping the previous weather.
+    // +85 m, EGM96); cloud bases reported above ground (METAR) add the terrain's height.
+    // The weather map's origin stays where it is set (SetWeatherOrigin), else at the aircraft's
+    // position at the next Update; the wind carries the layers from the simulation time of that
+    // Update on. Throws sky::clouds::WeatherError or zenith::ArgumentError, keeping the previous
+    // weather.
     void SetWeather(const sky::clouds::Weather& weather, const sky::CloudSettings& settings = {});
     void SetWeatherOrigin(double lat_deg, double lon_deg);
     // The simulation time at which the wind starts carrying the layers (default: the first
