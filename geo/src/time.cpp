@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace zenith::geo {
 namespace {
@@ -365,6 +366,193 @@ Time TimeFromUnixSeconds(double unix_s, const TimeOptions& options) {
                         " s is out of range (expected a time between the years -4712 and 9999)");
     }
     return TimeFromUtc(CivilFromUnixSeconds(unix_s), options);
+}
+
+}  // namespace zenith::geo
+
+namespace zenith::geo {
+namespace {
+
+// Knuth's TwoSum: a + b = s + err exactly, for any magnitudes.
+void TwoSum(double a, double b, double& s, double& err) {
+    s = a + b;
+    const double bb = s - a;
+    err = (a - (s - bb)) + (b - bb);
+}
+
+double RoundToMicroseconds(double seconds) { return std::round(seconds * 1e6) / 1e6; }
+
+// x rounded to whole seconds, milliseconds, 10 us and microseconds, then x itself: a Julian
+// date resolves only 40 us, so the instant (or offset) it was made from is taken to be the
+// coarsest of these that gives the same date, and instants the clock forms from it are then
+// the same bits as the calendar's.
+std::array<double, 5> Roundings(double x) {
+    return {std::round(x), std::round(x * 1e3) / 1e3, std::round(x * 1e5) / 1e5,
+            RoundToMicroseconds(x), x};
+}
+
+// The calendar reading of a POSIX day and a second of that day (0 <= second_of_day < 86400).
+CivilTime CivilFromDaySecond(std::int64_t day, double second_of_day) {
+    CivilTime t;
+    CivilFromDays(day, t.year, t.month, t.day);
+    t.hour = static_cast<int>(second_of_day / 3600.0);
+    if (t.hour * 3600.0 > second_of_day) --t.hour;  // a quotient rounded up to the next hour
+    double rest = second_of_day - t.hour * 3600.0;
+    t.minute = static_cast<int>(rest / 60.0);
+    if (t.minute * 60.0 > rest) --t.minute;
+    t.second = rest - t.minute * 60.0;
+    return t;
+}
+
+bool Identical(const Time& a, const Time& b) {
+    return a.jd_utc == b.jd_utc && a.jd_ut1 == b.jd_ut1 && a.jd_tt == b.jd_tt;
+}
+
+bool SameInstant(const Time& a, const Time& b) {
+    // Within the resolution of a Julian date in a double (40 us) and the microsecond rounding
+    // of the offsets.
+    constexpr double kTolerance = 1e-4 / kSecondsPerDay;
+    return std::abs(a.jd_utc - b.jd_utc) <= kTolerance &&
+           std::abs(a.jd_ut1 - b.jd_ut1) <= kTolerance &&
+           std::abs(a.jd_tt - b.jd_tt) <= kTolerance;
+}
+
+}  // namespace
+
+void SimulationClock::Set(const Time& start) {
+    if (!(std::isfinite(start.jd_utc) && std::isfinite(start.jd_ut1) &&
+          std::isfinite(start.jd_tt))) {
+        throw TimeError("SimulationClock: the start instant has a non-finite Julian date");
+    }
+    // jd_utc - kUnixEpochJd is exact (both near 2.4e6, the difference smaller).
+    const double days_since_1970 = start.jd_utc - kUnixEpochJd;
+    const double day = std::floor(days_since_1970);
+    const auto start_day = static_cast<std::int64_t>(day);
+    const double raw_second = (days_since_1970 - day) * kSecondsPerDay;
+    double second_of_day = raw_second;
+    for (const double candidate : Roundings(raw_second)) {
+        if (!(candidate >= 0.0 && candidate < kSecondsPerDay)) continue;
+        const CivilTime c = CivilFromDaySecond(start_day, candidate);
+        if (JulianDate(c.year, c.month, c.day, c.hour, c.minute, c.second) == start.jd_utc) {
+            second_of_day = candidate;
+            break;
+        }
+    }
+    const double ut1_minus_utc = (start.jd_ut1 - start.jd_utc) * kSecondsPerDay;
+    const double tt_minus_utc = (start.jd_tt - start.jd_utc) * kSecondsPerDay;
+    const double tt_minus_ut1 = (start.jd_tt - start.jd_ut1) * kSecondsPerDay;
+
+    // How UT1 and TT follow from UTC: the leap-second table (TT - UTC then steps with it), or
+    // else an explicit TT - UT1, with the coarsest rounding of the offsets that reproduces the
+    // start bit for bit; else the same within 0.1 ms; else constant offsets for a start
+    // TimeFromUtc cannot make.
+    const CivilTime civil = CivilFromDaySecond(start_day, second_of_day);
+    std::vector<TimeOptions> candidates;
+    for (const double dut1 : Roundings(ut1_minus_utc)) {
+        candidates.push_back(TimeOptions{dut1, std::nullopt});
+    }
+    for (const double dut1 : Roundings(ut1_minus_utc)) {
+        for (const double delta_t : Roundings(tt_minus_ut1)) {
+            candidates.push_back(TimeOptions{dut1, delta_t});
+        }
+    }
+    std::optional<TimeOptions> exact, close;
+    for (const TimeOptions& candidate : candidates) {
+        try {
+            const Time t = TimeFromUtc(civil, candidate);
+            if (Identical(t, start)) {
+                exact = candidate;
+                break;
+            }
+            if (!close && SameInstant(t, start)) close = candidate;
+        } catch (const TimeError&) {
+            // Out of TimeFromUtc's range (a year, |DUT1| > 1 s): constant offsets below.
+        }
+    }
+    start_ = start;
+    time_ = start;
+    start_day_ = start_day;
+    start_second_of_day_ = second_of_day;
+    from_table_ = exact || close;
+    options_ = exact ? *exact : close.value_or(TimeOptions{});
+    ut1_minus_utc_s_ = ut1_minus_utc;
+    tt_minus_utc_s_ = tt_minus_utc;
+    elapsed_hi_ = 0.0;
+    elapsed_lo_ = 0.0;
+    stale_ = false;
+}
+
+void SimulationClock::Advance(double seconds, double factor) {
+    const double step = seconds * factor;
+    if (!(std::isfinite(seconds) && std::isfinite(factor) && std::isfinite(step))) {
+        throw TimeError("SimulationClock::Advance: seconds = " + std::to_string(seconds) +
+                        " and factor = " + std::to_string(factor) + " must be finite");
+    }
+    const double step_error = std::fma(seconds, factor, -step);  // seconds * factor - step
+    double hi = 0.0, err = 0.0;
+    TwoSum(elapsed_hi_, step, hi, err);
+    elapsed_hi_ = hi;
+    elapsed_lo_ += err + step_error;
+    stale_ = true;
+}
+
+void SimulationClock::SetElapsed(double seconds) {
+    if (!std::isfinite(seconds)) {
+        throw TimeError("SimulationClock::SetElapsed: seconds = " + std::to_string(seconds) +
+                        " must be finite");
+    }
+    elapsed_hi_ = seconds;
+    elapsed_lo_ = 0.0;
+    stale_ = true;
+}
+
+const Time& SimulationClock::time() const {
+    if (stale_) Refresh();
+    return time_;
+}
+
+void SimulationClock::Refresh() const {
+    if (elapsed_hi_ == 0.0 && elapsed_lo_ == 0.0) {
+        time_ = start_;
+        stale_ = false;
+        return;
+    }
+    // Seconds since the start day's midnight as a + b, then whole days and the second of the
+    // day, rounded once.
+    double a = 0.0, b = 0.0;
+    TwoSum(start_second_of_day_, elapsed_hi_, a, b);
+    b += elapsed_lo_;
+    double days = std::floor((a + b) / kSecondsPerDay);
+    double second_of_day = (a - days * kSecondsPerDay) + b;  // the subtraction is exact
+    if (second_of_day < 0.0) {
+        second_of_day += kSecondsPerDay;
+        days -= 1.0;
+        if (second_of_day >= kSecondsPerDay) {  // -1e-12 s + 86400 s rounds to 86400 s
+            second_of_day = 0.0;
+            days += 1.0;
+        }
+    } else if (second_of_day >= kSecondsPerDay) {
+        second_of_day -= kSecondsPerDay;
+        days += 1.0;
+    }
+    if (!(std::abs(days) < 1e8)) {
+        throw TimeError("SimulationClock: " + std::to_string(elapsed_s()) +
+                        " s from the start is beyond the calendar's range");
+    }
+    const CivilTime civil =
+        CivilFromDaySecond(start_day_ + static_cast<std::int64_t>(days), second_of_day);
+    if (from_table_) {
+        time_ = TimeFromUtc(civil, options_);
+        stale_ = false;
+        return;
+    }
+    Time t;
+    t.jd_utc = JulianDate(civil.year, civil.month, civil.day, civil.hour, civil.minute,
+                          civil.second);
+    t.jd_ut1 = t.jd_utc + ut1_minus_utc_s_ / kSecondsPerDay;
+    t.jd_tt = t.jd_utc + tt_minus_utc_s_ / kSecondsPerDay;
+    time_ = t;
+    stale_ = false;
 }
 
 }  // namespace zenith::geo

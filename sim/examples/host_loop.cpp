@@ -2,24 +2,61 @@
 //
 // Physics runs at a fixed 100 Hz; the sky is updated and drawn at 25 Hz into the host's own
 // framebuffer object; the host reads back the lighting for its own shading. Time runs at 60x
-// (an hour of sky per simulated minute). Headless here; a real host would use
-// SkySystem::CreateInHostContext(glfwGetProcAddress) and its own window's framebuffer.
+// (an hour of sky per simulated minute). It is built the way a host is: the GL context is the
+// host's (here a headless one from zenith's installed context helper, standing in for a GLFW or
+// SDL window), zenith is attached with SkySystem::CreateInHostContext(getProcAddress), and the
+// host reaches GL through its own loader (here a handful of pointers through the same
+// getProcAddress; a real host has glad, GLEW or epoxy). It needs only the installed package and
+// the Khronos <GL/glcorearb.h> (Debian: libgl-dev / mesa-common-dev); the package test builds it.
 //
 //   zenith-example-host [simulated seconds = 60] [output.png]
-#include <glad/gl.h>
+#include <GL/glcorearb.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/constants.hpp>
 
 #include "zenith/sim/sky_system.h"
+#include "zenith/sky/gl/context.h"
 #include "zenith/sky/image_io.h"
 
 namespace {
+
+// The host's own GL entry points (its loader), for the context current on this thread.
+struct HostGl {
+    PFNGLCREATETEXTURESPROC CreateTextures;
+    PFNGLTEXTURESTORAGE2DPROC TextureStorage2D;
+    PFNGLCREATEFRAMEBUFFERSPROC CreateFramebuffers;
+    PFNGLNAMEDFRAMEBUFFERTEXTUREPROC NamedFramebufferTexture;
+    PFNGLGETTEXTUREIMAGEPROC GetTextureImage;
+    PFNGLDELETEFRAMEBUFFERSPROC DeleteFramebuffers;
+    PFNGLDELETETEXTURESPROC DeleteTextures;
+
+    explicit HostGl(zenith::sim::GetProcAddressFn get_proc_address)
+        : CreateTextures(Load<PFNGLCREATETEXTURESPROC>(get_proc_address, "glCreateTextures")),
+          TextureStorage2D(Load<PFNGLTEXTURESTORAGE2DPROC>(get_proc_address, "glTextureStorage2D")),
+          CreateFramebuffers(
+              Load<PFNGLCREATEFRAMEBUFFERSPROC>(get_proc_address, "glCreateFramebuffers")),
+          NamedFramebufferTexture(Load<PFNGLNAMEDFRAMEBUFFERTEXTUREPROC>(
+              get_proc_address, "glNamedFramebufferTexture")),
+          GetTextureImage(Load<PFNGLGETTEXTUREIMAGEPROC>(get_proc_address, "glGetTextureImage")),
+          DeleteFramebuffers(
+              Load<PFNGLDELETEFRAMEBUFFERSPROC>(get_proc_address, "glDeleteFramebuffers")),
+          DeleteTextures(Load<PFNGLDELETETEXTURESPROC>(get_proc_address, "glDeleteTextures")) {}
+
+    template <class Fn>
+    static Fn Load(zenith::sim::GetProcAddressFn get_proc_address, const char* name) {
+        const zenith::sky::gl::GlProc proc = get_proc_address(name);
+        if (proc == nullptr) throw std::runtime_error(std::string("no GL function ") + name);
+        return reinterpret_cast<Fn>(proc);
+    }
+};
 
 // The host's aircraft: a level turn at 10 km around a point near Zurich, 230 m/s.
 struct Aircraft {
@@ -44,16 +81,19 @@ int main(int argc, char** argv) try {
     constexpr double kTimeWarp = 60.0;
     constexpr int kWidth = 640, kHeight = 360;
 
-    auto sky = sim::SkySystem::CreateHeadless();
+    // The host's context, current on this thread (a window's, in a real host), and its loader.
+    const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
+    const HostGl gl(context->get_proc_address());
+    auto sky = sim::SkySystem::CreateInHostContext(context->get_proc_address());
     sky->SetTime(geo::TimeFromIso8601("2024-06-21T18:30:00Z"));  // the sun sets during the run
     sky->SetProjection(glm::radians(60.0), double(kWidth) / kHeight);
 
     // The host's render target (its own FBO; the sky is drawn as linear luminance, cd/m^2).
     GLuint colour = 0, framebuffer = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &colour);
-    glTextureStorage2D(colour, 1, GL_RGBA32F, kWidth, kHeight);
-    glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &colour);
+    gl.TextureStorage2D(colour, 1, GL_RGBA32F, kWidth, kHeight);
+    gl.CreateFramebuffers(1, &framebuffer);
+    gl.NamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
 
     Aircraft aircraft;
     double physics_time = 0.0, next_frame = 0.0, next_report = 0.0;
@@ -85,7 +125,7 @@ int main(int argc, char** argv) try {
     // The last frame, exposed for viewing.
     sky::Image image(kWidth, kHeight);
     std::vector<glm::vec4> pixels(static_cast<std::size_t>(kWidth) * kHeight);
-    glGetTextureImage(colour, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
+    gl.GetTextureImage(colour, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
                       pixels.data());
     for (int y = 0; y < kHeight; ++y) {
         for (int x = 0; x < kWidth; ++x) {
@@ -94,8 +134,8 @@ int main(int argc, char** argv) try {
     }
     sky::WriteImage(out, image, {});
     std::printf("%d frames; last frame in %s\n", frames, out);
-    glDeleteFramebuffers(1, &framebuffer);
-    glDeleteTextures(1, &colour);
+    gl.DeleteFramebuffers(1, &framebuffer);
+    gl.DeleteTextures(1, &colour);
     return 0;
 } catch (const std::exception& e) {
     std::fprintf(stderr, "zenith-example-host: %s\n", e.what());

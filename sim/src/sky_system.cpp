@@ -1,11 +1,14 @@
 #include "zenith/sim/sky_system.h"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
+#include <glad/gl.h>
 #include <glm/gtc/constants.hpp>
 
 #include "zenith/geo/earth_orientation.h"
+#include "zenith/geo/frames.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/lighting.h"
@@ -46,7 +49,8 @@ struct SkySystem::Impl {
     std::unique_ptr<sky::AtmosphereRenderer> renderer;
     sky::LutImage ground_irradiance;
 
-    geo::Time time = geo::TimeNow();
+    geo::SimulationClock clock{geo::TimeNow()};
+    std::vector<std::string> notices;
     geo::Observer observer{0.0, 0.0, 0.0};
     std::optional<geo::Attitude> attitude = geo::Attitude{};
     glm::dmat3 world_from_view{1.0};
@@ -75,12 +79,22 @@ struct SkySystem::Impl {
         cloud_view.reset_history = false;
     }
 
+    void Notify(std::string message) {
+        if (settings.on_notice) {
+            settings.on_notice(message);
+        } else {
+            std::fprintf(stderr, "zenith: %s\n", message.c_str());
+        }
+        notices.push_back(std::move(message));
+    }
+
     Impl(const SkySystemSettings& s, std::unique_ptr<sky::gl::HeadlessContext> c)
         : context(std::move(c)), settings(s), atmosphere(sky::LoadAtmosphere(s.preset)) {
         try {
-            catalog = geo::StarCatalog::Load(s.star_magnitude_limit);
-        } catch (const geo::CatalogError&) {
-            // Without kstars-data the sky has no stars; everything else works.
+            catalog = geo::StarCatalog::Load(s.star_magnitude_limit, s.star_directory);
+        } catch (const geo::CatalogError& e) {
+            // Everything else works without stars; the host hears why they are missing.
+            Notify(std::string("no stars: ") + e.what());
         }
         calculator.emplace(catalog ? &*catalog : nullptr, s.star_refresh_s);
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
@@ -107,20 +121,36 @@ std::unique_ptr<SkySystem> SkySystem::CreateInHostContext(GetProcAddressFn get_p
     return std::unique_ptr<SkySystem>(new SkySystem(std::make_unique<Impl>(settings, nullptr)));
 }
 
-void SkySystem::SetTime(const geo::Time& utc) { impl_->time = utc; }
+void SkySystem::SetTime(const geo::Time& utc) { impl_->clock.Set(utc); }
 
-void SkySystem::AdvanceTime(double seconds, double warp) {
-    if (!(std::isfinite(seconds) && std::isfinite(warp))) {
-        throw ArgumentError("AdvanceTime: seconds and warp must be finite");
+void SkySystem::SetTime(const geo::Time& epoch, double seconds_since_epoch) {
+    if (!std::isfinite(seconds_since_epoch)) {
+        throw ArgumentError("SetTime: seconds_since_epoch = " +
+                            std::to_string(seconds_since_epoch) + " must be finite");
     }
-    const double dt = seconds * warp / geo::kSecondsPerDay;
-    geo::Time& t = impl_->time;
-    t.jd_utc += dt;
-    t.jd_ut1 += dt;
-    t.jd_tt += dt;
+    geo::SimulationClock& clock = impl_->clock;
+    const geo::Time& start = clock.start();
+    // Set() works out the epoch's time scales; do it only when the epoch changes.
+    if (!(start.jd_utc == epoch.jd_utc && start.jd_ut1 == epoch.jd_ut1 &&
+          start.jd_tt == epoch.jd_tt)) {
+        clock.Set(epoch);
+    }
+    clock.SetElapsed(seconds_since_epoch);
 }
 
-const geo::Time& SkySystem::time() const { return impl_->time; }
+void SkySystem::SetUnixTime(double unix_s, const geo::TimeOptions& options) {
+    impl_->clock.Set(geo::TimeFromUnixSeconds(unix_s, options));
+}
+
+void SkySystem::AdvanceTime(double seconds, double warp) {
+    if (!(std::isfinite(seconds) && std::isfinite(warp) && std::isfinite(seconds * warp))) {
+        throw ArgumentError("AdvanceTime: seconds = " + std::to_string(seconds) +
+                            " and warp = " + std::to_string(warp) + " must be finite");
+    }
+    impl_->clock.Advance(seconds, warp);
+}
+
+const geo::Time& SkySystem::time() const { return impl_->clock.time(); }
 
 void SkySystem::SetGeodetic(double lat_deg, double lon_deg, double height_m) {
     impl_->observer = geo::Observer(lat_deg, lon_deg, height_m);
@@ -137,6 +167,10 @@ void SkySystem::SetAttitude(double heading, double pitch, double roll) {
 void SkySystem::SetViewFromEnu(const glm::dmat3& world_from_view) {
     impl_->attitude.reset();
     impl_->world_from_view = world_from_view;
+}
+
+glm::dmat3 SkySystem::enu_from_view() const {
+    return impl_->attitude ? geo::EnuFromView(*impl_->attitude) : impl_->world_from_view;
 }
 
 void SkySystem::SetProjection(double vertical_fov, double aspect) {
@@ -185,7 +219,8 @@ void SkySystem::Update() {
     Impl& d = *impl_;
     geo::EphemerisOptions options;
     options.star_min_elevation = sky::kMinStarElevation;
-    d.ephemeris = d.calculator->Compute(d.time, d.observer, options);
+    const geo::Time& time = d.clock.time();
+    d.ephemeris = d.calculator->Compute(time, d.observer, options);
     const geo::Attitude attitude = d.attitude.value_or(geo::Attitude{});
     d.state = sky::MakeSkyState(d.ephemeris, d.observer, d.atmosphere, attitude, d.vertical_fov,
                                 d.aspect);
@@ -193,14 +228,15 @@ void SkySystem::Update() {
     if (!d.weather_origin) {
         d.weather_origin = glm::dvec2(d.observer.lat_deg(), d.observer.lon_deg());
     }
-    if (!d.weather_epoch_jd) d.weather_epoch_jd = d.time.jd_utc;
-    d.cloud_view.time = (d.time.jd_utc - *d.weather_epoch_jd) * geo::kSecondsPerDay;
+    if (!d.weather_epoch_jd) d.weather_epoch_jd = time.jd_utc;
+    d.cloud_view.time = (time.jd_utc - *d.weather_epoch_jd) * geo::kSecondsPerDay;
     d.cloud_view.weather_from_world =
         sky::WeatherFrame(d.observer, d.weather_origin->x, d.weather_origin->y);
     d.renderer->UpdateFrameLuts(d.state.camera, d.state.lights, d.cloud_view);
 
     SkyLighting& l = d.lighting;
     const glm::dmat3 ecef_from_enu = d.observer.ecef_from_enu();
+    l.ecef_from_enu = ecef_from_enu;
     l.sun_direction_enu = d.state.lights.sun_direction;
     l.moon_direction_enu = d.state.lights.moon_direction;
     l.sun_direction_ecef = ecef_from_enu * l.sun_direction_enu;
@@ -231,6 +267,19 @@ void SkySystem::Update() {
     l.phase = PhaseOf(l.sun_elevation);
 }
 
+void SkySystem::Prepare(const glm::ivec2& size) {
+    if (!(size.x > 0 && size.y > 0)) {
+        throw ArgumentError("Prepare: size " + std::to_string(size.x) + "x" +
+                            std::to_string(size.y) + " must be positive");
+    }
+    Update();
+    sky::RenderOptions options;
+    options.size = size;
+    impl_->Draw(options);
+    glFinish();  // the driver's compilation happens when the GPU runs the frame
+    impl_->cloud_view.reset_history = true;
+}
+
 void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
     sky::RenderOptions options;
     options.size = {viewport.z, viewport.w};
@@ -248,6 +297,7 @@ sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
 }
 
 const SkyLighting& SkySystem::lighting() const { return impl_->lighting; }
+const std::vector<std::string>& SkySystem::notices() const { return impl_->notices; }
 const geo::SkyEphemeris& SkySystem::ephemeris() const { return impl_->ephemeris; }
 unsigned SkySystem::aerial_perspective_texture() const {
     return impl_->renderer->aerial_perspective_texture();

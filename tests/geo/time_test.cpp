@@ -172,5 +172,70 @@ TEST(Iso8601, FormatRoundTrips) {
     EXPECT_EQ(FormatIso8601(ParseIso8601("2016-12-31T23:59:60.5Z")), "2016-12-31T23:59:60.500Z");
 }
 
+// A JD double advanced by the step rounds to 2^-31 day (40 us) on every step, with the same
+// sign each time: +6.5 s per hour at 100 Hz. The clock must land on the end instant itself.
+TEST(SimulationClock, AnHourOfHundredthsLandsOnTheHour) {
+    SimulationClock clock(TimeFromIso8601("2024-06-21T19:00:00Z"));
+    for (int i = 0; i < 360000; ++i) clock.Advance(0.01);
+    EXPECT_NEAR(clock.elapsed_s(), 3600.0, 1e-6);
+    const Time end = TimeFromIso8601("2024-06-21T20:00:00Z");
+    // The same Time, bit for bit, as the end instant made from the calendar.
+    EXPECT_EQ(clock.time().jd_utc, end.jd_utc);
+    EXPECT_EQ(clock.time().jd_ut1, end.jd_ut1);
+    EXPECT_EQ(clock.time().jd_tt, end.jd_tt);
+}
+
+TEST(SimulationClock, ADayAtFrameRatesIsWithinAMillisecond) {
+    const Time start = TimeFromIso8601("2024-03-20T00:00:00Z");
+    const Time end = TimeFromIso8601("2024-03-21T00:00:00Z");
+    for (const int hz : {25, 60, 100, 144}) {
+        SimulationClock clock(start);
+        const double dt = 1.0 / hz;
+        for (int i = 0; i < 86400 * hz; ++i) clock.Advance(dt);
+        EXPECT_NEAR(clock.elapsed_s(), 86400.0, 1e-6) << hz << " Hz";
+        // Within a Julian date's resolution (40 us), far inside the 1 ms asked of a day.
+        EXPECT_NEAR((clock.time().jd_utc - end.jd_utc) * kSecondsPerDay, 0.0, 5e-5) << hz;
+        EXPECT_NEAR((clock.time().jd_tt - end.jd_tt) * kSecondsPerDay, 0.0, 5e-5) << hz;
+    }
+}
+
+TEST(SimulationClock, WarpBackwardsElapsedAndMidnight) {
+    const Time start = TimeFromIso8601("2024-06-21T23:59:59.5Z");
+    SimulationClock clock(start);
+    EXPECT_EQ(clock.time().jd_utc, start.jd_utc);  // exactly the start until it moves
+    for (int i = 0; i < 6000; ++i) clock.Advance(1.0 / 60.0, 60.0);  // 100 s at 60x: 6000 s
+    EXPECT_NEAR(clock.elapsed_s(), 6000.0, 1e-9);
+    EXPECT_EQ(clock.time().jd_utc, TimeFromIso8601("2024-06-22T01:39:59.5Z").jd_utc);
+    clock.Advance(-6000.5);
+    EXPECT_EQ(clock.time().jd_utc, TimeFromIso8601("2024-06-21T23:59:59Z").jd_utc);
+    clock.SetElapsed(0.5);  // a host's own clock: seconds since the start
+    EXPECT_EQ(clock.time().jd_utc, TimeFromIso8601("2024-06-22T00:00:00Z").jd_utc);
+    EXPECT_THROW(clock.Advance(NAN), TimeError);
+    EXPECT_THROW(clock.Advance(1.0, INFINITY), TimeError);
+    EXPECT_THROW(clock.SetElapsed(INFINITY), TimeError);
+}
+
+TEST(SimulationClock, KeepsTheStartsTimeScales) {
+    // An explicit DUT1 and TT - UT1 are carried along.
+    const TimeOptions options{.dut1_s = 0.25, .delta_t_s = 67.0};
+    SimulationClock clock(TimeFromIso8601("2003-10-17T12:30:30Z", options));
+    clock.Advance(3600.0);
+    const Time end = TimeFromIso8601("2003-10-17T13:30:30Z", options);
+    EXPECT_EQ(clock.time().jd_ut1, end.jd_ut1);
+    EXPECT_EQ(clock.time().jd_tt, end.jd_tt);
+    // From the table, TT - UTC steps by the leap second at the end of 2016 (POSIX seconds:
+    // the leap second itself is not counted).
+    SimulationClock leap(TimeFromIso8601("2016-12-31T23:59:00Z"));
+    leap.Advance(120.0);
+    EXPECT_NEAR((leap.time().jd_tt - leap.time().jd_utc) * kSecondsPerDay, 69.184, 1e-4);
+    // A Time made by hand (offsets TimeFromUtc cannot make) keeps its offsets.
+    Time odd = TimeFromIso8601("2024-01-01T00:00:00Z");
+    odd.jd_ut1 = odd.jd_utc + 5.0 / kSecondsPerDay;
+    SimulationClock hand(odd);
+    hand.Advance(10.0);
+    EXPECT_NEAR((hand.time().jd_ut1 - hand.time().jd_utc) * kSecondsPerDay, 5.0, 1e-4);
+    EXPECT_NEAR((hand.time().jd_utc - odd.jd_utc) * kSecondsPerDay, 10.0, 1e-4);
+}
+
 }  // namespace
 }  // namespace zenith::geo

@@ -8,6 +8,7 @@ if(NOT rc EQUAL 0)
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -G Ninja
                         -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
+                        -DZENITH_HOST_EXAMPLE=${WORK_DIR}/prefix/share/zenith/examples/host_loop.cpp
                         "-DCMAKE_CXX_FLAGS=${CONSUMER_FLAGS}"
                         "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_FLAGS}"
                 RESULT_VARIABLE rc)
@@ -21,4 +22,13 @@ endif()
 execute_process(COMMAND ${WORK_DIR}/build/consumer RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
     message(FATAL_ERROR "the consumer ran but failed (${rc})")
+endif()
+# The installed example runs a few frames in its own (headless) GL context. Not under the
+# sanitizers: llvmpipe's JIT code is not instrumented and libOSMesa leaks at exit.
+if(CONSUMER_FLAGS STREQUAL "")
+    execute_process(COMMAND ${WORK_DIR}/build/host_loop 0.5 ${WORK_DIR}/host_loop.png
+                    RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+        message(FATAL_ERROR "the installed host_loop example ran but failed (${rc})")
+    endif()
 endif()

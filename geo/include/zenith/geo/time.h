@@ -9,6 +9,7 @@
 // UTC; 1 s of UT1 error moves everything in the sky by up to 15 arcseconds).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -85,5 +86,55 @@ double UnixSecondsFromCivil(const CivilTime& utc);
 CivilTime CivilFromUnixSeconds(double unix_s);
 // Throws TimeError for a non-finite value or one outside the years -4712..9999.
 Time TimeFromUnixSeconds(double unix_s, const TimeOptions& options = {});
+
+// Simulation time that moves by many small steps without drifting.
+//
+// Adding a 10 ms step to a Julian date near 2.46e6 held in a double rounds it to the date's
+// resolution (2^-31 day, 40 us) on every step, and the rounding has the same sign step after step:
+// +6.5 s per hour at 100 Hz. The clock keeps instead the instant it was set to and the seconds
+// elapsed since then as an unevaluated sum (Knuth's TwoSum, so 360,000 steps of 0.01 s make
+// 3600 s to ~1e-12 s), and forms time() from them with a single rounding: the calendar instant
+// start + elapsed (days of 86400 s, as POSIX time: a leap second is not counted) converted as
+// TimeFromUtc converts it, with the start's DUT1 and, where the start came from the leap-second
+// table, that table (so TT - UTC steps at a leap second). A clock advanced to an instant and
+// TimeFromUtc of that instant are the same Time to the last bit.
+class SimulationClock {
+public:
+    SimulationClock() : SimulationClock(Time{}) {}
+    explicit SimulationClock(const Time& start) { Set(start); }
+
+    // time() is `start`, exactly, until the clock moves.
+    void Set(const Time& start);
+    // Moves on by seconds x factor (factor: a time warp); the product is taken exactly.
+    // Throws TimeError for a non-finite value.
+    void Advance(double seconds, double factor = 1.0);
+    // Sets the seconds since the start instant (a host's own simulation clock).
+    void SetElapsed(double seconds);
+
+    // Formed on demand (Advance is a few additions, so a 1 kHz physics loop pays nothing for
+    // the calendar). Throws TimeError once the clock has left TimeFromUtc's years.
+    const Time& time() const;
+    const Time& start() const { return start_; }
+    // Seconds since the start instant (hi + lo of the compensated sum, rounded once).
+    double elapsed_s() const { return elapsed_hi_ + elapsed_lo_; }
+
+private:
+    void Refresh() const;
+
+    Time start_;
+    mutable Time time_;
+    mutable bool stale_ = false;
+    // The start as POSIX days since 1970-01-01 and the second of that day (to the microsecond).
+    std::int64_t start_day_ = 0;
+    double start_second_of_day_ = 0.0;
+    // How the start's UT1 and TT follow from its UTC: TimeFromUtc with these options, or, when
+    // that cannot reproduce the start (a Time built by hand), constant offsets in seconds.
+    bool from_table_ = true;
+    TimeOptions options_;
+    double ut1_minus_utc_s_ = 0.0;
+    double tt_minus_utc_s_ = 0.0;
+    double elapsed_hi_ = 0.0;
+    double elapsed_lo_ = 0.0;
+};
 
 }  // namespace zenith::geo

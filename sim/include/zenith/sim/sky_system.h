@@ -1,9 +1,10 @@
 // zenith::sim::SkySystem — what a flight-simulator host creates once and drives every frame.
 //
 //   auto sky = SkySystem::CreateHeadless();                 // or CreateInHostContext(getProc)
-//   sky->SetTime(geo::TimeFromIso8601("2024-06-21T19:00:00Z"));
+//   sky->SetTime(geo::TimeFromIso8601("2024-06-21T19:00:00Z"));   // or SetUnixTime(s)
 //   every frame:
 //     sky->AdvanceTime(dt_s);                               // simulation time, optional warp
+//                                                           // (or SetTime(epoch, host_clock_s))
 //     sky->SetGeodetic(lat_deg, lon_deg, height_m);         // or SetEcef(position_m)
 //     sky->SetAttitude(heading, pitch, roll);               // radians; or SetViewFromEnu(m)
 //     sky->SetProjection(vertical_fov, aspect);
@@ -16,9 +17,12 @@
 // versions are given too.
 #pragma once
 
+#include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -36,10 +40,20 @@ namespace zenith::sim {
 // A getProcAddress callback: eglGetProcAddress, OSMesaGetProcAddress, glfwGetProcAddress, ...
 using GetProcAddressFn = sky::gl::GetProcAddressFn;
 
+// Receives each notice once, when it arises: something zenith cannot do (a missing star
+// catalogue, ...) and what it does instead. One line of text, no trailing newline.
+using NoticeFn = std::function<void(const std::string& message)>;
+
 struct SkySystemSettings {
     std::string preset = "earth";     // built-in preset name or JSON file
     sky::LutSettings lut_settings;    // LUT sizes and step counts
     double star_magnitude_limit = 6.5;
+    // Where the star catalogue is read from; empty: geo::DefaultStarDirectory() ($ZENITH_STAR_DIR
+    // or /usr/share/kstars). Without it the sky has no stars and a notice says why.
+    std::filesystem::path star_directory;
+    // Where notices go as they arise; null: to stderr, prefixed "zenith: ". Either way they are
+    // also kept in SkySystem::notices().
+    NoticeFn on_notice;
     // Stars' apparent places (0.9 ms for 8,400 stars) are computed at TT instants that are
     // whole multiples of this and the Earth's rotation applied exactly every frame
     // (geo::Ephemeris), so a frame depends only on its own time and place; the places drift
@@ -55,7 +69,10 @@ enum class DayPhase { kDay, kCivilTwilight, kNauticalTwilight, kAstronomicalTwil
 const char* ToString(DayPhase phase);
 
 // What the host's own shading needs, at the aircraft.
+// Directions are unit vectors toward the body, in the aircraft's ENU frame and in ECEF;
+// ecef_from_enu turns the host's own ENU vectors (a surface normal) into ECEF.
 struct SkyLighting {
+    glm::dmat3 ecef_from_enu{1.0};  // columns east, north, up (WGS84 normal) at the aircraft
     glm::dvec3 sun_direction_enu{0.0, 0.0, 1.0};
     glm::dvec3 sun_direction_ecef{0.0, 0.0, 1.0};
     glm::dvec3 moon_direction_enu{0.0, 0.0, 1.0};
@@ -89,23 +106,47 @@ public:
     SkySystem(const SkySystem&) = delete;
     SkySystem& operator=(const SkySystem&) = delete;
 
+    // Time is kept by a geo::SimulationClock: the instant set last and the seconds elapsed
+    // since, summed without rounding drift (an hour of 0.01 s steps is 3600 s to ~1e-12 s and
+    // the same Time as SetTime of the end instant). Days are 86400 s: a leap second is not
+    // counted, as in POSIX time and host simulation clocks.
     void SetTime(const geo::Time& utc);
-    // Moves simulation time on by seconds x warp (warp 60: a minute per second).
+    // A host that keeps its own simulation clock: the time is epoch + seconds_since_epoch,
+    // formed exactly each call (nothing accumulates here). Call it every frame with the same
+    // epoch and the host's clock reading.
+    void SetTime(const geo::Time& epoch, double seconds_since_epoch);
+    // POSIX seconds since 1970-01-01T00:00:00Z (a double resolves 0.24 us in 2024), with the
+    // time scales' options (DUT1, a TT - UT1 override). Throws geo::TimeError out of range.
+    void SetUnixTime(double unix_s, const geo::TimeOptions& options = {});
+    // Moves simulation time on by seconds x warp (warp 60: a minute per second); either may be
+    // negative. Throws ArgumentError when not finite.
     void AdvanceTime(double seconds, double warp = 1.0);
+    // Throws geo::TimeError when time has been moved outside the years 1000..3000.
     const geo::Time& time() const;
 
     // Throws geo::ObserverError for an impossible position.
     void SetGeodetic(double lat_deg, double lon_deg, double height_m);
     void SetEcef(const glm::dvec3& position_m);
+    // The camera looks along the aircraft's nose, its up the aircraft's up. Aerospace 3-2-1
+    // (intrinsic z-y'-x'') Euler angles of the body relative to local NED (geo::Attitude): rotate
+    // by heading about down (0 = true north, pi/2 = east), then by pitch about the new right wing
+    // (nose up positive), then by roll about the new nose (right wing down positive). Radians.
     void SetAttitude(double heading, double pitch, double roll);
     // Columns right, up, backward of the camera in the observer's ENU frame.
     void SetViewFromEnu(const glm::dmat3& world_from_view);
+    // The camera's columns right, up, backward in ENU, from SetAttitude or SetViewFromEnu.
+    glm::dmat3 enu_from_view() const;
     void SetProjection(double vertical_fov, double aspect);
     void SetAtmosphere(const sky::Atmosphere& atmosphere);
-    // Clouds from now on (an empty Weather: none). The weather map's origin stays where it is
-    // set (SetWeatherOrigin), else at the aircraft's position at the next Update; the wind
-    // carries the layers from the simulation time of that Update on. Throws
-    // sky::clouds::WeatherError or zenith::ArgumentError, keeping the previous weather.
+    // Clouds from now on (an empty Weather: none). Layer altitudes are metres above the WGS84
+    // ellipsoid at the aircraft, the same reference as SetGeodetic's height_m: the planet is a
+    // sphere (the atmosphere's bottom_radius) whose surface passes through the ellipsoid below
+    // the aircraft. A host with heights above mean sea level adds the geoid undulation (-106 to
+    // +85 m, EGM96); cloud bases reported above ground (METAR) add the terrain's height.
+    // The weather map's origin stays where it is set (SetWeatherOrigin), else at the aircraft's
+    // position at the next Update; the wind carries the layers from the simulation time of that
+    // Update on. Throws sky::clouds::WeatherError or zenith::ArgumentError, keeping the previous
+    // weather.
     void SetWeather(const sky::clouds::Weather& weather, const sky::CloudSettings& settings = {});
     void SetWeatherOrigin(double lat_deg, double lon_deg);
     // The simulation time at which the wind starts carrying the layers (default: the first
@@ -124,6 +165,17 @@ public:
     void SetSceneDepth(unsigned depth_texture, double near_m, double far_m);
     void ClearSceneDepth();
 
+    // Warm-up before the first frame, so that it costs what any frame costs: the programs are
+    // compiled and the clouds' noise built (or read from its cache) at creation and SetWeather;
+    // what is left is what GL drivers do at first use, notably llvmpipe's JIT compilation of
+    // each shader at its first dispatch or draw, and the frame targets of a new size. Prepare
+    // runs Update and draws one frame of `size` (the host's viewport size) into the system's
+    // own target, then waits for the GPU. Time, place, view and lighting are as an Update would
+    // leave them; the clouds' history starts over (as after ResetCloudHistory), so the next
+    // frame is the one it would have been. A host with scene depth still compiles the depth
+    // variant at its first Render.
+    void Prepare(const glm::ivec2& size);
+
     // Ephemeris, lights, lighting and per-frame LUTs for the current state.
     void Update();
     // Draws the sky as linear luminance (cd/m^2) into the host's framebuffer object over
@@ -133,6 +185,8 @@ public:
     sky::LutImage RenderOffscreen(const glm::ivec2& size);
 
     const SkyLighting& lighting() const;
+    // Every notice so far, oldest first (also given to SkySystemSettings::on_notice).
+    const std::vector<std::string>& notices() const;
     const geo::SkyEphemeris& ephemeris() const;
     // GL names, for sampling on the host's side: the aerial-perspective froxel volume (rgb
     // in-scattered luminance, a mean transmittance) and the transmittance LUT.
