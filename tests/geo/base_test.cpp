@@ -6,7 +6,9 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <vector>
 
+#include "zenith/base/csv_line.h"
 #include "zenith/base/atomic_file.h"
 #include "zenith/base/error.h"
 #include "zenith/base/units.h"
@@ -92,6 +94,21 @@ TEST_F(AtomicFileTest, FailureNamesThePathAndLeavesNothing) {
         EXPECT_THAT(e.what(), HasSubstr("No such file"));
     }
     EXPECT_FALSE(std::filesystem::exists(path.string() + ".partial"));
+}
+
+}  // namespace
+}  // namespace zenith
+
+namespace zenith {
+namespace {
+
+TEST(CsvLine, QuotesCommasAndUnclosedFields) {
+    std::vector<std::string> fields;
+    EXPECT_TRUE(SplitCsvLine("a,\"b,c\",\"say \"\"hi\"\"\",", fields));
+    EXPECT_EQ(fields, (std::vector<std::string>{"a", "b,c", "say \"hi\"", ""}));
+    EXPECT_TRUE(SplitCsvLine("", fields));
+    EXPECT_EQ(fields, (std::vector<std::string>{""}));
+    EXPECT_FALSE(SplitCsvLine("a,\"open", fields));
 }
 
 }  // namespace

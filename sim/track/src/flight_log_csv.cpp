@@ -17,6 +17,7 @@
 #include <numbers>
 
 #include "flight_log_internal.h"
+#include "zenith/base/csv_line.h"
 #include "zenith/base/error.h"
 
 namespace zenith::track {
@@ -34,34 +35,6 @@ struct AltitudeColumn {
     double metres_per_unit;
 };
 
-// Splits one CSV line; returns false when a quoted field is not closed.
-bool SplitCsv(std::string_view line, std::vector<std::string>& fields) {
-    fields.clear();
-    std::string field;
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-                field += '"';
-                ++i;
-            } else if (c == '"') {
-                quoted = false;
-            } else {
-                field += c;
-            }
-        } else if (c == '"') {
-            quoted = true;
-        } else if (c == ',') {
-            fields.push_back(std::move(field));
-            field.clear();
-        } else {
-            field += c;
-        }
-    }
-    fields.push_back(std::move(field));
-    return !quoted;
-}
 
 std::string Lower(std::string_view s) {
     std::string out(detail::Trim(s));
@@ -199,7 +172,7 @@ FlightLog ParseCsv(std::string_view text, std::string source, const ReadOptions&
             continue;
         }
 
-        if (!SplitCsv(line, fields)) {
+        if (!SplitCsvLine(line, fields)) {
             if (!have_header) {
                 throw FlightLogError(fmt::format("{}unclosed quote in the header",
                                                  detail::Where(out.source(), line_number)));

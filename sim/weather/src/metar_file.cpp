@@ -11,6 +11,7 @@
 #include <iterator>
 #include <system_error>
 
+#include "zenith/base/csv_line.h"
 #include "zenith/geo/time.h"
 
 namespace zenith::weather {
@@ -42,34 +43,6 @@ std::string Lower(std::string_view s) {
     return out;
 }
 
-// Splits one CSV line; false when a quoted field is not closed.
-bool SplitCsv(std::string_view line, std::vector<std::string>& fields) {
-    fields.clear();
-    std::string field;
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-                field += '"';
-                ++i;
-            } else if (c == '"') {
-                quoted = false;
-            } else {
-                field += c;
-            }
-        } else if (c == '"') {
-            quoted = true;
-        } else if (c == ',') {
-            fields.push_back(std::move(field));
-            field.clear();
-        } else {
-            field += c;
-        }
-    }
-    fields.push_back(std::move(field));
-    return !quoted;
-}
 
 std::string ReadWholeFile(const std::filesystem::path& path) {
     std::error_code ec;
@@ -227,7 +200,7 @@ MetarFile ParseMetarCsv(std::string_view text, std::string source) {
             out.Skip(line_number, reason);
             continue;
         }
-        if (!SplitCsv(line, fields)) {
+        if (!SplitCsvLine(line, fields)) {
             if (!have_header) {
                 throw MetarError(
                     AtLocation(out.source(), line_number, "unclosed quote in the header"));
