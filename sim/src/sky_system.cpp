@@ -12,6 +12,7 @@
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/lighting.h"
+#include "zenith/weather/cloud_weather.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sim {
@@ -44,7 +45,10 @@ const char* ToString(DayPhase phase) {
 struct SkySystem::Impl {
     std::unique_ptr<sky::gl::HeadlessContext> context;  // null inside a host's context
     SkySystemSettings settings;
-    sky::Atmosphere atmosphere;
+    sky::Atmosphere atmosphere;         // what is drawn: the preset, with the visibility applied
+    sky::Atmosphere preset_atmosphere;  // SetAtmosphere's, before the visibility
+    std::optional<double> visibility_m;
+    bool visibility_is_fog = false;
     std::optional<geo::StarCatalog> catalog;
     std::unique_ptr<sky::AtmosphereRenderer> renderer;
     sky::LutImage ground_irradiance;
@@ -89,7 +93,10 @@ struct SkySystem::Impl {
     }
 
     Impl(const SkySystemSettings& s, std::unique_ptr<sky::gl::HeadlessContext> c)
-        : context(std::move(c)), settings(s), atmosphere(sky::LoadAtmosphere(s.preset)) {
+        : context(std::move(c)),
+          settings(s),
+          atmosphere(sky::LoadAtmosphere(s.preset)),
+          preset_atmosphere(atmosphere) {
         try {
             catalog = geo::StarCatalog::Load(s.star_magnitude_limit, s.star_directory);
         } catch (const geo::CatalogError& e) {
@@ -182,9 +189,37 @@ void SkySystem::SetProjection(double vertical_fov, double aspect) {
 }
 
 void SkySystem::SetAtmosphere(const sky::Atmosphere& atmosphere) {
-    impl_->atmosphere = atmosphere;
-    impl_->renderer->SetAtmosphere(atmosphere);
-    impl_->ground_irradiance = impl_->renderer->ReadGroundIrradiance();
+    Impl& d = *impl_;
+    sky::Validate(atmosphere);
+    std::vector<std::string> notes;
+    const sky::Atmosphere drawn =
+        d.visibility_m ? weather::AtmosphereForVisibility(atmosphere, *d.visibility_m,
+                                                          d.visibility_is_fog, &notes)
+                       : atmosphere;
+    d.renderer->SetAtmosphere(drawn);
+    d.atmosphere = drawn;
+    d.preset_atmosphere = atmosphere;
+    d.ground_irradiance = d.renderer->ReadGroundIrradiance();
+    for (std::string& note : notes) d.Notify(std::move(note));
+}
+
+void SkySystem::SetVisibility(std::optional<double> visibility_m, bool fog) {
+    if (visibility_m) Require("visibility", *visibility_m, "m", Range::LeftOpen(0.0, 1e6));
+    impl_->visibility_m = visibility_m;
+    impl_->visibility_is_fog = fog;
+    SetAtmosphere(impl_->preset_atmosphere);
+}
+
+std::vector<std::string> SkySystem::SetMetar(const weather::Metar& report,
+                                             double station_elevation_m,
+                                             const sky::CloudSettings& settings) {
+    weather::MetarWeather mapped = weather::CloudWeatherFromMetar(report, station_elevation_m);
+    std::vector<std::string> notes;
+    for (const weather::MetarWarning& w : report.warnings) notes.push_back("METAR: " + w.ToString());
+    notes.insert(notes.end(), mapped.notes.begin(), mapped.notes.end());
+    SetWeather(mapped.clouds, settings);
+    SetVisibility(mapped.visibility_m, mapped.fog);
+    return notes;
 }
 
 void SkySystem::SetWeather(const sky::clouds::Weather& weather,

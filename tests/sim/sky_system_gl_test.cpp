@@ -15,6 +15,8 @@
 
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
+#include "zenith/weather/cloud_weather.h"
+#include "zenith/weather/metar.h"
 
 namespace zenith::sim {
 namespace {
@@ -224,6 +226,37 @@ TEST_F(SkySystemTest, AerialPerspectiveOverTheHostsGeometry) {
                 worst);
     // The froxel volume (32 x 32 cells, 1 km slices) against the exact march: 2 %.
     EXPECT_LT(worst, 0.02);
+}
+
+// A host's own weather engine sets the visibility; a METAR report sets layers and visibility.
+// The visibility stays when the preset changes, and clearing it gives the preset back exactly.
+TEST_F(SkySystemTest, VisibilityAndMetarReachTheAtmosphereAndTheClouds) {
+    const sky::Atmosphere preset = sky_->atmosphere();
+    sky_->SetVisibility(2000.0);
+    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 2000.0,
+                1e-12);
+    sky::Atmosphere thick = preset;
+    thick.rayleigh_scattering *= 2.0;
+    sky_->SetAtmosphere(thick);
+    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 2000.0,
+                1e-12);
+    EXPECT_EQ(sky_->atmosphere().rayleigh_scattering, thick.rayleigh_scattering);
+    sky_->SetAtmosphere(preset);
+    sky_->SetVisibility(std::nullopt);
+    EXPECT_EQ(sky_->atmosphere(), preset);
+    EXPECT_THROW(sky_->SetVisibility(-5.0), ArgumentError);
+
+    const std::vector<std::string> notes = sky_->SetMetar(
+        weather::DecodeMetar("EGLL 211200Z 24012KT 3000 BR BKN008 OVC020 12/11 Q1008 XYZZY"),
+        25.0);
+    EXPECT_TRUE(sky_->has_clouds());
+    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 3000.0,
+                1e-12);
+    ASSERT_FALSE(notes.empty());
+    EXPECT_NE(notes.front().find("XYZZY"), std::string::npos) << notes.front();
+    sky_->SetMetar(weather::DecodeMetar("EGLL 211200Z 24012KT CAVOK 18/09 Q1018"), 25.0);
+    EXPECT_FALSE(sky_->has_clouds());
+    EXPECT_EQ(sky_->atmosphere(), preset);  // 10 km or more: the preset's own air
 }
 
 }  // namespace

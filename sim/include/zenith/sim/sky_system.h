@@ -33,6 +33,7 @@
 #include "zenith/sky/gl/loader.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
+#include "zenith/weather/metar.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sim {
@@ -137,7 +138,18 @@ public:
     // The camera's columns right, up, backward in ENU, from SetAttitude or SetViewFromEnu.
     glm::dmat3 enu_from_view() const;
     void SetProjection(double vertical_fov, double aspect);
+    // The preset drawn from now on (with the visibility, if one is set, applied to it).
     void SetAtmosphere(const sky::Atmosphere& atmosphere);
+    // The meteorological optical range at the ground, metres: the preset's aerosols are scaled so
+    // that its extinction is ln 20 / V (weather::AtmosphereForVisibility); with `fog`, a fog layer
+    // carries the visibility below 1 km and the air gives 1 km. nullopt: the preset's own air.
+    // For hosts with their own weather engine. Throws zenith::ArgumentError unless 0 < V <= 1e6.
+    void SetVisibility(std::optional<double> visibility_m, bool fog = false);
+    // The weather of a METAR report (weather::DecodeMetar): its layers through SetWeather (bases
+    // above station_elevation_m, metres above the ellipsoid) and its visibility through
+    // SetVisibility. Returns the decoder's warnings and the choices the mapping made.
+    std::vector<std::string> SetMetar(const weather::Metar& report, double station_elevation_m,
+                                      const sky::CloudSettings& settings = {});
     // Clouds from now on (an empty Weather: none). Layer altitudes are metres above the WGS84
     // ellipsoid at the aircraft, the same reference as SetGeodetic's height_m: the planet is a
     // sphere (the atmosphere's bottom_radius) whose surface passes through the ellipsoid below
