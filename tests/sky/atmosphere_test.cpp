@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
+
+#include "zenith/sky/reference/path_tracer.h"
 
 namespace zenith::sky {
 namespace {
@@ -77,15 +80,16 @@ TEST(AtmospherePresets, BuiltInNamesResolveThroughThePresetDirectory) {
 }
 
 // Hillaire 2020, Table 1 (x 1e-6 /m) and Sec. 4: Rayleigh 8 km, Mie 1.2 km, g = 0.8; ozone tent
-// of width 30 km centred at 25 km (after Bruneton); radii as in Bruneton's reference.
-TEST(AtmospherePresets, EarthIsHillaire2020Table1Exactly) {
+// of width 30 km centred at 25 km (after Bruneton); radii as in Bruneton's reference. Mie
+// absorption is the demos' 0.444, not the table's misprinted 4.40 (data/presets/README.md).
+TEST(AtmospherePresets, EarthIsHillaire2020Table1WithTheDemosMieAbsorption) {
     const Atmosphere a = LoadSourcePreset("earth");
     EXPECT_EQ(a.bottom_radius, 6360e3);
     EXPECT_EQ(a.top_radius, 6460e3);
     EXPECT_EQ(a.rayleigh_scattering, glm::dvec3(5.802e-6, 13.558e-6, 33.1e-6));
     EXPECT_EQ(a.rayleigh_scale_height, 8000.0);
     EXPECT_EQ(a.mie_scattering, glm::dvec3(3.996e-6));
-    EXPECT_EQ(a.mie_absorption, glm::dvec3(4.40e-6));
+    EXPECT_EQ(a.mie_absorption, glm::dvec3(0.444e-6));
     EXPECT_EQ(a.mie_scale_height, 1200.0);
     EXPECT_EQ(a.mie_g, 0.8);
     EXPECT_EQ(a.absorption_extinction, glm::dvec3(0.650e-6, 1.881e-6, 0.085e-6));
@@ -113,6 +117,49 @@ TEST(AtmospherePresets, ThickIsHillaire2020Figure7) {
     rest.rayleigh_scattering = earth.rayleigh_scattering;
     rest.rayleigh_scale_height = earth.rayleigh_scale_height;
     EXPECT_EQ(rest, earth);
+}
+
+// The Earth preset's aerosols as physics rather than digits (issue 18): Hillaire's and Bruneton's
+// demos give them a single-scattering albedo of 0.9 (extinction 4.44e-6 /m = 3.996e-6 / 0.9);
+// Table 1's misprinted absorption 4.40e-6 made it 0.48. Measured through the independent path
+// tracer's medium and optical-depth quadrature, not the renderer's GLSL.
+TEST(AtmospherePresets, EarthAerosolAlbedoAndHorizontalOpticalDepth) {
+    const Atmosphere earth = LoadSourcePreset("earth");
+    Atmosphere aerosols = earth;  // aerosols alone: no Rayleigh, no ozone
+    aerosols.rayleigh_scattering = glm::dvec3(0.0);
+    aerosols.absorption_extinction = glm::dvec3(0.0);
+
+    // Single-scattering albedo at the ground, sigma_s / sigma_t of the aerosols, every channel.
+    const reference::Medium ground = reference::EvaluateMedium(aerosols, 0.0);
+    for (int i = 0; i < 3; ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_NEAR(ground.mie_scattering[i] / ground.extinction[i], 0.9, 0.001);
+        EXPECT_NEAR(earth.mie_scattering[i] / earth.MieExtinction()[i], 0.9, 0.001);
+    }
+
+    // Horizontal optical depth of 1 km of air at 1 km altitude. Closed form of the preset's
+    // profile at constant altitude: tau = sigma_t,M exp(-h / H_M) L. The straight ray below is
+    // tangent to the 1 km sphere at its middle, so it rises L^2 / (24 r) = 6.5 mm on average,
+    // which lowers the density by 5.5e-6 of itself: tolerance 2e-5, relative.
+    constexpr double kAltitude = 1000.0;  // m
+    constexpr double kLength = 1000.0;    // m
+    const double r = earth.bottom_radius + kAltitude;
+    const glm::dvec3 origin(-0.5 * kLength, r, 0.0);
+    const glm::dvec3 direction(1.0, 0.0, 0.0);
+    const glm::dvec3 tau = reference::OpticalDepth(aerosols, origin, direction, kLength);
+    const glm::dvec3 closed_form =
+        earth.MieExtinction() * std::exp(-kAltitude / earth.mie_scale_height) * kLength;
+    for (int i = 0; i < 3; ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_NEAR(tau[i], closed_form[i], 2e-5 * closed_form[i]);
+        // The published extinction, 4.44e-3 /km, through the same profile: 1.9296e-3.
+        EXPECT_NEAR(closed_form[i], 4.44e-3 * std::exp(-1.0 / 1.2), 1e-12);
+    }
+    // For the record: the whole air (Rayleigh, ozone) along the same ray, green channel.
+    const glm::dvec3 tau_air = reference::OpticalDepth(earth, origin, direction, kLength);
+    std::printf("aerosol albedo %.6f; horizontal 1 km at 1 km: aerosol tau %.6e (closed form "
+                "%.6e), all air tau (G) %.6e\n",
+                ground.mie_scattering.y / ground.extinction.y, tau.y, closed_form.y, tau_air.y);
 }
 
 TEST(AtmospherePresets, MarsIsPlausible) {
@@ -199,7 +246,7 @@ TEST(AtmosphereJson, InvalidFieldsNameFieldValueAndRange) {
         {"\"scale_height_km\": 8", "\"scale_height_km\": 0", "rayleigh.scale_height_km", "0 km"},
         {"\"scattering_per_km\": 0.003996", "\"scattering_per_km\": -0.003996",
          "mie.scattering_per_km[0]", "-0.003996 1/km"},
-        {"\"absorption_per_km\": 0.0044", "\"absorption_per_km\": -1e-9",
+        {"\"absorption_per_km\": 0.000444", "\"absorption_per_km\": -1e-9",
          "mie.absorption_per_km[0]", "-1e-09 1/km"},
         {"\"scale_height_km\": 1.2", "\"scale_height_km\": -1.2", "mie.scale_height_km", "-1.2 km"},
         {"\"g\": 0.8", "\"g\": 1", "mie.g", "1 (dimensionless)"},

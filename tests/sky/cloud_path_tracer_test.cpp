@@ -305,14 +305,15 @@ TEST(CloudPathTracerSlab, ResultsDependOnTheSeedOnlyNotOnThreads) {
 // --- Clouds in the atmosphere -----------------------------------------------------------------
 
 // Without clouds the scene is the atmosphere path tracer's (path_tracer.h): a second, separately
-// written transport over the same air must give the same sky.
+// written transport over the same air must give the same sky. 80 000 paths: with the aerosols'
+// albedo 0.9 (issue 18) 60 000 left the red channel's standard error at 3.04 % of its radiance.
 TEST(CloudPathTracerScene, ClearSkyAgreesWithTheAtmospherePathTracer) {
     CloudScene scene;
     scene.atmosphere = Atmosphere{};
     scene.sun_direction = glm::normalize(glm::dvec3(0.0, 0.6, 0.8));
     const glm::dvec3 camera(0.0, 0.0, scene.atmosphere.bottom_radius + 1000.0);
     const glm::dvec3 view = glm::normalize(glm::dvec3(0.3, -0.4, 0.5));
-    const CloudPathTraceResult ours = CloudPathTrace(scene, camera, view, Paths(60000, 61));
+    const CloudPathTraceResult ours = CloudPathTrace(scene, camera, view, Paths(80000, 61));
     PathTraceOptions options;
     options.samples = 4000;
     options.threads = 2;

@@ -34,7 +34,11 @@ struct Atmosphere {
     glm::dvec3 rayleigh_scattering{5.802e-6, 13.558e-6, 33.1e-6};  // 1/m (Hillaire 2020, Table 1)
     double rayleigh_scale_height = 8000.0;                         // m
     glm::dvec3 mie_scattering{3.996e-6};                           // 1/m
-    glm::dvec3 mie_absorption{4.40e-6};                            // 1/m
+    // 0.444e-6, not Hillaire 2020 Table 1's "4.40": the table's value is a slip. Hillaire's own
+    // demo (UnrealEngineSkyAtmosphere) and Bruneton's (precomputed_atmospheric_scattering) use
+    // extinction 4.44e-6 = scattering / 0.9, a single-scattering albedo of 0.9; 4.40e-6 would
+    // make it 0.48, dark haze. Sources: data/presets/README.md.
+    glm::dvec3 mie_absorption{0.444e-6};                           // 1/m
     double mie_scale_height = 1200.0;                              // m
     double mie_g = 0.8;  // Cornette-Shanks asymmetry, (-1, 1)
     glm::dvec3 absorption_extinction{0.650e-6, 1.881e-6, 0.085e-6};  // 1/m (ozone)
@@ -81,7 +85,7 @@ void Validate(const Atmosphere& atmosphere);
 //     "bottom_radius_km": 6360,
 //     "top_radius_km": 6460,
 //     "rayleigh": {"scattering_per_km": [0.005802, 0.013558, 0.0331], "scale_height_km": 8},
-//     "mie": {"scattering_per_km": 0.003996, "absorption_per_km": 0.0044,
+//     "mie": {"scattering_per_km": 0.003996, "absorption_per_km": 0.000444,
 //             "scale_height_km": 1.2, "g": 0.8},
 //     "absorption": {"extinction_per_km": [0.00065, 0.001881, 0.000085],
 //                    "center_km": 25, "width_km": 30},       optional, default: none
