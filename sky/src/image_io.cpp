@@ -17,10 +17,13 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <sstream>
 #include <system_error>
+#include <vector>
 
 #include "zenith/base/atomic_file.h"
 #include "zenith/base/error.h"
@@ -209,9 +212,8 @@ double AutoExposureEV100(const Image& image) {
         log_luminance.push_back(std::log2(std::max(y, kMinMeteredLuminance)));
     }
     if (log_luminance.empty()) {
-        throw ArgumentError("AutoExposureEV100: no pixel of the " +
-                                    std::to_string(image.width) + " x " +
-                                    std::to_string(image.height) + " image is finite");
+        throw ArgumentError("AutoExposureEV100: no pixel of the " + std::to_string(image.width) +
+                            " x " + std::to_string(image.height) + " image is finite");
     }
     // Metered like an engine's histogram: only the pixels between the 50th and 95th percentiles,
     // so black space filling half of an orbital view, or a sun disk, does not decide it.
@@ -239,12 +241,12 @@ Exposure ExposureFromString(std::string_view text) {
     const auto [ptr, error] = std::from_chars(text.data(), end, value);
     if (text.empty() || error != std::errc() || ptr != end) {
         throw ArgumentError("exposure", "exposure = '" + std::string(text) +
-                                    "' is neither 'auto' nor a number (EV100 in " + range.str() +
-                                    ")");
+                                            "' is neither 'auto' nor a number (EV100 in " +
+                                            range.str() + ")");
     }
     if (!(value >= kMinExposureEV100 && value <= kMaxExposureEV100)) {
-        throw ArgumentError("exposure", "exposure = " + std::string(text) + " EV100 is outside " +
-                                    range.str());
+        throw ArgumentError("exposure",
+                            "exposure = " + std::string(text) + " EV100 is outside " + range.str());
     }
     return Exposure{false, value};
 }
@@ -335,7 +337,70 @@ void WriteImage(const std::filesystem::path& path, const Image& image,
     }
 }
 
-Image ReadExr(const std::filesystem::path& path) {
+void CheckExrHeader(const std::filesystem::path& path, int max_side) {
+    // The header is a magic number, a version word and attributes (name\0 type\0 int32 size,
+    // value) up to an empty name (OpenEXR file layout, "Header"). Only the header is read:
+    // attributes are small, so 1 MiB is far more than any real header.
+    constexpr std::size_t kMaxHeaderBytes = 1u << 20;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) FailRead(path, "cannot open");
+    std::vector<unsigned char> bytes(kMaxHeaderBytes);
+    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
+    const auto u32 = [&](std::size_t at) {
+        return static_cast<std::uint32_t>(bytes[at]) |
+               static_cast<std::uint32_t>(bytes[at + 1]) << 8 |
+               static_cast<std::uint32_t>(bytes[at + 2]) << 16 |
+               static_cast<std::uint32_t>(bytes[at + 3]) << 24;
+    };
+    if (bytes.size() < 8 || u32(0) != 20000630u) FailRead(path, "not an OpenEXR file");
+    const std::uint32_t flags = u32(4);
+    if ((flags & 0xffu) != 2u || (flags & 0x1800u) != 0u) {
+        FailRead(path, "only single-part, non-deep OpenEXR version 2 files are read");
+    }
+    std::size_t at = 8;
+    const auto read_string = [&](const char* what) {
+        const auto end = std::find(bytes.begin() + static_cast<std::ptrdiff_t>(at), bytes.end(), 0);
+        if (end == bytes.end()) FailRead(path, std::string("header ends inside an ") + what);
+        std::string text(bytes.begin() + static_cast<std::ptrdiff_t>(at), end);
+        at = static_cast<std::size_t>(end - bytes.begin()) + 1;
+        return text;
+    };
+    bool has_window = false;
+    for (;;) {
+        const std::string name = read_string("attribute name");
+        if (name.empty()) break;
+        const std::string type = read_string("attribute type");
+        if (at + 4 > bytes.size()) FailRead(path, "header ends inside attribute " + name);
+        const std::uint32_t size = u32(at);
+        at += 4;
+        // OpenEXR allocates what the size declares before reading it: a 600-byte file could ask
+        // for gigabytes.
+        if (size > bytes.size() - at) {
+            FailRead(path, "attribute " + name + " declares " + std::to_string(size) +
+                               " bytes, more than the header holds");
+        }
+        if (name == "dataWindow") {
+            if (type != "box2i" || size != 16) FailRead(path, "dataWindow is not a box2i");
+            const auto coordinate = [&](std::size_t k) {
+                return static_cast<std::int64_t>(static_cast<std::int32_t>(u32(at + 4 * k)));
+            };
+            const std::int64_t width = coordinate(2) - coordinate(0) + 1;
+            const std::int64_t height = coordinate(3) - coordinate(1) + 1;
+            if (width < 1 || height < 1 || width > max_side || height > max_side) {
+                FailRead(path, "data window " + std::to_string(width) + "x" +
+                                   std::to_string(height) + " (expected 1 to " +
+                                   std::to_string(max_side) + " pixels a side)");
+            }
+            has_window = true;
+        }
+        at += size;
+    }
+    if (!has_window) FailRead(path, "header has no dataWindow");
+}
+
+Image ReadExr(const std::filesystem::path& path, int max_side) {
+    CheckExrHeader(path, max_side);
     try {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i window = file.header().dataWindow();

@@ -255,6 +255,29 @@ TEST(CloudWeatherImages, BadImagesAreRefusedWithFileProblemAndExpectation) {
     ExpectMentions(error("rgba.png"), {"rgba.png", "4 channels (RGBA)", "OpenEXR"});
     std::ofstream(dir / "fake.png") << "this is not a png";
     ExpectMentions(error("fake.png"), {"fake.png", "not a PNG"});
+    // Found by the fuzzer (tests/fuzz/corpus/weather_map/regression_huge_exr_attribute, its
+    // first byte picks the extension): a 611-byte EXR whose attribute declares gigabytes, which
+    // OpenEXR allocated (and zeroed) before reading; and a data window of 2^31 lines.
+    {
+        std::ifstream in(std::filesystem::path(ZENITH_SOURCE_DIR) /
+                             "tests/fuzz/corpus/weather_map/regression_huge_exr_attribute",
+                         std::ios::binary);
+        in.get();
+        std::ofstream(dir / "huge.exr", std::ios::binary) << in.rdbuf();
+    }
+    ExpectMentions(error("huge.exr"), {"huge.exr", "declares", "more than the header holds"});
+    Image small(16, 16, glm::vec4(0.5f));
+    WriteExr(dir / "tall.exr", small);
+    {
+        // Rewrite the dataWindow's yMax (box2i: xMin yMin xMax yMax) to 2^31 - 1.
+        std::ifstream in(dir / "tall.exr", std::ios::binary);
+        std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string name("dataWindow\0box2i\0", 17);
+        const std::size_t value = bytes.find(name) + name.size() + 4;
+        bytes.replace(value + 12, 4, std::string("\xff\xff\xff\x7f", 4));
+        std::ofstream(dir / "tall.exr", std::ios::binary | std::ios::trunc) << bytes;
+    }
+    ExpectMentions(error("tall.exr"), {"tall.exr", "data window 16x2147483648", "4096"});
     std::ofstream(dir / "map.tif") << "x";
     ExpectMentions(error("map.tif"), {"map.tif", "unknown extension '.tif'", ".png or .exr"});
 

@@ -526,6 +526,7 @@ WeatherMap ReadExrMap(const std::filesystem::path& path) {
     std::vector<std::string> channels;
     long long width = 0, height = 0;
     try {
+        CheckExrHeader(path, kMaxMapSize);
         Imf::InputFile file(path.c_str());
         const Imath::Box2i window = file.header().dataWindow();
         width = static_cast<long long>(window.max.x) - window.min.x + 1;
@@ -553,7 +554,7 @@ WeatherMap ReadExrMap(const std::filesystem::path& path) {
     CheckMapSize(path, width, height);
     Image image;
     try {
-        image = ReadExr(path);
+        image = ReadExr(path, kMaxMapSize);
     } catch (const ImageError& e) {
         throw WeatherError(std::string("weather map: ") + e.what());
     }

@@ -139,9 +139,17 @@ struct ImageWriteOptions {
 void WriteImage(const std::filesystem::path& path, const Image& image,
                 const ImageWriteOptions& options = {});
 
+// Checks an OpenEXR file's header before OpenEXR reads it, since OpenEXR allocates what a header
+// declares (an attribute of gigabytes in a 600-byte file, pixels for any data window). Throws
+// ImageError naming the path for: no OpenEXR magic; a multi-part or deep file; an attribute
+// that declares more bytes than the header holds; a header over 1 MiB; no dataWindow or one
+// wider or taller than max_side.
+void CheckExrHeader(const std::filesystem::path& path, int max_side);
+
 // Reads an OpenEXR file's R, G, B, A channels as float (half is widened exactly; a missing
-// channel reads as 0, missing A as 1). Throws ImageError naming the path and the cause.
-Image ReadExr(const std::filesystem::path& path);
+// channel reads as 0, missing A as 1) after CheckExrHeader. Throws ImageError naming the path
+// and the cause.
+Image ReadExr(const std::filesystem::path& path, int max_side = 16384);
 
 // Reads an 8-bit RGB PNG (any PNG is converted to 8-bit RGB by libpng; alpha is dropped against
 // black). Throws ImageError naming the path and the cause.
