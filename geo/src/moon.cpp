@@ -41,16 +41,14 @@ struct ElpMainTerm {
 };
 
 struct ElpPertTerm {
-    std::size_t power;               // the term is multiplied by t^power
-    double s, c;                     // arcsec or km: s sin(arg) + c cos(arg)
+    std::size_t power;              // the term is multiplied by t^power
+    double s, c;                    // arcsec or km: s sin(arg) + c cos(arg)
     std::array<std::int8_t, 13> i;  // D, F, l, l', Me, V, EMB, Ma, J, Sa, U, N, zeta
 };
 
 #include "elpmpp02_series.inc"
 
-double Dms(int deg, int min, double sec) {
-    return (deg + min / 60.0 + sec / 3600.0) * kPi / 180.0;
-}
+double Dms(int deg, int min, double sec) { return (deg + min / 60.0 + sec / 3600.0) * kPi / 180.0; }
 
 // Polynomial of degree 4 in t (Julian centuries TT from J2000), radians.
 using Poly = std::array<double, 5>;
@@ -111,22 +109,19 @@ ElpConstants MakeConstants() {
     }
 
     for (std::size_t n = 0; n < 5; ++n) {
-        k.delaunay[0][n] = w1[n] - eart[n];  // D
-        k.delaunay[1][n] = w1[n] - w3[n];    // F
-        k.delaunay[2][n] = w1[n] - w2[n];    // l
+        k.delaunay[0][n] = w1[n] - eart[n];    // D
+        k.delaunay[1][n] = w1[n] - w3[n];      // F
+        k.delaunay[2][n] = w1[n] - w2[n];      // l
         k.delaunay[3][n] = eart[n] - peri[n];  // l'
     }
     k.delaunay[0][0] += kPi;
 
     // VSOP2000 mean longitudes of the planets (the EMB one is eart(0:1) without correction).
-    const double p0[8][4] = {{252, 15, 3.216919, 538101628.66888},
-                             {181, 58, 44.758419, 210664136.45777},
-                             {100, 27, 59.138850, 129597742.29300},
-                             {355, 26, 3.642778, 68905077.65936},
-                             {34, 21, 5.379392, 10925660.57335},
-                             {50, 4, 38.902495, 4399609.33632},
-                             {314, 3, 4.354234, 1542482.57845},
-                             {304, 20, 56.808371, 786547.89700}};
+    const double p0[8][4] = {
+        {252, 15, 3.216919, 538101628.66888},  {181, 58, 44.758419, 210664136.45777},
+        {100, 27, 59.138850, 129597742.29300}, {355, 26, 3.642778, 68905077.65936},
+        {34, 21, 5.379392, 10925660.57335},    {50, 4, 38.902495, 4399609.33632},
+        {314, 3, 4.354234, 1542482.57845},     {304, 20, 56.808371, 786547.89700}};
     for (std::size_t p = 0; p < 8; ++p) {
         k.planets[p] = {Dms(static_cast<int>(p0[p][0]), static_cast<int>(p0[p][1]), p0[p][2]),
                         p0[p][3] / rad, 0.0, 0.0, 0.0};
@@ -185,8 +180,8 @@ double SumMain(const ElpMainTerm (&terms)[N], const std::array<double, N>& ampli
     double sum = 0.0;
     for (std::size_t n = N; n-- > 0;) {  // smallest terms last in the file; order is harmless
         const auto& i = terms[n].i;
-        const double y = i[0] * args.a[0] + i[1] * args.a[1] + i[2] * args.a[2] +
-                         i[3] * args.a[3] + phase;
+        const double y =
+            i[0] * args.a[0] + i[1] * args.a[1] + i[2] * args.a[2] + i[3] * args.a[3] + phase;
         sum += amplitude[n] * std::sin(y);
     }
     return sum;
@@ -206,15 +201,15 @@ double SumPert(const ElpPertTerm (&terms)[N], const Arguments& args, double t) {
 
 // General precession in longitude p_A, IAU 2006 (Capitaine et al. 2003, eq. 39), radians.
 double GeneralPrecessionInLongitude(double t) {
-    return (t * (5028.796195 + t * (1.1054348 + t * (0.00007964 + t * (-0.000023857 +
-                                                                        t * -0.0000000383))))) /
+    return (t * (5028.796195 +
+                 t * (1.1054348 + t * (0.00007964 + t * (-0.000023857 + t * -0.0000000383))))) /
            kArcsecPerRad;
 }
 
 glm::dvec3 FromSpherical(const EclipticPosition& p) {
     const double cb = std::cos(p.latitude);
-    return p.distance * glm::dvec3(cb * std::cos(p.longitude), cb * std::sin(p.longitude),
-                                   std::sin(p.latitude));
+    return p.distance *
+           glm::dvec3(cb * std::cos(p.longitude), cb * std::sin(p.longitude), std::sin(p.latitude));
 }
 
 // Geometric position at jd_tt followed back by the light time (fixed-point, 2 iterations reach
@@ -235,20 +230,20 @@ EclipticPosition MoonGeometricEcliptic(double jd_tt) {
     const double t = (jd_tt - kJ2000) / kDaysPerCentury;
     const Arguments args = MakeArguments(k, t);
 
-    const double v_arcsec = SumMain(kElpMainLongitude, k.main_v, args, 0.0) +
-                            SumPert(kElpPertLongitude, args, t);
-    const double u_arcsec = SumMain(kElpMainLatitude, k.main_u, args, 0.0) +
-                            SumPert(kElpPertLatitude, args, t);
+    const double v_arcsec =
+        SumMain(kElpMainLongitude, k.main_v, args, 0.0) + SumPert(kElpPertLongitude, args, t);
+    const double u_arcsec =
+        SumMain(kElpMainLatitude, k.main_u, args, 0.0) + SumPert(kElpPertLatitude, args, t);
     // Distance is a cosine series: the Fortran adds pi/2 to the argument.
-    const double r_km = SumMain(kElpMainDistance, k.main_r, args, 0.5 * kPi) +
-                        SumPert(kElpPertDistance, args, t);
+    const double r_km =
+        SumMain(kElpMainDistance, k.main_r, args, 0.5 * kPi) + SumPert(kElpPertDistance, args, t);
     // ELP's distance unit follows its own semi-major axis; DE405's is a405 (ELPMPP02.for EVALUATE).
     constexpr double kA405 = 384747.9613701725;
     constexpr double kAElp = 384747.980674318;
 
     EclipticPosition p;
-    p.longitude = WrapTwoPi(v_arcsec / kArcsecPerRad + Eval(k.w1, t) +
-                            GeneralPrecessionInLongitude(t));
+    p.longitude =
+        WrapTwoPi(v_arcsec / kArcsecPerRad + Eval(k.w1, t) + GeneralPrecessionInLongitude(t));
     p.latitude = u_arcsec / kArcsecPerRad;
     p.distance = r_km * (kA405 / kAElp) * 1000.0;
     return p;

@@ -1,10 +1,9 @@
 #include "zenith/geo/observer.h"
 
-#include <cmath>
-#include <string>
-
 #include <GeographicLib/Geocentric.hpp>
+#include <cmath>
 #include <glm/gtc/constants.hpp>
+#include <string>
 
 #include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
@@ -13,9 +12,9 @@ namespace zenith::geo {
 namespace {
 
 constexpr double kEarthRotationRate = 7.292115e-5;  // rad/s (WGS84 / IERS)
-constexpr double kSpeedOfLight = 299792458.0;        // m/s
-constexpr double kMinHeight = -12000.0;              // below the deepest ocean trench
-constexpr double kMaxHeight = 1.0e8;                 // 100,000 km: beyond that "observer" is moot
+constexpr double kSpeedOfLight = 299792458.0;       // m/s
+constexpr double kMinHeight = -12000.0;             // below the deepest ocean trench
+constexpr double kMaxHeight = 1.0e8;                // 100,000 km: beyond that "observer" is moot
 
 [[noreturn]] void Reject(const char* name, double value, const char* expected) {
     throw ObserverError(std::string(name) + " = " + std::to_string(value) +
@@ -48,10 +47,10 @@ Horizontal HorizontalFromEnu(const glm::dvec3& enu) {
 Observer::Observer(double lat_deg, double lon_deg, double height_m)
     : lat_deg_(lat_deg), lon_deg_(lon_deg), height_m_(height_m) {
     if (!(lat_deg >= -90.0 && lat_deg <= 90.0)) Reject("lat_deg", lat_deg, "-90..90 degrees");
-    if (!(lon_deg >= -540.0 && lon_deg <= 540.0)) Reject("lon_deg", lon_deg, "-180..180 degrees; up to +-540 is wrapped");
+    if (!(lon_deg >= -540.0 && lon_deg <= 540.0))
+        Reject("lon_deg", lon_deg, "-180..180 degrees; up to +-540 is wrapped");
     if (!(height_m >= kMinHeight && height_m <= kMaxHeight)) {
-        Reject("height_m", height_m,
-               "-12000..1e8 metres above the WGS84 ellipsoid");
+        Reject("height_m", height_m, "-12000..1e8 metres above the WGS84 ellipsoid");
     }
     // Longitude to [-180, 180): +180 and -180 are the same meridian.
     lon_deg_ = std::remainder(lon_deg, 360.0);
@@ -107,8 +106,8 @@ double RefractionBennett(double geometric_elevation, double pressure_hpa, double
     const double e0_deg = glm::degrees(geometric_elevation);
     // Reda & Andreas (2004) Eq. 42, degrees.
     const double refraction_deg = (pressure_hpa / 1010.0) * (283.0 / (273.0 + temperature_c)) *
-                                  1.02 / (60.0 * std::tan(glm::radians(e0_deg + 10.3 /
-                                                                               (e0_deg + 5.11))));
+                                  1.02 /
+                                  (60.0 * std::tan(glm::radians(e0_deg + 10.3 / (e0_deg + 5.11))));
     return glm::radians(refraction_deg);
 }
 

@@ -23,9 +23,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "vsop87.h"
 #include "zenith/geo/angles.h"
 #include "zenith/geo/earth_orientation.h"
-#include "vsop87.h"
 
 namespace zenith::geo {
 namespace {

@@ -69,8 +69,9 @@ void CivilFromDays(long long z, int& y, int& m, int& d) {
 std::string Quote(std::string_view s) { return "'" + std::string(s) + "'"; }
 
 [[noreturn]] void Fail(std::string_view text, const std::string& what) {
-    throw TimeError("utc " + Quote(text) + ": " + what +
-                    " (expected ISO 8601 like 2024-04-08T18:18:00.250Z or 2003-10-17T12:30:30-07:00)");
+    throw TimeError(
+        "utc " + Quote(text) + ": " + what +
+        " (expected ISO 8601 like 2024-04-08T18:18:00.250Z or 2003-10-17T12:30:30-07:00)");
 }
 
 // Reads exactly `digits` decimal digits at `pos`.
@@ -168,7 +169,8 @@ CivilTime ParseIso8601(std::string_view text) {
                 ++pos;
                 const int oh = ReadDigits(text, pos, 2, "the offset hours");
                 if (pos < text.size() && text[pos] == ':') ++pos;
-                const int om = pos < text.size() ? ReadDigits(text, pos, 2, "the offset minutes") : 0;
+                const int om =
+                    pos < text.size() ? ReadDigits(text, pos, 2, "the offset minutes") : 0;
                 if (oh > 14 || om > 59) Fail(text, "UTC offset beyond +-14:00");
                 offset_minutes = (c == '+' ? 1 : -1) * (oh * 60 + om);
             } else {
@@ -245,13 +247,17 @@ double DeltaTModel(double y) {
     }
     if (y < 500.0) {
         const double u = y / 100.0;
-        return 10583.6 + u * (-1014.41 + u * (33.78311 + u * (-5.952053 + u * (-0.1798452 +
-               u * (0.022174192 + u * 0.0090316521)))));
+        return 10583.6 +
+               u * (-1014.41 +
+                    u * (33.78311 + u * (-5.952053 +
+                                         u * (-0.1798452 + u * (0.022174192 + u * 0.0090316521)))));
     }
     if (y < 1600.0) {
         const double u = (y - 1000.0) / 100.0;
-        return 1574.2 + u * (-556.01 + u * (71.23472 + u * (0.319781 + u * (-0.8503463 +
-               u * (-0.005050998 + u * 0.0083572073)))));
+        return 1574.2 +
+               u * (-556.01 +
+                    u * (71.23472 + u * (0.319781 + u * (-0.8503463 +
+                                                         u * (-0.005050998 + u * 0.0083572073)))));
     }
     if (y < 1700.0) {
         t = y - 1600.0;
@@ -263,13 +269,17 @@ double DeltaTModel(double y) {
     }
     if (y < 1860.0) {
         t = y - 1800.0;
-        return 13.72 + t * (-0.332447 + t * (0.0068612 + t * (0.0041116 + t * (-0.00037436 +
-               t * (0.0000121272 + t * (-0.0000001699 + t * 0.000000000875))))));
+        return 13.72 +
+               t * (-0.332447 +
+                    t * (0.0068612 +
+                         t * (0.0041116 +
+                              t * (-0.00037436 + t * (0.0000121272 +
+                                                      t * (-0.0000001699 + t * 0.000000000875))))));
     }
     if (y < 1900.0) {
         t = y - 1860.0;
-        return 7.62 + t * (0.5737 + t * (-0.251754 + t * (0.01680668 + t * (-0.0004473624 +
-               t / 233174.0))));
+        return 7.62 + t * (0.5737 +
+                           t * (-0.251754 + t * (0.01680668 + t * (-0.0004473624 + t / 233174.0))));
     }
     if (y < 1920.0) {
         t = y - 1900.0;
@@ -289,8 +299,8 @@ double DeltaTModel(double y) {
     }
     if (y < 2005.0) {
         t = y - 2000.0;
-        return 63.86 + t * (0.3345 + t * (-0.060374 + t * (0.0017275 + t * (0.000651814 +
-               t * 0.00002373599))));
+        return 63.86 + t * (0.3345 + t * (-0.060374 +
+                                          t * (0.0017275 + t * (0.000651814 + t * 0.00002373599))));
     }
     if (y < 2050.0) {
         t = y - 2000.0;
@@ -413,8 +423,7 @@ bool SameInstant(const Time& a, const Time& b) {
     // of the offsets.
     constexpr double kTolerance = 1e-4 / kSecondsPerDay;
     return std::abs(a.jd_utc - b.jd_utc) <= kTolerance &&
-           std::abs(a.jd_ut1 - b.jd_ut1) <= kTolerance &&
-           std::abs(a.jd_tt - b.jd_tt) <= kTolerance;
+           std::abs(a.jd_ut1 - b.jd_ut1) <= kTolerance && std::abs(a.jd_tt - b.jd_tt) <= kTolerance;
 }
 
 }  // namespace
@@ -547,8 +556,8 @@ void SimulationClock::Refresh() const {
         return;
     }
     Time t;
-    t.jd_utc = JulianDate(civil.year, civil.month, civil.day, civil.hour, civil.minute,
-                          civil.second);
+    t.jd_utc =
+        JulianDate(civil.year, civil.month, civil.day, civil.hour, civil.minute, civil.second);
     t.jd_ut1 = t.jd_utc + ut1_minus_utc_s_ / kSecondsPerDay;
     t.jd_tt = t.jd_utc + tt_minus_utc_s_ / kSecondsPerDay;
     time_ = t;

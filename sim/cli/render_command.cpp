@@ -82,8 +82,9 @@ Command AddRenderCommand(CLI::App& app) {
         "--metar", args->metar,
         "the weather of a METAR report (\"EGLL 211750Z 24012KT 9999 FEW035 18/09 Q1018\"): its "
         "clouds over the observer and its visibility");
-    render->add_option("--metar-file", args->metar_file,
-                       "the first report of a METAR file (one per line, # comments)")
+    render
+        ->add_option("--metar-file", args->metar_file,
+                     "the first report of a METAR file (one per line, # comments)")
         ->excludes(metar);
     render->add_option("--station-elevation", frame.station_elevation_m,
                        "the METAR station's elevation above mean sea level, metres (default: "

@@ -16,11 +16,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <glm/gtc/constants.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/gtc/constants.hpp>
 
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/gl/context.h"
@@ -64,7 +63,8 @@ struct Aircraft {
     void Step(double dt) {
         constexpr double kSpeed = 230.0, kTurnRate = 0.01;  // m/s, rad/s
         heading += kTurnRate * dt;
-        const double north = kSpeed * dt * std::cos(heading), east = kSpeed * dt * std::sin(heading);
+        const double north = kSpeed * dt * std::cos(heading),
+                     east = kSpeed * dt * std::sin(heading);
         lat_deg += glm::degrees(north / 6371000.0);
         lon_deg += glm::degrees(east / (6371000.0 * std::cos(glm::radians(lat_deg))));
     }
@@ -126,7 +126,7 @@ int main(int argc, char** argv) try {
     sky::Image image(kWidth, kHeight);
     std::vector<glm::vec4> pixels(static_cast<std::size_t>(kWidth) * kHeight);
     gl.GetTextureImage(colour, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
-                      pixels.data());
+                       pixels.data());
     for (int y = 0; y < kHeight; ++y) {
         for (int x = 0; x < kWidth; ++x) {
             image.at(x, y) = pixels[static_cast<std::size_t>((kHeight - 1 - y) * kWidth + x)];

@@ -8,9 +8,9 @@
 #include <ostream>
 #include <string>
 
+#include "zenith/base/error.h"
 #include "zenith/base/json_text.h"
 #include "zenith/base/json_value.h"
-#include "zenith/base/error.h"
 #include "zenith/geo/planets.h"
 
 namespace zenith::sim {

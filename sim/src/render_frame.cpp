@@ -1,5 +1,7 @@
 #include "zenith/sim/render_frame.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -8,24 +10,22 @@
 #include <utility>
 #include <vector>
 
-#include <fmt/format.h>
-
+#include "zenith/base/error.h"
+#include "zenith/base/units.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/observer.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/weather/cloud_weather.h"
 #include "zenith/weather/metar.h"
-#include "zenith/base/error.h"
-#include "zenith/base/units.h"
 
 namespace zenith::sim {
 
 glm::ivec2 ParseFrameSize(const std::string& text) {
     int w = 0, h = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 ||
-        (x != 'x' && x != 'X') || !(w >= 1 && w <= kMaxFrameSide && h >= 1 && h <= kMaxFrameSide)) {
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+        !(w >= 1 && w <= kMaxFrameSide && h >= 1 && h <= kMaxFrameSide)) {
         throw ArgumentError("size", fmt::format("size = {} is not a frame size (expected WxH with "
                                                 "1 <= W, H <= {}, e.g. 1280x720)",
                                                 text, kMaxFrameSide));
@@ -71,8 +71,9 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
         if (request.station_elevation_m) {
             station = *request.station_elevation_m;
         } else {
-            notes.push_back("METAR heights are taken above the ground under the observer (0 m, "
-                            "zenith's ground); give the station's elevation to place them");
+            notes.push_back(
+                "METAR heights are taken above the ground under the observer (0 m, "
+                "zenith's ground); give the station's elevation to place them");
         }
         weather::MetarWeather from_report = weather::CloudWeatherFromMetar(metar, station);
         notes.insert(notes.end(), from_report.notes.begin(), from_report.notes.end());

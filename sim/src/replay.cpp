@@ -1,22 +1,22 @@
 #include "zenith/sim/replay.h"
 
-#include <chrono>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+#include <xxhash.h>
+
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <fcntl.h>
-#include <fmt/format.h>
-#include <glm/gtc/quaternion.hpp>
-#include <nlohmann/json.hpp>
-#include <unistd.h>
-#include <xxhash.h>
 
 #include "video_encoder.h"
 #include "zenith/base/atomic_file.h"
@@ -51,9 +51,13 @@ glm::dmat3 LookAlong(const glm::dvec3& forward, const glm::dvec3& up_hint) {
 
 // --- the folder's settings ------------------------------------------------------------------
 
-std::string Hex128(const XXH128_hash_t& h) { return fmt::format("{:016x}{:016x}", h.high64, h.low64); }
+std::string Hex128(const XXH128_hash_t& h) {
+    return fmt::format("{:016x}{:016x}", h.high64, h.low64);
+}
 
-std::string HashText(std::string_view text) { return Hex128(XXH3_128bits(text.data(), text.size())); }
+std::string HashText(std::string_view text) {
+    return Hex128(XXH3_128bits(text.data(), text.size()));
+}
 
 // XXH3-128 of a file's bytes, read in chunks.
 std::string HashFile(const fs::path& path) {
@@ -76,14 +80,12 @@ std::string HashFile(const fs::path& path) {
 std::string WeatherFingerprint(const sky::clouds::Weather& weather) {
     std::string text;
     for (const sky::clouds::CloudLayer& l : weather.layers) {
-        text += fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{};", l.base_altitude,
-                            l.top_altitude, l.coverage, l.cloud_type, l.precipitation,
-                            l.wind_speed, l.wind_from, l.map_period, static_cast<int>(l.map.kind),
-                            l.map.seed, l.map.cells_per_tile, l.map.variation, l.map.size,
-                            l.map.file.string(),
-                            l.map.kind == sky::clouds::WeatherMapSource::Kind::kFile
-                                ? HashFile(l.map.file)
-                                : "");
+        text += fmt::format(
+            "{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{};", l.base_altitude, l.top_altitude,
+            l.coverage, l.cloud_type, l.precipitation, l.wind_speed, l.wind_from, l.map_period,
+            static_cast<int>(l.map.kind), l.map.seed, l.map.cells_per_tile, l.map.variation,
+            l.map.size, l.map.file.string(),
+            l.map.kind == sky::clouds::WeatherMapSource::Kind::kFile ? HashFile(l.map.file) : "");
     }
     return HashText(text);
 }
@@ -103,9 +105,9 @@ Json Manifest(const ReplayRequest& r, const sky::Atmosphere& atmosphere,
     j["camera"] = r.camera == ReplayCamera::kCockpit ? "cockpit"
                   : r.camera == ReplayCamera::kChase ? "chase"
                                                      : "ground";
-    j["observer"] = r.observer ? fmt::format("{},{},{}", r.observer->x, r.observer->y,
-                                             r.observer->z)
-                               : "first fix";
+    j["observer"] = r.observer
+                        ? fmt::format("{},{},{}", r.observer->x, r.observer->y, r.observer->z)
+                        : "first fix";
     j["fov_deg"] = r.fov_deg;
     j["exposure"] = r.exposure.automatic ? "auto" : fmt::format("{}", r.exposure.ev100);
     j["format"] = r.write_png && r.write_exr ? "both" : r.write_png ? "png" : "exr";
@@ -113,8 +115,7 @@ Json Manifest(const ReplayRequest& r, const sky::Atmosphere& atmosphere,
     j["time_warp"] = r.time_warp;
     j["start_s"] = r.start_s ? Json(*r.start_s) : Json("start");
     j["end_s"] = r.end_s ? Json(*r.end_s) : Json("end");
-    j["preset"] = {{"name", r.preset},
-                   {"xxh3_128", HashText(sky::AtmosphereToJson(atmosphere))}};
+    j["preset"] = {{"name", r.preset}, {"xxh3_128", HashText(sky::AtmosphereToJson(atmosphere))}};
     j["weather"] = {{"name", r.weather}, {"xxh3_128", WeatherFingerprint(weather)}};
     j["cloud_passes"] = r.cloud_passes;
     return j;
@@ -153,8 +154,8 @@ void RemoveStaleCandidates(const fs::path& dir, const std::string& host) {
         const std::string rest = name.substr(prefix.size());
         char* end = nullptr;
         const long pid = std::strtol(rest.c_str(), &end, 10);
-        if (pid <= 0 || end == rest.c_str() || (std::string_view(end) != ".json" &&
-                                               std::string_view(end) != ".json.partial")) {
+        if (pid <= 0 || end == rest.c_str() ||
+            (std::string_view(end) != ".json" && std::string_view(end) != ".json.partial")) {
             continue;
         }
         if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
@@ -181,9 +182,10 @@ void ClaimFolder(const fs::path& dir, const Json& manifest) {
     try {
         folder = Json::parse(in);
     } catch (const Json::exception&) {
-        throw ReplayError(fmt::format("{}: not a replay settings file; the folder is not a "
-                                      "replay's (choose another output folder)",
-                                      path.string()));
+        throw ReplayError(
+            fmt::format("{}: not a replay settings file; the folder is not a "
+                        "replay's (choose another output folder)",
+                        path.string()));
     }
     if (folder != manifest) {
         throw ReplayError(fmt::format(
@@ -206,7 +208,8 @@ std::string FrameProblem(const fs::path& path, glm::ivec2 size) {
             const sky::Image image = sky::ReadExr(path);
             found = {image.width, image.height};
         }
-        if (found != size) return fmt::format("{}x{} instead of {}x{}", found.x, found.y, size.x, size.y);
+        if (found != size)
+            return fmt::format("{}x{} instead of {}x{}", found.x, found.y, size.x, size.y);
     } catch (const std::exception& e) {
         return e.what();
     }
@@ -219,8 +222,8 @@ ReplayCamera ParseReplayCamera(const std::string& text) {
     if (text == "cockpit") return ReplayCamera::kCockpit;
     if (text == "chase") return ReplayCamera::kChase;
     if (text == "ground") return ReplayCamera::kGround;
-    throw ArgumentError("camera", "camera = " + text +
-                                      " is not known (expected cockpit, chase or ground)");
+    throw ArgumentError("camera",
+                        "camera = " + text + " is not known (expected cockpit, chase or ground)");
 }
 
 Shard ParseShard(const std::string& text) {
@@ -318,8 +321,8 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
     const auto count = static_cast<std::size_t>(r.shard.count);
     const auto index = static_cast<std::size_t>(r.shard.index);
     ReplayProgress& progress = result.progress;
-    progress.total = result.frames_in_flight / count +
-                     (index < result.frames_in_flight % count ? 1 : 0);
+    progress.total =
+        result.frames_in_flight / count + (index < result.frames_in_flight % count ? 1 : 0);
     const double begin = trajectory.start_time_s() + start;
 
     // The ground observer stands on the ground zenith draws, under the first fix (the first
@@ -329,10 +332,10 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
         r.observer ? geo::Observer(r.observer->x, r.observer->y, r.observer->z)
                    : geo::Observer(first.lat_deg, first.lon_deg, kGroundEyeHeight);
     if (r.camera == ReplayCamera::kGround) {
-        result.notes += fmt::format(
-            "ground observer at {:.5f}, {:.5f}, {:.1f} m above the ellipsoid ({})\n",
-            ground.lat_deg(), ground.lon_deg(), ground.height_m(),
-            r.observer ? "as given" : "on the ground zenith draws under the first fix");
+        result.notes +=
+            fmt::format("ground observer at {:.5f}, {:.5f}, {:.1f} m above the ellipsoid ({})\n",
+                        ground.lat_deg(), ground.lon_deg(), ground.height_m(),
+                        r.observer ? "as given" : "on the ground zenith draws under the first fix");
     }
 
     SkySystemSettings settings;
@@ -370,8 +373,8 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
             if (problem != "missing") {
                 ++progress.repaired;
                 if (progress.repaired <= 8) {
-                    result.notes += fmt::format("{}: {}; rendered again\n",
-                                                ReplayFrameName(i, "*"), problem);
+                    result.notes +=
+                        fmt::format("{}: {}; rendered again\n", ReplayFrameName(i, "*"), problem);
                 }
             }
             const double sky_time = trajectory.start_time_s() + r.time_offset_s +
@@ -383,8 +386,8 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
                 ecef_from_view = glm::mat3_cast(aircraft.ecef_from_body) * geo::BodyFromView();
             } else if (r.camera == ReplayCamera::kChase) {
                 const glm::dvec3 up = geo::EcefFromEnu(aircraft.lat_deg, aircraft.lon_deg)[2];
-                glm::dvec3 forward = aircraft.velocity_ecef -
-                                     up * glm::dot(aircraft.velocity_ecef, up);
+                glm::dvec3 forward =
+                    aircraft.velocity_ecef - up * glm::dot(aircraft.velocity_ecef, up);
                 if (glm::length(forward) < 1.0) {
                     forward = glm::mat3_cast(aircraft.ecef_from_body)[0];
                 }
@@ -427,8 +430,9 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
 
     if (!r.video.empty() && !result.interrupted) {
         if (r.shard.count > 1) {
-            result.video_status = "video not encoded: run without a shard once all shards are "
-                                  "done to encode it";
+            result.video_status =
+                "video not encoded: run without a shard once all shards are "
+                "done to encode it";
             return result;
         }
         // Frames inside gaps hold the frame before the gap (or the first one after a gap at the
@@ -440,8 +444,8 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
             const fs::path png = r.out_dir / ReplayFrameName(i, "png");
             if (trajectory.At(begin + static_cast<double>(i) / r.fps).valid) {
                 if (const std::string problem = FrameProblem(png, r.size); !problem.empty()) {
-                    throw ReplayError(fmt::format("{}: {}; the video needs every frame", png.string(),
-                                                  problem));
+                    throw ReplayError(
+                        fmt::format("{}: {}; the video needs every frame", png.string(), problem));
                 }
                 held = png;
                 for (; leading_gap > 0; --leading_gap) sequence.push_back(png);

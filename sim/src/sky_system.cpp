@@ -1,19 +1,19 @@
 #include "zenith/sim/sky_system.h"
 
+#include <glad/gl.h>
+
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/constants.hpp>
 #include <stdexcept>
 
-#include <glad/gl.h>
-#include <glm/gtc/constants.hpp>
-
+#include "zenith/base/error.h"
 #include "zenith/geo/earth_orientation.h"
 #include "zenith/geo/frames.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/lighting.h"
 #include "zenith/weather/cloud_weather.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sim {
 namespace {
@@ -33,11 +33,16 @@ DayPhase PhaseOf(double sun_elevation) {
 
 const char* ToString(DayPhase phase) {
     switch (phase) {
-        case DayPhase::kDay: return "day";
-        case DayPhase::kCivilTwilight: return "civil twilight";
-        case DayPhase::kNauticalTwilight: return "nautical twilight";
-        case DayPhase::kAstronomicalTwilight: return "astronomical twilight";
-        case DayPhase::kNight: return "night";
+        case DayPhase::kDay:
+            return "day";
+        case DayPhase::kCivilTwilight:
+            return "civil twilight";
+        case DayPhase::kNauticalTwilight:
+            return "nautical twilight";
+        case DayPhase::kAstronomicalTwilight:
+            return "astronomical twilight";
+        case DayPhase::kNight:
+            return "night";
     }
     return "?";
 }
@@ -163,9 +168,7 @@ void SkySystem::SetGeodetic(double lat_deg, double lon_deg, double height_m) {
     impl_->observer = geo::Observer(lat_deg, lon_deg, height_m);
 }
 
-void SkySystem::SetEcef(const glm::dvec3& p) {
-    impl_->observer = geo::Observer::FromEcef(p);
-}
+void SkySystem::SetEcef(const glm::dvec3& p) { impl_->observer = geo::Observer::FromEcef(p); }
 
 void SkySystem::SetAttitude(double heading, double pitch, double roll) {
     impl_->attitude = geo::Attitude{heading, pitch, roll};
@@ -215,7 +218,8 @@ std::vector<std::string> SkySystem::SetMetar(const weather::Metar& report,
                                              const sky::CloudSettings& settings) {
     weather::MetarWeather mapped = weather::CloudWeatherFromMetar(report, station_elevation_m);
     std::vector<std::string> notes;
-    for (const weather::MetarWarning& w : report.warnings) notes.push_back("METAR: " + w.ToString());
+    for (const weather::MetarWarning& w : report.warnings)
+        notes.push_back("METAR: " + w.ToString());
     notes.insert(notes.end(), mapped.notes.begin(), mapped.notes.end());
     SetWeather(mapped.clouds, settings);
     SetVisibility(mapped.visibility_m, mapped.fog);
@@ -292,11 +296,10 @@ void SkySystem::Update() {
     l.moon_cloud_transmittance = through_clouds(l.moon_illuminance, l.moon_direction_enu);
     l.sun_illuminance *= l.sun_cloud_transmittance;
     l.moon_illuminance *= l.moon_cloud_transmittance;
-    l.sky_irradiance =
-        d.state.lights.sun_illuminance *
-            sky::SampleGroundIrradiance(d.ground_irradiance, l.sun_direction_enu.z) +
-        d.state.lights.moon_illuminance *
-            sky::SampleGroundIrradiance(d.ground_irradiance, l.moon_direction_enu.z);
+    l.sky_irradiance = d.state.lights.sun_illuminance *
+                           sky::SampleGroundIrradiance(d.ground_irradiance, l.sun_direction_enu.z) +
+                       d.state.lights.moon_illuminance *
+                           sky::SampleGroundIrradiance(d.ground_irradiance, l.moon_direction_enu.z);
     l.sun_elevation = d.ephemeris.sun.topocentric.horizontal.elevation;
     l.moon_illuminated_fraction = d.ephemeris.moon_phase.illuminated_fraction;
     l.phase = PhaseOf(l.sun_elevation);
@@ -340,8 +343,6 @@ unsigned SkySystem::aerial_perspective_texture() const {
 unsigned SkySystem::transmittance_texture() const {
     return impl_->renderer->transmittance_texture();
 }
-unsigned SkySystem::cloud_shadow_texture() const {
-    return impl_->renderer->cloud_shadow_texture();
-}
+unsigned SkySystem::cloud_shadow_texture() const { return impl_->renderer->cloud_shadow_texture(); }
 
 }  // namespace zenith::sim

@@ -1,6 +1,7 @@
 #include "video_encoder.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -12,8 +13,6 @@
 #include <cstring>
 #include <fstream>
 #include <vector>
-
-#include <fmt/format.h>
 
 extern char** environ;
 
@@ -67,11 +66,12 @@ VideoEncoder::VideoEncoder(const std::filesystem::path& output, double fps)
     // The output as a file: URL, so that ffmpeg reads no option, protocol or pattern in it.
     const std::string target = "file:" + partial_.string();
     const std::string rate = fmt::format("{}", fps);
-    std::vector<std::string> args = {"ffmpeg", "-hide_banner", "-loglevel", "error", "-y",
-                                     "-f", "image2pipe", "-c:v", "png", "-framerate", rate,
-                                     "-i", "pipe:0", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-                                     "-c:v", "libx264", "-pix_fmt", "yuv420p", "-movflags",
-                                     "+faststart", "-f", "mp4", target};
+    std::vector<std::string> args = {
+        "ffmpeg",     "-hide_banner", "-loglevel", "error",   "-y",
+        "-f",         "image2pipe",   "-c:v",      "png",     "-framerate",
+        rate,         "-i",           "pipe:0",    "-vf",     "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+        "-c:v",       "libx264",      "-pix_fmt",  "yuv420p", "-movflags",
+        "+faststart", "-f",           "mp4",       target};
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

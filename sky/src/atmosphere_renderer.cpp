@@ -22,9 +22,9 @@
 #include "reference/lut_texture.h"
 #include "renderer_programs.h"
 #include "shader_parameters.h"
+#include "zenith/base/error.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/gl/shader.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sky {
 namespace {
@@ -37,9 +37,9 @@ enum Pass : std::size_t {
     kIrradiancePass,
     kSkyViewPass,
     kAerialPerspectivePass,
-    kRenderPass,           // the composite with the Sky-View LUT
-    kRenderRayMarchPass,   // the composite ray marching every pixel (space views)
-    kRenderDepthPass,      // the same two over the host's depth buffer (aerial perspective)
+    kRenderPass,          // the composite with the Sky-View LUT
+    kRenderRayMarchPass,  // the composite ray marching every pixel (space views)
+    kRenderDepthPass,     // the same two over the host's depth buffer (aerial perspective)
     kRenderRayMarchDepthPass,
     kDiskPass,       // the Sun and the Moon, added over their disks only
     kDiskDepthPass,  // the same, behind the host's geometry
@@ -51,11 +51,16 @@ constexpr std::size_t kSecondDiskQuery = kPassCount;
 constexpr std::size_t kQueryCount = kPassCount + 1;
 
 constexpr std::array<std::string_view, kPassCount> kPassFiles = {
-    "atmosphere/transmittance.comp",      "atmosphere/multiple_scattering.comp",
-    "atmosphere/irradiance.comp",         "atmosphere/sky_view.comp",
-    "atmosphere/aerial_perspective.comp", "atmosphere/render.frag",
-    "atmosphere/render.frag",             "atmosphere/render.frag",
-    "atmosphere/render.frag",             "atmosphere/render.frag",
+    "atmosphere/transmittance.comp",
+    "atmosphere/multiple_scattering.comp",
+    "atmosphere/irradiance.comp",
+    "atmosphere/sky_view.comp",
+    "atmosphere/aerial_perspective.comp",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
     "atmosphere/render.frag",
 };
 
@@ -67,10 +72,9 @@ gl::Program Composite(Pass pass, bool clouds) {
         return "#define " + std::string(name) + (value ? " 1\n" : " 0\n");
     };
     const std::string defines =
-        define("ZENITH_RAY_MARCH", pass == kRenderRayMarchPass ||
-                                       pass == kRenderRayMarchDepthPass) +
-        define("ZENITH_SCENE_DEPTH", pass == kRenderDepthPass ||
-                                         pass == kRenderRayMarchDepthPass ||
+        define("ZENITH_RAY_MARCH",
+               pass == kRenderRayMarchPass || pass == kRenderRayMarchDepthPass) +
+        define("ZENITH_SCENE_DEPTH", pass == kRenderDepthPass || pass == kRenderRayMarchDepthPass ||
                                          pass == kDiskDepthPass) +
         define("ZENITH_DISKS", pass == kDiskPass || pass == kDiskDepthPass) +
         define("ZENITH_CLOUDS", clouds);
@@ -124,9 +128,8 @@ void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm
         const double x = v.x / -v.z, y = v.y / -v.z;
         const double px = (x / tan_x + 1.0) * 0.5 * size.x, py = (y / tan_y + 1.0) * 0.5 * size.y;
         if (!(px >= 0.0 && py >= 0.0 && px < size.x && py < size.y)) continue;
-        const glm::dvec3 t = ref::TransmittanceToSpace(atmosphere, transmittance,
-                                                      transmittance_size, camera_km, altitude_km,
-                                                      point.direction);
+        const glm::dvec3 t = ref::TransmittanceToSpace(
+            atmosphere, transmittance, transmittance_size, camera_km, altitude_km, point.direction);
         if (t == glm::dvec3(0.0)) continue;
         const int ix = static_cast<int>(px), iy = static_cast<int>(py);
         // The solid angle of the whole pixel (taken at its centre), the measure a reader of the
@@ -171,8 +174,8 @@ bool Overlap(const glm::ivec4& a, const glm::ivec4& b) {
 
 glm::ivec4 Union(const glm::ivec4& a, const glm::ivec4& b) {
     const glm::ivec2 lo = glm::min(glm::ivec2(a), glm::ivec2(b));
-    const glm::ivec2 hi = glm::max(glm::ivec2(a) + glm::ivec2(a.z, a.w),
-                                   glm::ivec2(b) + glm::ivec2(b.z, b.w));
+    const glm::ivec2 hi =
+        glm::max(glm::ivec2(a) + glm::ivec2(a.z, a.w), glm::ivec2(b) + glm::ivec2(b.z, b.w));
     return {lo, hi - lo};
 }
 
@@ -184,7 +187,8 @@ struct CpuClouds {
 
     CpuClouds(const std::vector<clouds::WeatherMap>& weather_maps,
               std::vector<double> top_fractions, const clouds::CloudNoise& noise)
-        : tops(std::move(top_fractions)), shape(ref::ToTexture(noise.shape)),
+        : tops(std::move(top_fractions)),
+          shape(ref::ToTexture(noise.shape)),
           detail(ref::ToTexture(noise.detail)) {
         for (const clouds::WeatherMap& map : weather_maps) maps.push_back(ref::ToTexture(map));
     }
@@ -232,12 +236,12 @@ struct AtmosphereRenderer::Impl {
     std::array<GLuint, kQueryCount> queries{};
     std::array<bool, kQueryCount> query_used{};
     int light_count = 1;  // as last uploaded: with the Sun alone, the Sky-View LUT is symmetric
-    std::unique_ptr<CloudPasses> clouds;  // with weather that has layers
+    std::unique_ptr<CloudPasses> clouds;    // with weather that has layers
     std::unique_ptr<CpuClouds> cpu_clouds;  // the same weather's density, for CPU queries
     // The six composite programs again, laying the clouds over the sky and the disks; built
     // with the first weather that has layers.
     std::vector<gl::Program> cloud_composites;
-    clouds::Weather weather;              // as last set (also when clear)
+    clouds::Weather weather;  // as last set (also when clear)
     CloudSettings cloud_settings;
 
     Impl(const Atmosphere& a, const LutSettings& s)
@@ -286,7 +290,8 @@ struct AtmosphereRenderer::Impl {
         glDeleteFramebuffers(1, &framebuffer);
         glDeleteQueries(static_cast<GLsizei>(queries.size()), queries.data());
         const std::array<GLuint, 7> textures = {transmittance, multiple_scattering, irradiance,
-                                                sky_view, aerial_perspective, frame, stars};
+                                                sky_view,      aerial_perspective,  frame,
+                                                stars};
         for (GLuint t : textures) {
             if (t != 0) glDeleteTextures(1, &t);
         }
@@ -335,10 +340,8 @@ struct AtmosphereRenderer::Impl {
         const gl::Blend blend = pass == kDiskPass || pass == kDiskDepthPass ? gl::Blend::kAdd
                                 : scene_depth != 0 ? gl::Blend::kPremultiplied
                                                    : gl::Blend::kReplace;
-        const gl::Program& program =
-            clouds ? cloud_composites[pass - kRenderPass] : programs[pass];
-        gl::DrawFullscreen(program, vertex_array, target, viewport, blend, queries[query],
-                           scissor);
+        const gl::Program& program = clouds ? cloud_composites[pass - kRenderPass] : programs[pass];
+        gl::DrawFullscreen(program, vertex_array, target, viewport, blend, queries[query], scissor);
         query_used[query] = true;
     }
 
@@ -358,7 +361,8 @@ struct AtmosphereRenderer::Impl {
         gl::FrameUniforms u{};
         u.camera_km = glm::vec3(camera.position / kKm);
         u.tan_half_fov = static_cast<float>(std::tan(0.5 * camera.vertical_fov));
-        for (int i = 0; i < 3; ++i) u.world_from_view[i] = glm::vec4(camera.world_from_view[i], 0.0);
+        for (int i = 0; i < 3; ++i)
+            u.world_from_view[i] = glm::vec4(camera.world_from_view[i], 0.0);
         u.output_size = options.size;
         u.aspect = static_cast<float>(camera.aspect);
         u.ray_march_steps = options.ray_march_steps;
@@ -481,17 +485,16 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     if (!(options.size.x > 0 && options.size.y > 0 && options.size.x <= 16384 &&
           options.size.y <= 16384)) {
         throw ArgumentError("render size " + std::to_string(options.size.x) + "x" +
-                                    std::to_string(options.size.y) +
-                                    " is out of range (expected 1..16384 per axis)");
+                            std::to_string(options.size.y) +
+                            " is out of range (expected 1..16384 per axis)");
     }
     const bool to_host = options.target_framebuffer.has_value();
     if (to_host && (options.target_viewport.z != options.size.x ||
                     options.target_viewport.w != options.size.y)) {
         throw ArgumentError("RenderOptions: target_viewport size " +
-                                    std::to_string(options.target_viewport.z) + "x" +
-                                    std::to_string(options.target_viewport.w) +
-                                    " differs from size " + std::to_string(options.size.x) + "x" +
-                                    std::to_string(options.size.y));
+                            std::to_string(options.target_viewport.z) + "x" +
+                            std::to_string(options.target_viewport.w) + " differs from size " +
+                            std::to_string(options.size.x) + "x" + std::to_string(options.size.y));
     }
     if (options.size != d.frame_size) {
         for (GLuint* t : {&d.frame, &d.stars}) {
@@ -516,9 +519,9 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         points.push_back({lights.sun_direction, lights.sun_illuminance});
     }
     if (!points.empty()) {
-        d.star_pixels.assign(static_cast<std::size_t>(options.size.x) *
-                                 static_cast<std::size_t>(options.size.y),
-                             glm::vec4(0.0f));
+        d.star_pixels.assign(
+            static_cast<std::size_t>(options.size.x) * static_cast<std::size_t>(options.size.y),
+            glm::vec4(0.0f));
         SplatPoints(points, camera, options.size,
                     MakeShaderParameters<ref::AtmosphereParameters>(d.atmosphere),
                     d.transmittance_cpu, d.star_pixels);
@@ -530,8 +533,9 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     if (options.scene_depth &&
         !(to_host && options.scene_depth->texture != 0 && options.scene_depth->near_m > 0.0 &&
           options.scene_depth->far_m > options.scene_depth->near_m)) {
-        throw ArgumentError("RenderOptions::scene_depth needs a host framebuffer, a depth "
-                                    "texture and 0 < near_m < far_m");
+        throw ArgumentError(
+            "RenderOptions::scene_depth needs a host framebuffer, a depth "
+            "texture and 0 < near_m < far_m");
     }
     const bool inside = glm::length(camera.position) < d.atmosphere.top_radius;
     const bool ray_march = !inside || options.force_ray_march;
@@ -570,14 +574,12 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
     if (options.moon.enabled) add_disk(options.moon.direction, options.moon.angular_radius);
     const Pass disk_pass = options.scene_depth ? kDiskDepthPass : kDiskPass;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        d.Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, target, viewport, depth,
-               boxes[i]);
+        d.Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, target, viewport, depth, boxes[i]);
     }
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {
-    return gl::ReadTexture(impl_->transmittance,
-                           glm::ivec3(impl_->settings.transmittance_size, 1));
+    return gl::ReadTexture(impl_->transmittance, glm::ivec3(impl_->settings.transmittance_size, 1));
 }
 LutImage AtmosphereRenderer::ReadMultipleScattering() const {
     return gl::ReadTexture(impl_->multiple_scattering,
@@ -626,7 +628,7 @@ double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,
                                               int steps) const {
     if (!(steps >= 1 && steps <= 4096)) {
         throw ArgumentError("CloudTransmittance: steps " + std::to_string(steps) +
-                                    " is out of range (expected 1..4096)");
+                            " is out of range (expected 1..4096)");
     }
     if (!impl_->cpu_clouds) return 1.0;
     const Impl& d = *impl_;
@@ -659,13 +661,13 @@ PassTimes AtmosphereRenderer::LastPassTimes() const {
     };
     // The composite: whichever sky program ran, plus its disk draws.
     PassTimes times{ms(kTransmittancePass),
-            ms(kMultipleScatteringPass),
-            ms(kIrradiancePass),
-            ms(kSkyViewPass),
-            ms(kAerialPerspectivePass),
-            ms(kRenderPass) + ms(kRenderRayMarchPass) + ms(kRenderDepthPass) +
-                ms(kRenderRayMarchDepthPass) + ms(kDiskPass) + ms(kDiskDepthPass) +
-                ms(kSecondDiskQuery)};
+                    ms(kMultipleScatteringPass),
+                    ms(kIrradiancePass),
+                    ms(kSkyViewPass),
+                    ms(kAerialPerspectivePass),
+                    ms(kRenderPass) + ms(kRenderRayMarchPass) + ms(kRenderDepthPass) +
+                        ms(kRenderRayMarchDepthPass) + ms(kDiskPass) + ms(kDiskDepthPass) +
+                        ms(kSecondDiskQuery)};
     if (d.clouds) {
         const auto clouds = d.clouds->LastPassTimes();
         times.cloud_shadow_map = clouds[0];

@@ -11,14 +11,13 @@ glm::dvec3 TransmittanceToLight(const Atmosphere& atmosphere, double altitude, d
                                 double angular_radius, int steps) {
     auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
     a.sun_angular_radius = angular_radius;
-    const double r = std::clamp(a.bottom_radius + altitude / 1000.0, a.bottom_radius,
-                                a.top_radius);
+    const double r = std::clamp(a.bottom_radius + altitude / 1000.0, a.bottom_radius, a.top_radius);
     // The same visible fraction of the disk as GetTransmittanceToSun, with the transmittance
     // integrated along the ray (no LUT); below the horizon the path is the grazing one.
     const double sin_h = a.bottom_radius / r;
     const double cos_h = -std::sqrt(std::max(1.0 - sin_h * sin_h, 0.0));
-    const double visible = ref::smoothstep(-sin_h * angular_radius, sin_h * angular_radius,
-                                           mu - cos_h);
+    const double visible =
+        ref::smoothstep(-sin_h * angular_radius, sin_h * angular_radius, mu - cos_h);
     if (!(visible > 0.0)) return glm::dvec3(0.0);
     return ref::ComputeTransmittanceToTopAtmosphereBoundary(a, r, std::max(mu, cos_h), steps) *
            visible;

@@ -11,7 +11,7 @@ namespace {
 void Require(bool ok, const char* field, const std::string& value, const char* expected) {
     if (!ok) {
         throw ArgumentError(std::string("LUT setting ") + field + " = " + value +
-                                    " is out of range (expected " + expected + ")");
+                            " is out of range (expected " + expected + ")");
     }
 }
 
@@ -20,7 +20,9 @@ std::string Str(glm::ivec3 v) {
     return std::to_string(v.x) + "x" + std::to_string(v.y) + "x" + std::to_string(v.z);
 }
 
-bool InRange(glm::ivec2 v, int lo, int hi) { return v.x >= lo && v.y >= lo && v.x <= hi && v.y <= hi; }
+bool InRange(glm::ivec2 v, int lo, int hi) {
+    return v.x >= lo && v.y >= lo && v.x <= hi && v.y <= hi;
+}
 
 }  // namespace
 

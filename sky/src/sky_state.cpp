@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-
 #include <glm/gtc/constants.hpp>
 
 #include "zenith/geo/moon.h"
@@ -62,10 +61,9 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     s.moon.angular_radius = 0.5 * e.moon.angular_diameter;
     s.lights.moon_enabled = true;
     s.lights.moon_direction = s.moon.direction;
-    s.lights.moon_illuminance =
-        s.lights.sun_illuminance * LambertSphereIlluminanceFactor(
-                                       s.moon.albedo, e.moon_phase.phase_angle,
-                                       s.moon.angular_radius);
+    s.lights.moon_illuminance = s.lights.sun_illuminance *
+                                LambertSphereIlluminanceFactor(
+                                    s.moon.albedo, e.moon_phase.phase_angle, s.moon.angular_radius);
 
     s.stars.reserve(e.stars.size());
     for (const geo::StarState& star : e.stars) {
@@ -77,9 +75,9 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     for (const geo::PlanetPosition& planet : e.planets) {
         if (planet.topocentric.horizontal.elevation < kMinStarElevation) continue;
         const double b_minus_v = kPlanetBMinusV[static_cast<std::size_t>(planet.planet)];
-        s.stars.push_back({planet.topocentric.horizontal.direction_enu,
-                           geo::IlluminanceFromMagnitude(planet.magnitude_v) *
-                               StarColour(b_minus_v)});
+        s.stars.push_back(
+            {planet.topocentric.horizontal.direction_enu,
+             geo::IlluminanceFromMagnitude(planet.magnitude_v) * StarColour(b_minus_v)});
     }
     return s;
 }

@@ -24,8 +24,8 @@ struct Fixture {
     Fixture() {
         camera.position = glm::dvec3(0.0, 0.0, earth.bottom_radius + 1500.0);
         // Looking at the horizon toward the sun's azimuth, sun 10 deg up: a daytime frame.
-        camera.world_from_view = glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
-                                            glm::dvec3(-1, 0, 0));
+        camera.world_from_view =
+            glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 0, 0));
         camera.vertical_fov = 1.0471975511965976;
         camera.aspect = 16.0 / 9.0;
         lights.sun_direction = glm::normalize(glm::dvec3(0.98, 0.0, 0.17));

@@ -271,10 +271,7 @@ void BM_StepConvergenceCumulonimbus(benchmark::State& state) {
     state.counters["steps64_vs_1024_pct"] = 100.0 * (means[0] / means[2] - 1.0);
     state.counters["steps256_vs_1024_pct"] = 100.0 * (means[1] / means[2] - 1.0);
 }
-BENCHMARK(BM_StepConvergenceCumulonimbus)
-    ->Unit(benchmark::kSecond)
-    ->UseRealTime()
-    ->Iterations(1);
+BENCHMARK(BM_StepConvergenceCumulonimbus)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
 }  // namespace
 

@@ -3,9 +3,8 @@
 // Baseline in the same process: ERFA's IAU 2006/2000A chain for the Sun (eraEpv00 + eraPnm06a +
 // eraAb), the reference implementation the tests compare against. Report ratios, not absolutes
 // (see BENCHMARKS.md).
-#include <erfa.h>
-
 #include <benchmark/benchmark.h>
+#include <erfa.h>
 
 #include <cmath>
 #include <optional>
@@ -20,7 +19,7 @@ namespace {
 using namespace zenith::geo;
 
 constexpr double kStartJd = 2460409.0;  // 2024-04-08
-constexpr double kStepDays = 0.0137;     // not commensurate with anything periodic
+constexpr double kStepDays = 0.0137;    // not commensurate with anything periodic
 
 void BM_ErfaSunBaseline(benchmark::State& state) {
     double jd = kStartJd;

@@ -9,16 +9,14 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
-#include <string>
-
 #include <glm/gtc/constants.hpp>
+#include <string>
 
 #include "zenith/sim/sky_system.h"
 
 namespace {
 double MsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-        .count();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 }  // namespace
 
@@ -44,7 +42,7 @@ int main(int argc, char** argv) try {
         sky->Prepare(size);
         prepare_ms = MsSince(t0);
     }
-    std::printf("%-8s weather %-18s create %7.1f ms  prepare %7.1f ms  frames", 
+    std::printf("%-8s weather %-18s create %7.1f ms  prepare %7.1f ms  frames",
                 prepare ? "prepare" : "cold", weather.c_str(), create_ms, prepare_ms);
     for (int frame = 0; frame < 4; ++frame) {
         t0 = std::chrono::steady_clock::now();

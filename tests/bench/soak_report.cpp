@@ -60,11 +60,12 @@ int main(int argc, char** argv) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double end_mib = ResidentMiB();
-    std::printf("frames %d, weather %s, %dx%d: %.1f s (%.2f ms/frame)\n", frames,
-                weather.c_str(), size, size * 9 / 16, seconds, 1e3 * seconds / frames);
-    std::printf("resident memory after 100 frames %.1f MiB, after %d frames %.1f MiB "
-                "(growth %+.1f MiB, %+.2f KiB/frame)\n",
-                warm_mib, frames, end_mib, end_mib - warm_mib,
-                (end_mib - warm_mib) * 1024.0 / (frames - 100));
+    std::printf("frames %d, weather %s, %dx%d: %.1f s (%.2f ms/frame)\n", frames, weather.c_str(),
+                size, size * 9 / 16, seconds, 1e3 * seconds / frames);
+    std::printf(
+        "resident memory after 100 frames %.1f MiB, after %d frames %.1f MiB "
+        "(growth %+.1f MiB, %+.2f KiB/frame)\n",
+        warm_mib, frames, end_mib, end_mib - warm_mib,
+        (end_mib - warm_mib) * 1024.0 / (frames - 100));
     return 0;
 }

@@ -13,7 +13,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size < 1) return 0;
     const std::string extension = (data[0] & 1) ? ".exr" : ".png";
-    const std::filesystem::path path = std::filesystem::temp_directory_path() /
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() /
         ("zenith_weather_map_fuzz_" + std::to_string(::getpid()) + extension);
     {
         std::ofstream file(path, std::ios::binary | std::ios::trunc);

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "zenith/base/csv_line.h"
 #include "zenith/base/atomic_file.h"
+#include "zenith/base/csv_line.h"
 #include "zenith/base/error.h"
 #include "zenith/base/units.h"
 

@@ -2,8 +2,6 @@
 // 1998) and against ERFA, the IAU SOFA algorithms, as an independent implementation.
 #include "zenith/geo/earth_orientation.h"
 
-#include "zenith/geo/angles.h"
-
 #include <erfa.h>
 #include <gtest/gtest.h>
 
@@ -14,6 +12,8 @@
 #include <numbers>
 #include <random>
 #include <vector>
+
+#include "zenith/geo/angles.h"
 
 namespace zenith::geo {
 namespace {

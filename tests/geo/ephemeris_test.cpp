@@ -1,14 +1,14 @@
 // End-to-end: UTC + WGS84 position -> topocentric Sun/Moon, against published worked examples.
 #include "zenith/geo/ephemeris.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/constants.hpp>
 #include <random>
 #include <string>
-
-#include <glm/gtc/constants.hpp>
-#include <gtest/gtest.h>
 
 #include "zenith/geo/earth_orientation.h"
 #include "zenith/geo/moon.h"
@@ -59,8 +59,8 @@ TEST(Ephemeris, MoonMatchesNovasDe405SampleGeocentricAndTopocentric) {
     const glm::dvec3 geocentric = MoonApparentTod(t.jd_tt);
     const glm::dvec3 novas_geocentric =
         FromRaDec(17.1390774264 * 15.0, -27.5374448869, 0.002710296515 * kAu * 1e3);
-    const double geo_error = std::acos(std::min(1.0, glm::dot(glm::normalize(geocentric),
-                                                             glm::normalize(novas_geocentric))));
+    const double geo_error = std::acos(
+        std::min(1.0, glm::dot(glm::normalize(geocentric), glm::normalize(novas_geocentric))));
     EXPECT_LT(geo_error / kArcsec, 10.0);
     EXPECT_NEAR(glm::length(geocentric) / 1e3, 0.002710296515 * kAu, 2.0);
 
@@ -69,8 +69,8 @@ TEST(Ephemeris, MoonMatchesNovasDe405SampleGeocentricAndTopocentric) {
     const glm::dvec3 novas_topocentric =
         FromRaDec(17.1031967646 * 15.0, -28.2902502967, 0.002703785126 * kAu * 1e3);
     const glm::dvec3 ours = e.moon.topocentric.position_tod;
-    const double topo_error = std::acos(std::min(1.0, glm::dot(glm::normalize(ours),
-                                                              glm::normalize(novas_topocentric))));
+    const double topo_error =
+        std::acos(std::min(1.0, glm::dot(glm::normalize(ours), glm::normalize(novas_topocentric))));
     EXPECT_LT(topo_error / kArcsec, 10.0);
     EXPECT_NEAR(glm::length(ours) / 1e3, 0.002703785126 * kAu, 2.0);
     EXPECT_NEAR(glm::degrees(e.moon.topocentric.horizontal.azimuth), 219.2708903405,
@@ -89,8 +89,8 @@ TEST(MoonPhase, ClosedFormGeometry) {
         const glm::dvec3 sun{sun_distance, 0.0, 0.0};
         const glm::dvec3 moon = moon_distance * glm::dvec3{std::cos(psi), std::sin(psi), 0.0};
         const MoonPhase p = ComputeMoonPhase(sun, moon);
-        const double i = std::atan2(sun_distance * std::sin(psi),
-                                    moon_distance - sun_distance * std::cos(psi));
+        const double i =
+            std::atan2(sun_distance * std::sin(psi), moon_distance - sun_distance * std::cos(psi));
         EXPECT_NEAR(p.elongation, psi, 1e-12);
         EXPECT_NEAR(p.phase_angle, i, 1e-12);
         EXPECT_NEAR(p.illuminated_fraction, 0.5 * (1.0 + std::cos(i)), 1e-12);
@@ -98,14 +98,17 @@ TEST(MoonPhase, ClosedFormGeometry) {
     // Bright limb position angle: Sun due west of the Moon on the equator -> 270 deg (waxing,
     // evening Moon); due east -> 90 deg (waning); Sun north of the Moon -> 0 deg.
     const glm::dvec3 moon = FromRaDec(0.0, 0.0, 3.844e8);
-    EXPECT_NEAR(glm::degrees(ComputeMoonPhase(FromRaDec(-60.0, 0.0, 1.5e11), moon)
-                                 .bright_limb_angle), 270.0, 1e-9);
+    EXPECT_NEAR(
+        glm::degrees(ComputeMoonPhase(FromRaDec(-60.0, 0.0, 1.5e11), moon).bright_limb_angle),
+        270.0, 1e-9);
     EXPECT_TRUE(ComputeMoonPhase(FromRaDec(-60.0, 0.0, 1.5e11), moon).waxing);
-    EXPECT_NEAR(glm::degrees(ComputeMoonPhase(FromRaDec(60.0, 0.0, 1.5e11), moon)
-                                 .bright_limb_angle), 90.0, 1e-9);
+    EXPECT_NEAR(
+        glm::degrees(ComputeMoonPhase(FromRaDec(60.0, 0.0, 1.5e11), moon).bright_limb_angle), 90.0,
+        1e-9);
     EXPECT_FALSE(ComputeMoonPhase(FromRaDec(60.0, 0.0, 1.5e11), moon).waxing);
-    EXPECT_NEAR(glm::degrees(ComputeMoonPhase(FromRaDec(0.0, 60.0, 1.5e11), moon)
-                                 .bright_limb_angle), 0.0, 1e-9);
+    EXPECT_NEAR(
+        glm::degrees(ComputeMoonPhase(FromRaDec(0.0, 60.0, 1.5e11), moon).bright_limb_angle), 0.0,
+        1e-9);
 }
 
 // Meeus, Astronomical Algorithms, Example 48.a (1992 April 12, 0h TD): Sun alpha0 = 20.6579 deg,
@@ -149,11 +152,11 @@ TEST(MoonPhase, BrightLimbFacesTheSunInTheObserversSky) {
         const glm::dvec3 moon = e.moon.topocentric.horizontal.direction_enu;
         const glm::dvec3 sun = e.sun.topocentric.horizontal.direction_enu;
         const double expected = PositionAngle(moon, sun, glm::dvec3(0, 0, 1));
-        double diff = std::remainder(e.moon_phase.bright_limb_from_zenith - expected,
-                                     glm::two_pi<double>());
+        double diff =
+            std::remainder(e.moon_phase.bright_limb_from_zenith - expected, glm::two_pi<double>());
         // Geocentric chi vs topocentric directions: parallax (<1 deg) over the elongation.
-        const double tolerance = glm::radians(1.5) / std::max(std::sin(e.moon_phase.elongation),
-                                                              0.05);
+        const double tolerance =
+            glm::radians(1.5) / std::max(std::sin(e.moon_phase.elongation), 0.05);
         EXPECT_LT(std::abs(diff), tolerance) << FormatIso8601(c);
     }
 }
@@ -210,7 +213,7 @@ TEST(Ephemeris, TotalEclipseOf2024April8) {
     const Observer nazas(25.29, -104.14, 1250.0);
     const SkyEphemeris e = Ephemeris().Compute(t, nazas);
     const double separation = std::acos(glm::dot(e.sun.topocentric.horizontal.direction_enu,
-                                                  e.moon.topocentric.horizontal.direction_enu));
+                                                 e.moon.topocentric.horizontal.direction_enu));
     // Totality: separation < (moon diameter - sun diameter) / 2.
     EXPECT_LT(separation, 0.5 * (e.moon.angular_diameter - e.sun.angular_diameter));
     EXPECT_GT(e.moon.angular_diameter, e.sun.angular_diameter);

@@ -19,9 +19,7 @@ constexpr double kArcsec = kDeg / 3600.0;
 constexpr double kKm = 1000.0;
 
 // Signed difference of two longitudes in (-pi, pi].
-double AngleDiff(double a, double b) {
-    return std::remainder(a - b, 2.0 * std::numbers::pi);
-}
+double AngleDiff(double a, double b) { return std::remainder(a - b, 2.0 * std::numbers::pi); }
 
 // Angle between two directions, radians.
 double Separation(const glm::dvec3& a, const glm::dvec3& b) {
@@ -30,8 +28,8 @@ double Separation(const glm::dvec3& a, const glm::dvec3& b) {
 
 glm::dvec3 Cartesian(const EclipticPosition& p) {
     const double cb = std::cos(p.latitude);
-    return p.distance * glm::dvec3(cb * std::cos(p.longitude), cb * std::sin(p.longitude),
-                                   std::sin(p.latitude));
+    return p.distance *
+           glm::dvec3(cb * std::cos(p.longitude), cb * std::sin(p.longitude), std::sin(p.latitude));
 }
 
 // Meeus, Astronomical Algorithms (2nd ed.), Example 47.a: 1992 April 12, 0h TD. Meeus evaluates

@@ -1,11 +1,11 @@
 #include "zenith/geo/observer.h"
 
-#include <cmath>
-#include <string>
+#include <gtest/gtest.h>
 
 #include <GeographicLib/Geocentric.hpp>
+#include <cmath>
 #include <glm/gtc/constants.hpp>
-#include <gtest/gtest.h>
+#include <string>
 
 #include "zenith/geo/earth_orientation.h"
 

@@ -2,8 +2,6 @@
 // the installed kstars-data), photometry and colour laws, and the apparent place against ERFA.
 #include "zenith/geo/stars.h"
 
-#include "zenith/geo/angles.h"
-
 #include <erfa.h>
 #include <erfam.h>
 #include <gtest/gtest.h>
@@ -20,6 +18,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "zenith/geo/angles.h"
 
 namespace zg = zenith::geo;
 namespace fs = std::filesystem;

@@ -35,7 +35,6 @@ double Hms(double h, double min, double sec) {
 
 glm::dvec3 FromErfa(const double v[3]) { return {v[0], v[1], v[2]}; }
 
-
 std::vector<double> RandomDates(int n) {
     std::mt19937_64 rng(19921013);
     std::uniform_real_distribution<double> jd(kJd1950, kJd2100);

@@ -1,16 +1,16 @@
 #include "zenith/geo/time.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
 #include <string>
 
-#include <gtest/gtest.h>
-
 namespace zenith::geo {
 namespace {
 
-constexpr double kJdTolerance = 1e-9;       // days: ~86 us, the double's resolution near 2.45e6
-constexpr double kSecondTolerance = 1e-4;   // s, after JD round trips (JD resolution ~40 us)
+constexpr double kJdTolerance = 1e-9;      // days: ~86 us, the double's resolution near 2.45e6
+constexpr double kSecondTolerance = 1e-4;  // s, after JD round trips (JD resolution ~40 us)
 
 TEST(JulianDate, MeeusExamples) {
     // Meeus, Astronomical Algorithms (2nd ed.), Example 7.a and the table after Eq. 7.1.
@@ -80,8 +80,8 @@ void ExpectRejected(const std::string& text, const std::string& mentions) {
     } catch (const TimeError& e) {
         const std::string message = e.what();
         EXPECT_NE(message.find(mentions), std::string::npos) << message;
-        EXPECT_NE(message.find(text), std::string::npos) << "message should quote the input: "
-                                                         << message;
+        EXPECT_NE(message.find(text), std::string::npos)
+            << "message should quote the input: " << message;
     }
 }
 
@@ -113,7 +113,8 @@ TEST(TimeScales, TtMinusUtcIsExactInTheLeapSecondEra) {
     const Time t = TimeFromIso8601("2024-04-08T18:18:00Z");
     EXPECT_NEAR((t.jd_tt - t.jd_utc) * kSecondsPerDay, 69.184, kSecondTolerance);
     EXPECT_NEAR(t.jd_ut1, t.jd_utc, kJdTolerance);
-    const Time with_dut1 = TimeFromIso8601("2024-04-08T18:18:00Z", {.dut1_s = 0.25, .delta_t_s = {}});
+    const Time with_dut1 =
+        TimeFromIso8601("2024-04-08T18:18:00Z", {.dut1_s = 0.25, .delta_t_s = {}});
     EXPECT_NEAR((with_dut1.jd_ut1 - with_dut1.jd_utc) * kSecondsPerDay, 0.25, kSecondTolerance);
     EXPECT_NEAR(with_dut1.DeltaT(), 69.184 - 0.25, kSecondTolerance);
 }

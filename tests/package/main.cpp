@@ -1,13 +1,12 @@
 // Uses each installed library from a separate project: geo (ephemeris), sky (presets), sim
 // (the batch record) and weather (a METAR report as cloud layers). No GL context is needed.
-#include <cmath>
-#include <cstdio>
-
 #include <zenith/geo/ephemeris.h>
 #include <zenith/sim/ephemeris_report.h>
 #include <zenith/sky/atmosphere.h>
 #include <zenith/weather/cloud_weather.h>
 
+#include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 int main() {

@@ -86,7 +86,8 @@ TEST(EphemerisReport, PlanetsAreReported) {
     std::ostringstream out;
     RunEphemerisBatch(in, out);
     const nlohmann::json record = nlohmann::json::parse(out.str());
-    for (const char* planet : {"mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune"}) {
+    for (const char* planet :
+         {"mercury", "venus", "mars", "jupiter", "saturn", "uranus", "neptune"}) {
         for (const char* field : {"_az_deg", "_el_deg", "_dist_au", "_mag", "_illum_fraction"}) {
             EXPECT_TRUE(record.contains(std::string(planet) + field)) << planet << field;
         }

@@ -1,18 +1,16 @@
 // The host API end to end on a headless context: lighting readback, time warp, and drawing into
 // a host's framebuffer object at an offset viewport.
-#include "zenith/sim/sky_system.h"
-
 #include <glad/gl.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <glm/gtc/constants.hpp>
 #include <vector>
 
-#include <glm/gtc/constants.hpp>
-#include <gtest/gtest.h>
-
+#include "zenith/sim/sky_system.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
 #include "zenith/weather/cloud_weather.h"
@@ -24,7 +22,7 @@ namespace {
 double Y(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 class SkySystemTest : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() { sky_ = SkySystem::CreateHeadless().release(); }
     static void TearDownTestSuite() { delete sky_; }
     static SkySystem* sky_;
@@ -75,8 +73,7 @@ TEST_F(SkySystemTest, SunlightAtTheAircraftPassesThroughTheClouds) {
     const SkyLighting clear_low = lighting_at(420.0);
     const SkyLighting clear_high = lighting_at(9000.0);
     sky::CloudSettings settings;
-    settings.noise_cache_directory =
-        std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
     sky_->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
     sky_->SetWeatherOrigin(47.45, 8.56);
     const SkyLighting below = lighting_at(420.0);
@@ -177,7 +174,8 @@ TEST_F(SkySystemTest, AerialPerspectiveOverTheHostsGeometry) {
     const float geometry_depth = static_cast<float>(0.5 * (z_ndc + 1.0));
     std::vector<float> depth(kSize * kSize, 1.0f);
     for (int y = 0; y < kSize; ++y) {
-        for (int x = 0; x < kSize / 2; ++x) depth[static_cast<std::size_t>(y * kSize + x)] = geometry_depth;
+        for (int x = 0; x < kSize / 2; ++x)
+            depth[static_cast<std::size_t>(y * kSize + x)] = geometry_depth;
     }
     GLuint colour = 0, depth_texture = 0, framebuffer = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &colour);
@@ -202,9 +200,9 @@ TEST_F(SkySystemTest, AerialPerspectiveOverTheHostsGeometry) {
 
     // The CPU reference of the same atmosphere and lights, marched directly.
     const sky::reference::AtmosphereReference reference(sky::Atmosphere{});
-    const sky::SkyState state = sky::MakeSkyState(
-        sky_->ephemeris(), geo::Observer(46.5, 8.0, 1500.0), sky::Atmosphere{},
-        {glm::radians(120.0), 0.0, 0.0}, 1.0, 1.0);
+    const sky::SkyState state =
+        sky::MakeSkyState(sky_->ephemeris(), geo::Observer(46.5, 8.0, 1500.0), sky::Atmosphere{},
+                          {glm::radians(120.0), 0.0, 0.0}, 1.0, 1.0);
     double worst = 0.0;
     for (int y = 0; y < kSize; y += 5) {
         for (int x = 0; x < kSize; ++x) {
@@ -233,13 +231,11 @@ TEST_F(SkySystemTest, AerialPerspectiveOverTheHostsGeometry) {
 TEST_F(SkySystemTest, VisibilityAndMetarReachTheAtmosphereAndTheClouds) {
     const sky::Atmosphere preset = sky_->atmosphere();
     sky_->SetVisibility(2000.0);
-    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 2000.0,
-                1e-12);
+    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 2000.0, 1e-12);
     sky::Atmosphere thick = preset;
     thick.rayleigh_scattering *= 2.0;
     sky_->SetAtmosphere(thick);
-    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 2000.0,
-                1e-12);
+    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 2000.0, 1e-12);
     EXPECT_EQ(sky_->atmosphere().rayleigh_scattering, thick.rayleigh_scattering);
     sky_->SetAtmosphere(preset);
     sky_->SetVisibility(std::nullopt);
@@ -247,11 +243,9 @@ TEST_F(SkySystemTest, VisibilityAndMetarReachTheAtmosphereAndTheClouds) {
     EXPECT_THROW(sky_->SetVisibility(-5.0), ArgumentError);
 
     const std::vector<std::string> notes = sky_->SetMetar(
-        weather::DecodeMetar("EGLL 211200Z 24012KT 3000 BR BKN008 OVC020 12/11 Q1008 XYZZY"),
-        25.0);
+        weather::DecodeMetar("EGLL 211200Z 24012KT 3000 BR BKN008 OVC020 12/11 Q1008 XYZZY"), 25.0);
     EXPECT_TRUE(sky_->has_clouds());
-    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 3000.0,
-                1e-12);
+    EXPECT_NEAR(weather::GroundExtinctionGreen(sky_->atmosphere()), std::log(20.0) / 3000.0, 1e-12);
     ASSERT_FALSE(notes.empty());
     EXPECT_NE(notes.front().find("XYZZY"), std::string::npos) << notes.front();
     sky_->SetMetar(weather::DecodeMetar("EGLL 211200Z 24012KT CAVOK 18/09 Q1018"), 25.0);

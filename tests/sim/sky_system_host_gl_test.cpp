@@ -1,21 +1,21 @@
 // What a host relies on beyond the picture: exact simulation time however it is driven, the
 // Euler order of SetAttitude, lighting in ECEF, and a notice when the stars are missing.
-#include "zenith/sim/sky_system.h"
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <glm/gtc/constants.hpp>
 #include <string>
 #include <vector>
 
-#include <glm/gtc/constants.hpp>
-#include <gtest/gtest.h>
+#include "zenith/sim/sky_system.h"
 
 namespace zenith::sim {
 namespace {
 
 // One system for the file, made without a star catalogue, its notices recorded.
 class SkySystemHostTest : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         SkySystemSettings settings;
         settings.star_directory = "/nonexistent/zenith-star-catalogue";
@@ -98,8 +98,8 @@ TEST_F(SkySystemHostTest, AttitudeIsHeadingThenPitchThenRoll) {
     const auto forward = [](const glm::dmat3& m) { return -m[2]; };
     const auto expect_near = [](const glm::dvec3& a, const glm::dvec3& b, const char* what) {
         EXPECT_LT(glm::length(a - b), 1e-12)
-            << what << ": (" << a.x << ", " << a.y << ", " << a.z << ") vs (" << b.x << ", "
-            << b.y << ", " << b.z << ")";
+            << what << ": (" << a.x << ", " << a.y << ", " << a.z << ") vs (" << b.x << ", " << b.y
+            << ", " << b.z << ")";
     };
     const double s30 = 0.5, c30 = std::sqrt(3.0) / 2.0;
     sky_->SetAttitude(glm::radians(90.0), 0.0, 0.0);
@@ -130,10 +130,10 @@ TEST_F(SkySystemHostTest, LightingInEcef) {
     // The ECEF up at the aircraft is the ellipsoid normal:
     // (cos lat cos lon, cos lat sin lon, sin lat).
     const double lat = glm::radians(47.45), lon = glm::radians(8.56);
-    EXPECT_LT(glm::length(l.ecef_from_enu[2] - glm::dvec3(std::cos(lat) * std::cos(lon),
-                                                           std::cos(lat) * std::sin(lon),
-                                                           std::sin(lat))),
-              1e-12);
+    EXPECT_LT(
+        glm::length(l.ecef_from_enu[2] - glm::dvec3(std::cos(lat) * std::cos(lon),
+                                                    std::cos(lat) * std::sin(lon), std::sin(lat))),
+        1e-12);
 }
 
 TEST_F(SkySystemHostTest, AMissingStarCatalogueIsNoticedOnce) {

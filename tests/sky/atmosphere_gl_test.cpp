@@ -1,11 +1,11 @@
 // GPU (OSMesa llvmpipe, float) vs CPU (the same functions.glsl compiled as C++, double) for each
 // LUT and the final image, under named tolerances: the shaders and the reference cannot drift.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
-
-#include <gtest/gtest.h>
 
 #include "gl_test_support.h"
 #include "zenith/sky/atmosphere_renderer.h"
@@ -46,8 +46,8 @@ Camera CameraAt(double altitude) {
     Camera camera;
     camera.position = glm::dvec3(0.0, 0.0, 6360e3 + altitude);
     // Looking toward +x (the sun's azimuth), up = +z.
-    camera.world_from_view = glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1),
-                                        glm::dvec3(-1, 0, 0));
+    camera.world_from_view =
+        glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 0, 0));
     camera.vertical_fov = 1.2;
     camera.aspect = 16.0 / 9.0;
     return camera;
@@ -60,8 +60,10 @@ TEST_F(AtmosphereGlTest, StaticLutsMatchTheCpuReference) {
     const Difference t = Compare(gpu.ReadTransmittance(), cpu.transmittance(), 1e-3);
     const Difference ms = Compare(gpu.ReadMultipleScattering(), cpu.multiple_scattering(), 1e-4);
     const Difference e = Compare(gpu.ReadGroundIrradiance(), cpu.ground_irradiance(), 1e-3);
-    std::printf("GPU vs CPU: transmittance max |d| %.2e; multiple scattering max rel %.2e; "
-                "irradiance max rel %.2e\n", t.max_absolute, ms.max_relative, e.max_relative);
+    std::printf(
+        "GPU vs CPU: transmittance max |d| %.2e; multiple scattering max rel %.2e; "
+        "irradiance max rel %.2e\n",
+        t.max_absolute, ms.max_relative, e.max_relative);
     // Float evaluation of the same code: transmittance to 1e-4 absolute (it is in [0, 1]); the
     // scattering LUTs to 0.5 % relative (float exp/log over long sums).
     EXPECT_LT(t.max_absolute, 1e-4);
@@ -77,12 +79,14 @@ TEST_F(AtmosphereGlTest, FrameLutsMatchTheCpuReference) {
     for (double altitude : {2.0, 9000.0}) {
         const Camera camera = CameraAt(altitude);
         gpu.UpdateFrameLuts(camera, lights);
-        const Difference sky = Compare(gpu.ReadSkyView(), cpu.SkyView(camera.position, lights),
-                                       1e-1);
+        const Difference sky =
+            Compare(gpu.ReadSkyView(), cpu.SkyView(camera.position, lights), 1e-1);
         const Difference ap =
             Compare(gpu.ReadAerialPerspective(), cpu.AerialPerspective(camera, lights), 1e-1, 4);
-        std::printf("GPU vs CPU at %.0f m: Sky-View max rel %.2e; aerial perspective max rel "
-                    "%.2e\n", altitude, sky.max_relative, ap.max_relative);
+        std::printf(
+            "GPU vs CPU at %.0f m: Sky-View max rel %.2e; aerial perspective max rel "
+            "%.2e\n",
+            altitude, sky.max_relative, ap.max_relative);
         // 2 m is a camera on a runway: float must hold there too (hence the exact camera
         // altitude and the cancellation-free step integral in functions.glsl).
         EXPECT_LT(sky.max_relative, 5e-3) << altitude;
@@ -142,9 +146,9 @@ TEST_F(AtmosphereGlTest, SwitchFromSkyViewToRayMarchingIsInvisible) {
         Camera camera = CameraAt(altitude);
         // Look 20 deg down so the horizon, the limb and the ground are all in view.
         const double pitch = -0.35;
-        camera.world_from_view = glm::dmat3(
-            glm::dvec3(0, 1, 0), glm::dvec3(std::sin(-pitch), 0, std::cos(pitch)),
-            glm::dvec3(-std::cos(pitch), 0, std::sin(-pitch)));
+        camera.world_from_view =
+            glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(std::sin(-pitch), 0, std::cos(pitch)),
+                       glm::dvec3(-std::cos(pitch), 0, std::sin(-pitch)));
         gpu.UpdateFrameLuts(camera, lights);
         RenderOptions options;
         options.size = {160, 90};
@@ -213,8 +217,8 @@ TEST_F(AtmosphereGlTest, SunDiskAndStarsIntegrateToTheirIlluminance) {
                       glm::dvec3(2e-6)}};
     gpu.Render(camera, dark, options);
     const double star = FrameIlluminance(gpu.ReadFrame(), camera) / 2e-6;
-    std::printf("integrated / true illuminance: sun disk %.4f, sun point %.6f, star %.6f\n",
-                disk, point, star);
+    std::printf("integrated / true illuminance: sun disk %.4f, sun point %.6f, star %.6f\n", disk,
+                point, star);
     EXPECT_NEAR(disk, 1.0, 0.01);  // pixelisation of the disk edge
     EXPECT_NEAR(point, 1.0, 1e-5);
     EXPECT_NEAR(star, 1.0, 1e-5);
@@ -228,8 +232,8 @@ TEST_F(AtmosphereGlTest, OffAxisSunDiskIsDrawnWhole) {
     atmosphere.sun_angular_radius = 2.0 * 0.017453292519943295;
     AtmosphereRenderer gpu(atmosphere);
     Camera camera = SpaceCameraLookingAt(glm::dvec3(0.0, 0.3, 1.0), 100.0 * 0.017453292519943295);
-    const glm::dvec3 diagonal = glm::normalize(camera.world_from_view[0] +
-                                               camera.world_from_view[1]);
+    const glm::dvec3 diagonal =
+        glm::normalize(camera.world_from_view[0] + camera.world_from_view[1]);
     const double off_axis = 50.0 * 0.017453292519943295;
     Lights lights;
     lights.sun_direction = glm::normalize(-camera.world_from_view[2] * std::cos(off_axis) +

@@ -1,12 +1,11 @@
 // The renderer's atmosphere functions (functions.glsl compiled as C++) against closed forms and
 // against themselves at higher resolution: what the LUTs must get right before any GPU is involved.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 
-#include <gtest/gtest.h>
-
 #include "reference/atmosphere_functions.h"
-
 #include "shader_parameters.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
@@ -16,7 +15,9 @@ namespace {
 
 using reference::AtmosphereReference;
 
-ref::AtmosphereParameters EarthKm() { return MakeShaderParameters<ref::AtmosphereParameters>(Atmosphere{}); }
+ref::AtmosphereParameters EarthKm() {
+    return MakeShaderParameters<ref::AtmosphereParameters>(Atmosphere{});
+}
 
 TEST(AtmosphereFunctions, PhaseFunctionsIntegrateToOne) {
     // Integral over the sphere = 2 pi * integral over nu in [-1, 1]; Simpson with 20000 intervals.
@@ -34,7 +35,8 @@ TEST(AtmosphereFunctions, PhaseFunctionsIntegrateToOne) {
     EXPECT_NEAR(integrate([](double) { return ref::IsotropicPhase(); }), 1.0, 1e-12);
     for (double g : {-0.5, 0.0, 0.3, 0.76, 0.8}) {
         EXPECT_NEAR(integrate([g](double nu) { return ref::CornetteShanksPhase(g, nu); }), 1.0,
-                    1e-6) << "g = " << g;
+                    1e-6)
+            << "g = " << g;
     }
 }
 
@@ -61,7 +63,8 @@ TEST(AtmosphereFunctions, VerticalTransmittanceEqualsClosedForm) {
         const bool kinks_aligned = h0 == 0.0 || h0 == 25.0 || h0 == 40.0 || h0 == 60.0;
         const ref::vec3 depth =
             a.rayleigh_scattering * a.rayleigh_scale_height *
-                (std::exp(-h0 / a.rayleigh_scale_height) - std::exp(-h_top / a.rayleigh_scale_height)) +
+                (std::exp(-h0 / a.rayleigh_scale_height) -
+                 std::exp(-h_top / a.rayleigh_scale_height)) +
             a.mie_extinction * a.mie_scale_height *
                 (std::exp(-h0 / a.mie_scale_height) - std::exp(-h_top / a.mie_scale_height)) +
             a.absorption_extinction * tent_area_above(h0);
@@ -146,7 +149,8 @@ TEST(AtmosphereLuts, MultipleScatteringConvergesInDirections) {
     for (std::size_t i = 0; i < a.multiple_scattering().texels.size(); ++i) {
         const glm::vec4 p = a.multiple_scattering().texels[i];
         const glm::vec4 q = b.multiple_scattering().texels[i];
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(double(p[c] - q[c])) / peak[c]);
+        for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, std::abs(double(p[c] - q[c])) / peak[c]);
     }
     std::printf("multiple scattering 64 dirs/20 steps vs 256/60: max error %.4f of the peak\n",
                 worst);
@@ -170,12 +174,12 @@ TEST(AtmosphereLuts, AerialPerspectiveColumnsMatchDirectMarching) {
             for (int x : {0, 16, 31}) {
                 const glm::dvec3 direction =
                     camera.Direction(2.0 * (x + 0.5) / 32 - 1.0, 2.0 * (y + 0.5) / 32 - 1.0);
-                const glm::dvec4 direct = reference.InScattering(
-                    camera.position, direction, lights, (z + 0.5) / 32.0 * 32000.0, 500);
+                const glm::dvec4 direct = reference.InScattering(camera.position, direction, lights,
+                                                                 (z + 0.5) / 32.0 * 32000.0, 500);
                 const glm::vec4 froxel = ap.at(x, y, z);
                 for (int c = 0; c < 3; ++c) {
-                    worst = std::max(worst, std::abs(froxel[c] - direct[c]) /
-                                                std::max(direct[c], 1e-3));
+                    worst = std::max(worst,
+                                     std::abs(froxel[c] - direct[c]) / std::max(direct[c], 1e-3));
                 }
                 worst = std::max(worst, std::abs(froxel.w - direct.w));
             }
@@ -198,8 +202,8 @@ TEST(AtmosphereLuts, SkyViewMatchesPerPixelRayMarching) {
             for (double az = 0.0; az < 6.28; az += 0.2) {
                 const glm::dvec3 d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
                                    std::sin(el));
-                const glm::dvec3 lut = reference.SampleSkyView(sky_view, camera,
-                                                               lights.sun_direction, d);
+                const glm::dvec3 lut =
+                    reference.SampleSkyView(sky_view, camera, lights.sun_direction, d);
                 const glm::dvec3 marched = reference.RayMarch(camera, d, lights, 200);
                 const double y_lut = 0.2126 * lut.x + 0.7152 * lut.y + 0.0722 * lut.z;
                 const double y_ref = 0.2126 * marched.x + 0.7152 * marched.y + 0.0722 * marched.z;
@@ -247,8 +251,8 @@ TEST(AtmosphereLuts, MoonIsDroppedOnlyWhereItsSkyIsNegligible) {
             const LutImage moon_sky = reference.SkyView(camera, moon);
             for (int y = 0; y < sun_sky.size.y; ++y) {
                 for (int x = 0; x < sun_sky.size.x; ++x) {
-                    worst = std::max(worst, luminance(moon_sky.at(x, y)) /
-                                                luminance(sun_sky.at(x, y)));
+                    worst =
+                        std::max(worst, luminance(moon_sky.at(x, y)) / luminance(sun_sky.at(x, y)));
                 }
             }
         }
@@ -285,9 +289,9 @@ TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
     const ref::vec3 origin(0.0, 0.0, a.bottom_radius + 1.0);
     for (double mu : {0.3, -0.01, -0.02, -0.6}) {  // up; above, beyond and below the horizon
         const ref::vec3 direction(std::sqrt(1.0 - mu * mu), 0.0, mu);
-        const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
-            a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights, origin, 1.0, direction, 0.0,
-            1e9, 40, true);
+        const ref::ScatteringResult r =
+            ref::IntegrateScatteredLuminance(a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights,
+                                             origin, 1.0, direction, 0.0, 1e9, 40, true);
         const double r0 = a.bottom_radius + 1.0;
         const bool ground = mu < -std::sqrt(1.0 - a.bottom_radius * a.bottom_radius / (r0 * r0));
         for (int c = 0; c < 3; ++c) {
@@ -300,9 +304,9 @@ TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
     }
     // Without clouds (cloud_base 0) nothing changes: the same march, the lights at full.
     lights.cloud_base = 0.0;
-    const ref::ScatteringResult clear = ref::IntegrateScatteredLuminance(
-        a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights, origin, 1.0,
-        ref::vec3(0.0, 0.6, 0.8), 0.0, 1e9, 40, true);
+    const ref::ScatteringResult clear =
+        ref::IntegrateScatteredLuminance(a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights,
+                                         origin, 1.0, ref::vec3(0.0, 0.6, 0.8), 0.0, 1e9, 40, true);
     EXPECT_EQ(clear.luminance, ref::vec3(0.0));  // zero LUTs: no light but the clouds'
 }
 

@@ -157,9 +157,10 @@ TEST(AtmospherePresets, EarthAerosolAlbedoAndHorizontalOpticalDepth) {
     }
     // For the record: the whole air (Rayleigh, ozone) along the same ray, green channel.
     const glm::dvec3 tau_air = reference::OpticalDepth(earth, origin, direction, kLength);
-    std::printf("aerosol albedo %.6f; horizontal 1 km at 1 km: aerosol tau %.6e (closed form "
-                "%.6e), all air tau (G) %.6e\n",
-                ground.mie_scattering.y / ground.extinction.y, tau.y, closed_form.y, tau_air.y);
+    std::printf(
+        "aerosol albedo %.6f; horizontal 1 km at 1 km: aerosol tau %.6e (closed form "
+        "%.6e), all air tau (G) %.6e\n",
+        ground.mie_scattering.y / ground.extinction.y, tau.y, closed_form.y, tau_air.y);
 }
 
 TEST(AtmospherePresets, MarsIsPlausible) {

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <random>
 
-#include "reference/cloud_functions.h"
 #include "cloud_test_support.h"
+#include "reference/cloud_functions.h"
 
 namespace zenith::sky::ref {
 namespace {
@@ -176,8 +176,8 @@ TEST(CloudDensity, DomeProjectionKeepsTheShellAtConstantAltitude) {
     for (const double arc : {0.0, 0.001, 5.0, 100.0, 300.0, 1000.0}) {
         const double theta = arc / r;
         for (const double azimuth : {0.0, 1.0, 2.5}) {
-            const vec3 up(std::sin(theta) * std::cos(azimuth),
-                          std::sin(theta) * std::sin(azimuth), std::cos(theta));
+            const vec3 up(std::sin(theta) * std::cos(azimuth), std::sin(theta) * std::sin(azimuth),
+                          std::cos(theta));
             const vec2 ground = CloudGroundCoordinates(layer, (r + 2.7) * up);
             // Arc length along the ground, whatever the altitude of the point.
             EXPECT_NEAR(glm::length(ground), arc, 1e-9 * (1.0 + arc));

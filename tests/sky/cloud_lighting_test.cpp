@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <random>
 
-#include "reference/cloud_functions.h"
 #include "cloud_test_support.h"
+#include "reference/cloud_functions.h"
 
 namespace zenith::sky::ref {
 namespace {
@@ -85,13 +85,13 @@ TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConserves
                 // Upward flux pi (I0 - 2/3 I1) at the top, downward pi (I0 + 2/3 I1) plus the
                 // beam at the base.
                 EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), rt.x * mu0, 1e-12);
-                EXPECT_NEAR(kPi * (bottom.x + 2.0 / 3.0 * bottom.y) + direct(tau_total),
-                            rt.y * mu0, 1e-12);
+                EXPECT_NEAR(kPi * (bottom.x + 2.0 / 3.0 * bottom.y) + direct(tau_total), rt.y * mu0,
+                            1e-12);
                 for (const double x : {0.0, 0.3, 0.7, 1.0}) {
                     const vec2 i = CloudDiffuseRadiance(g, x * tau_total, tau_total, mu0, 0.0);
                     // Net downward flux 4 pi / 3 I1 plus the beam: constant, (1 - R) mu0.
-                    EXPECT_NEAR(4.0 * kPi / 3.0 * i.y + direct(x * tau_total),
-                                (1.0 - rt.x) * mu0, 1e-12);
+                    EXPECT_NEAR(4.0 * kPi / 3.0 * i.y + direct(x * tau_total), (1.0 - rt.x) * mu0,
+                                1e-12);
                     EXPECT_GE(i.x, 0.0);
                 }
                 EXPECT_GT(rt.x, 0.0);

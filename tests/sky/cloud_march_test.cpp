@@ -1,13 +1,14 @@
 // The cloud march on the CPU (clouds/march.glsl compiled as C++): the layer's entry and exit
 // against closed forms from below, inside, above and from orbit; the march's convergence in its
 // step count and its exact energy balance; the layer order, the settings' checks and the lights.
-#include <cmath>
-#include <vector>
+#include "reference/cloud_march.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 #include "clouds/cloud_parameters.h"
-#include "reference/cloud_march.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sky::ref {
@@ -137,8 +138,10 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
     };
     const double reference = luminance(1000);
     const double twenty = luminance(20);
-    std::printf("overhead sun through a smooth cumulonimbus: 20 steps %.5g, 1000 steps %.5g "
-                "(%.2f %%)\n", twenty, reference, 100.0 * (twenty / reference - 1.0));
+    std::printf(
+        "overhead sun through a smooth cumulonimbus: 20 steps %.5g, 1000 steps %.5g "
+        "(%.2f %%)\n",
+        twenty, reference, 100.0 * (twenty / reference - 1.0));
     EXPECT_NEAR(twenty / reference, 1.0, 0.02);
     // Unshadowed isotropic scattering adds (1 - T) E / (4 pi): exactly, whatever the steps.
     CloudMarchState state = CloudMarchStart();

@@ -11,9 +11,9 @@
 #include <fstream>
 #include <random>
 
-#include "zenith/sky/clouds/noise.h"
 #include "cloud_test_support.h"
 #include "zenith/base/error.h"
+#include "zenith/sky/clouds/noise.h"
 
 namespace zenith::sky::clouds {
 namespace {

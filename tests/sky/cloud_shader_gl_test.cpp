@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "cloud_test_support.h"
 #include "gl/shader_library.h"
 #include "reference/cloud_functions.h"
-#include "cloud_test_support.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/shader.h"
 
@@ -131,10 +131,10 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
                    static_cast<float>(layer_values[i]));
     }
     // The padding is unused and may be optimised away.
-    const char* scattering_fields[] = {"forward_g", "backward_g", "lobe_weight", "albedo",
-                                       "multiple_scattering", "ground_albedo"};
-    const double scattering_values[] = {scattering.forward_g,   scattering.backward_g,
-                                        scattering.lobe_weight, scattering.albedo,
+    const char* scattering_fields[] = {"forward_g", "backward_g",          "lobe_weight",
+                                       "albedo",    "multiple_scattering", "ground_albedo"};
+    const double scattering_values[] = {scattering.forward_g,           scattering.backward_g,
+                                        scattering.lobe_weight,         scattering.albedo,
                                         scattering.multiple_scattering, scattering.ground_albedo};
     for (int i = 0; i < 6; ++i) {
         SetUniform(name, std::string("scattering.") + scattering_fields[i],

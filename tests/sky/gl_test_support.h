@@ -2,9 +2,9 @@
 // costs more than many of the tests).
 #pragma once
 
-#include <memory>
-
 #include <gtest/gtest.h>
+
+#include <memory>
 
 #include "zenith/sky/gl/context.h"
 

@@ -3,16 +3,16 @@
 // tolerance that is data. On failure the actual frame and a difference image are written next to
 // the test binary and their paths printed. Goldens change only through the explicit target
 // `cmake --build build --target update_goldens` (ZENITH_UPDATE_GOLDENS=1), then review.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <glm/gtc/constants.hpp>
 #include <optional>
 #include <ostream>
 #include <string>
-
-#include <glm/gtc/constants.hpp>
-#include <gtest/gtest.h>
 
 #include "zenith/geo/ephemeris.h"
 #include "zenith/sky/atmosphere_renderer.h"
@@ -85,7 +85,7 @@ fs::path GoldenPath(const Scene& s) {
 double Luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 class GoldenFrames : public ::testing::TestWithParam<Scene> {
-protected:
+  protected:
     static void SetUpTestSuite() {
         context_ = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa).release();
         renderer_ = new AtmosphereRenderer(Atmosphere{});
@@ -127,8 +127,8 @@ Image Render(const Scene& scene, AtmosphereRenderer& renderer, const geo::StarCa
         scene.toward_sun ? e.sun.topocentric.horizontal.azimuth + glm::radians(scene.sun_offset_deg)
                          : 0.0;
     SkyState state = MakeSkyState(e, observer, renderer.atmosphere(),
-                                  {heading, glm::radians(scene.pitch_deg), 0.0},
-                                  glm::radians(90.0), double(kSize.x) / kSize.y);
+                                  {heading, glm::radians(scene.pitch_deg), 0.0}, glm::radians(90.0),
+                                  double(kSize.x) / kSize.y);
     renderer.UpdateFrameLuts(state.camera, state.lights);
     RenderOptions options;
     options.size = kSize;
@@ -155,8 +155,8 @@ TEST_P(GoldenFrames, MatchesTheReviewedFrame) {
     if (catalog_ == nullptr && std::string(scene.name).find("night") != std::string::npos) {
         GTEST_SKIP() << "star catalogue not installed (apt-get install kstars-data)";
     }
-    ASSERT_TRUE(fs::exists(golden_path)) << "no golden " << golden_path
-                                         << "; create it with the update_goldens target";
+    ASSERT_TRUE(fs::exists(golden_path))
+        << "no golden " << golden_path << "; create it with the update_goldens target";
     const Image golden = ReadExr(golden_path);
     ASSERT_EQ(golden.width, actual.width);
     ASSERT_EQ(golden.height, actual.height);

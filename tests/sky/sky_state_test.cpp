@@ -1,10 +1,10 @@
 #include "zenith/sky/sky_state.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/constants.hpp>
-#include <gtest/gtest.h>
 
 #include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
@@ -22,8 +22,7 @@ void ExpectNear(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
 TEST(MoonLight, LambertSphereClosedForms) {
     const double s = std::sin(0.0045);
     // Full: (2/3) A sin^2(r); quarter (90 deg): Phi = 1 / pi; new: 0.
-    EXPECT_NEAR(LambertSphereIlluminanceFactor(0.12, 0.0, 0.0045), 2.0 / 3.0 * 0.12 * s * s,
-                1e-15);
+    EXPECT_NEAR(LambertSphereIlluminanceFactor(0.12, 0.0, 0.0045), 2.0 / 3.0 * 0.12 * s * s, 1e-15);
     EXPECT_NEAR(LambertSphereIlluminanceFactor(0.12, glm::half_pi<double>(), 0.0045),
                 2.0 / 3.0 * 0.12 * s * s / glm::pi<double>(), 1e-15);
     EXPECT_NEAR(LambertSphereIlluminanceFactor(0.12, glm::pi<double>(), 0.0045), 0.0, 1e-18);

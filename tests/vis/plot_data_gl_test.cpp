@@ -1,16 +1,7 @@
 // zenith-plot's data against the renderer's LUTs: what is plotted and exported is what the GL
 // renderer computed. Uses a headless GL context (OSMesa) for the LUTs but no X display: charts
 // and images are built and read back, not drawn (the drawing is tests/vis/plot_cli_test.sh).
-#include <cmath>
-#include <filesystem>
-#include <map>
-#include <string>
-
 #include <gtest/gtest.h>
-
-#include "luts.h"
-#include "plots.h"
-
 #include <vtkChartMatrix.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -18,6 +9,14 @@
 #include <vtkSmartPointer.h>
 #include <vtkTable.h>
 #include <vtkXMLImageDataReader.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "luts.h"
+#include "plots.h"
 
 namespace zenith::vis {
 namespace {
@@ -66,15 +65,16 @@ TEST_P(PlotDataTest, PlottedTransmittanceEqualsRendererLut) {
         ASSERT_EQ(tables.size(), 1u);
         vtkTable* table = tables[0];
         // The LUT holds only rays that miss the ground, so every sample is plotted.
-        ASSERT_EQ(table->GetNumberOfRows(), static_cast<vtkIdType>(options.zenith_samples_deg.size()));
+        ASSERT_EQ(table->GetNumberOfRows(),
+                  static_cast<vtkIdType>(options.zenith_samples_deg.size()));
         for (vtkIdType row = 0; row < table->GetNumberOfRows(); ++row) {
             const int x = static_cast<int>(row) * 5;
             const glm::vec4 texel = lut.at(x, y);
             for (int c = 0; c < 3; ++c) {
                 const double plotted = table->GetValue(row, c + 1).ToDouble();
                 EXPECT_NEAR(plotted, texel[c], kTexelCentreTolerance)
-                    << GetParam() << " texel (" << x << ", " << y << ") channel " << c
-                    << " zenith " << table->GetValue(row, 0).ToDouble() << " deg";
+                    << GetParam() << " texel (" << x << ", " << y << ") channel " << c << " zenith "
+                    << table->GetValue(row, 0).ToDouble() << " deg";
             }
         }
     }
@@ -182,7 +182,8 @@ TEST_P(PlotDataTest, PhysicalCoordinatesOfTexelsSampleTheTexel) {
     }
     for (int x : {0, 20, 63}) {
         const glm::dvec3 sampled = SampleIrradiance(luts, IrradianceTexelMuS(luts, x));
-        EXPECT_NEAR(sampled.g, luts.irradiance.at(x, 0).g, 1e-5 * luts.irradiance.at(x, 0).g + 1e-9);
+        EXPECT_NEAR(sampled.g, luts.irradiance.at(x, 0).g,
+                    1e-5 * luts.irradiance.at(x, 0).g + 1e-9);
     }
     for (int z : {0, 8, 31}) {
         double horizontal = 0.0, vertical = 0.0;

@@ -199,8 +199,8 @@ double HorizontalTransmittance(const sky::Atmosphere& a, double distance_m) {
     for (int i = 0; i < steps; ++i) {
         const double x = (i + 0.5) * distance_m / steps;
         const double h = std::hypot(a.bottom_radius, x) - a.bottom_radius;
-        const double tent = std::max(
-            0.0, 1.0 - std::abs(h - a.absorption_center) / (0.5 * a.absorption_width));
+        const double tent =
+            std::max(0.0, 1.0 - std::abs(h - a.absorption_center) / (0.5 * a.absorption_width));
         const double sigma = a.rayleigh_scattering.y * std::exp(-h / a.rayleigh_scale_height) +
                              a.MieExtinction().y * std::exp(-h / a.mie_scale_height) +
                              tent * a.absorption_extinction.y;

@@ -1,5 +1,12 @@
 #include "display.h"
 
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -8,13 +15,6 @@
 #include <filesystem>
 #include <string_view>
 #include <thread>
-
-#include <dlfcn.h>
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace zenith::vis {
 namespace {
@@ -36,8 +36,8 @@ struct XLib {
         handle = dlopen("libX11.so.6", RTLD_NOW | RTLD_LOCAL);
         if (handle == nullptr) {
             const char* e = dlerror();
-            error = std::string("cannot load libX11.so.6 (") + (e ? e : "?") +
-                    "); install libx11-6";
+            error =
+                std::string("cannot load libX11.so.6 (") + (e ? e : "?") + "); install libx11-6";
             return;
         }
         open_display = reinterpret_cast<void* (*)(const char*)>(dlsym(handle, "XOpenDisplay"));
@@ -196,8 +196,7 @@ DisplayGuard EnsureDisplay(bool verbose) {
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
-    throw DisplayError("started " + xvfb + " on " + display + " but " + why + ". " +
-                       kInstallHint);
+    throw DisplayError("started " + xvfb + " on " + display + " but " + why + ". " + kInstallHint);
 }
 
 }  // namespace zenith::vis

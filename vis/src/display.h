@@ -6,10 +6,10 @@
 // libX11 is opened with dlopen, so this check works even where libX11 itself is missing.
 #pragma once
 
+#include <sys/types.h>
+
 #include <stdexcept>
 #include <string>
-
-#include <sys/types.h>
 
 #include "zenith/base/error.h"
 

@@ -1,15 +1,16 @@
 #include "luts.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include <fmt/format.h>
-
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
 #include "shader_parameters.h"
+#include "zenith/base/error.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/observer.h"
 #include "zenith/geo/time.h"
@@ -17,7 +18,6 @@
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/reference/path_tracer.h"
 #include "zenith/sky/sky_state.h"
-#include "zenith/base/error.h"
 
 namespace zenith::vis {
 namespace ref = zenith::sky::ref;
@@ -37,11 +37,16 @@ double TexelCentre(int i, int n) { return (i + 0.5) / n; }
 
 std::string_view LutName(LutKind kind) {
     switch (kind) {
-        case LutKind::kTransmittance: return "transmittance";
-        case LutKind::kMultipleScattering: return "multiple-scattering";
-        case LutKind::kIrradiance: return "irradiance";
-        case LutKind::kSkyView: return "sky-view";
-        case LutKind::kAerialPerspective: return "aerial-perspective";
+        case LutKind::kTransmittance:
+            return "transmittance";
+        case LutKind::kMultipleScattering:
+            return "multiple-scattering";
+        case LutKind::kIrradiance:
+            return "irradiance";
+        case LutKind::kSkyView:
+            return "sky-view";
+        case LutKind::kAerialPerspective:
+            return "aerial-perspective";
     }
     return "?";
 }
@@ -52,7 +57,8 @@ LutKind ParseLutKind(std::string_view name) {
     }
     throw ArgumentError(fmt::format(
         "--lut = '{}' is not a LUT (expected transmittance, multiple-scattering, irradiance, "
-        "sky-view or aerial-perspective)", name));
+        "sky-view or aerial-perspective)",
+        name));
 }
 
 Channel ParseChannel(std::string_view name) {
@@ -66,31 +72,44 @@ Channel ParseChannel(std::string_view name) {
 
 std::string_view ChannelName(Channel channel) {
     switch (channel) {
-        case Channel::kR: return "R";
-        case Channel::kG: return "G";
-        case Channel::kB: return "B";
-        case Channel::kLuminance: return "luminance";
+        case Channel::kR:
+            return "R";
+        case Channel::kG:
+            return "G";
+        case Channel::kB:
+            return "B";
+        case Channel::kLuminance:
+            return "luminance";
     }
     return "?";
 }
 
 double ChannelValue(const glm::dvec3& rgb, Channel channel) {
     switch (channel) {
-        case Channel::kR: return rgb.r;
-        case Channel::kG: return rgb.g;
-        case Channel::kB: return rgb.b;
-        case Channel::kLuminance: return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
+        case Channel::kR:
+            return rgb.r;
+        case Channel::kG:
+            return rgb.g;
+        case Channel::kB:
+            return rgb.b;
+        case Channel::kLuminance:
+            return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;
     }
     return kNaN;
 }
 
 const sky::LutImage& Luts::Image(LutKind kind) const {
     switch (kind) {
-        case LutKind::kTransmittance: return transmittance;
-        case LutKind::kMultipleScattering: return multiple_scattering;
-        case LutKind::kIrradiance: return irradiance;
-        case LutKind::kSkyView: return sky_view;
-        case LutKind::kAerialPerspective: return aerial_perspective;
+        case LutKind::kTransmittance:
+            return transmittance;
+        case LutKind::kMultipleScattering:
+            return multiple_scattering;
+        case LutKind::kIrradiance:
+            return irradiance;
+        case LutKind::kSkyView:
+            return sky_view;
+        case LutKind::kAerialPerspective:
+            return aerial_perspective;
     }
     return transmittance;
 }
@@ -103,8 +122,8 @@ Luts ComputeLuts(const Scene& scene) {
     } else if (scene.quality == "mobile") {
         luts.settings = sky::LutSettings::Mobile();
     } else {
-        throw ArgumentError(
-            fmt::format("--quality = '{}' is not a quality (expected pc or mobile)", scene.quality));
+        throw ArgumentError(fmt::format("--quality = '{}' is not a quality (expected pc or mobile)",
+                                        scene.quality));
     }
     if (!(scene.fov_deg > 0.0 && scene.fov_deg < 180.0)) {
         throw ArgumentError(fmt::format(
@@ -143,9 +162,9 @@ Luts ComputeLuts(const Scene& scene) {
 void TransmittanceTexelRMu(const Luts& luts, int x, int y, double* r, double* mu) {
     const glm::ivec2 size(luts.transmittance.size);
     double r_km = 0.0, mu_value = 0.0;
-    ref::GetRMuFromTransmittanceTextureUv(
-        Parameters(luts), ref::vec2(TexelCentre(x, size.x), TexelCentre(y, size.y)), size, r_km,
-        mu_value);
+    ref::GetRMuFromTransmittanceTextureUv(Parameters(luts),
+                                          ref::vec2(TexelCentre(x, size.x), TexelCentre(y, size.y)),
+                                          size, r_km, mu_value);
     *r = r_km * kKm;
     *mu = mu_value;
 }
@@ -343,10 +362,10 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
                 for (int i = 0; i < s.width; ++i) {
                     const double mu = std::cos((s.x0 + i * s.dx) * kDeg);
                     if (ref::RayIntersectsGround(p, r, mu)) continue;  // NaN: ray hits ground
-                    set(i, j, ChannelValue(ref::GetTransmittanceToTopAtmosphereBoundary(
-                                               p, texture, glm::ivec2(luts.transmittance.size),
-                                               r, mu),
-                                           channel));
+                    set(i, j,
+                        ChannelValue(ref::GetTransmittanceToTopAtmosphereBoundary(
+                                         p, texture, glm::ivec2(luts.transmittance.size), r, mu),
+                                     channel));
                 }
             }
             break;
@@ -363,24 +382,26 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
                 const double r = p.bottom_radius + s.y0 + j * s.dy;
                 for (int i = 0; i < s.width; ++i) {
                     const double mu_s = std::cos((s.x0 + i * s.dx) * kDeg);
-                    set(i, j, ChannelValue(ref::GetMultipleScattering(
-                                               p, texture,
-                                               glm::ivec2(luts.multiple_scattering.size), r, mu_s),
-                                           channel));
+                    set(i, j,
+                        ChannelValue(
+                            ref::GetMultipleScattering(
+                                p, texture, glm::ivec2(luts.multiple_scattering.size), r, mu_s),
+                            channel));
                 }
             }
             break;
         }
         case LutKind::kIrradiance: {
-            s.title = fmt::format("Ground sky irradiance ({}), {}", channel_name,
-                                  luts.atmosphere.name);
+            s.title =
+                fmt::format("Ground sky irradiance ({}), {}", channel_name, luts.atmosphere.name);
             s.x_title = "sun zenith angle (deg)";
             s.y_title = "";
             s.value_title = "E_sky (per unit illuminance)";
             grid(0.0, 180.0, 0.0, 0.0);
             for (int i = 0; i < s.width; ++i) {
-                set(i, 0, ChannelValue(SampleIrradiance(luts, std::cos((s.x0 + i * s.dx) * kDeg)),
-                                       channel));
+                set(i, 0,
+                    ChannelValue(SampleIrradiance(luts, std::cos((s.x0 + i * s.dx) * kDeg)),
+                                 channel));
             }
             break;
         }
@@ -409,8 +430,8 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
         case LutKind::kAerialPerspective: {
             const int slices = luts.aerial_perspective.size.z;
             if (slice < 0 || slice >= slices) {
-                throw ArgumentError(fmt::format(
-                    "--slice = {} is out of range (expected 0..{})", slice, slices - 1));
+                throw ArgumentError(fmt::format("--slice = {} is out of range (expected 0..{})",
+                                                slice, slices - 1));
             }
             s.title = fmt::format("Aerial perspective slice {} (depth {:.1f} km), {} ({})", slice,
                                   AerialPerspectiveSliceDepth(luts, slice) / kKm, channel_name,

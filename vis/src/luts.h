@@ -8,15 +8,14 @@
 #pragma once
 
 #include <array>
+#include <glm/glm.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include <glm/glm.hpp>
-
+#include "zenith/base/error.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/lut.h"
-#include "zenith/base/error.h"
 
 namespace zenith::vis {
 
@@ -36,10 +35,16 @@ struct Scene {
     std::string quality = "pc";  // pc | mobile (Hillaire 2020, Table 2)
 };
 
-enum class LutKind { kTransmittance, kMultipleScattering, kIrradiance, kSkyView, kAerialPerspective };
+enum class LutKind {
+    kTransmittance,
+    kMultipleScattering,
+    kIrradiance,
+    kSkyView,
+    kAerialPerspective
+};
 inline constexpr std::array<LutKind, 5> kAllLuts = {
-    LutKind::kTransmittance, LutKind::kMultipleScattering, LutKind::kIrradiance,
-    LutKind::kSkyView, LutKind::kAerialPerspective};
+    LutKind::kTransmittance, LutKind::kMultipleScattering, LutKind::kIrradiance, LutKind::kSkyView,
+    LutKind::kAerialPerspective};
 // "transmittance", "multiple-scattering", "irradiance", "sky-view", "aerial-perspective".
 std::string_view LutName(LutKind kind);
 // Throws zenith::ArgumentError naming the value and the choices.

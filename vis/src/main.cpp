@@ -1,27 +1,25 @@
 // zenith-plot: VTK views of the atmosphere's LUTs, computed by the real renderer (read back from
 // GL), in physical units. Subcommands: transmittance, lut, export, overview. Headless with
 // --out FILE.png (starting a private Xvfb if there is no display), interactive otherwise.
+#include <fmt/format.h>
+#include <vtkAbstractContextItem.h>
+#include <vtkChartMatrix.h>
+#include <vtkImageData.h>
+#include <vtkPolyData.h>
+#include <vtkRenderer.h>
+
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
-
 #include "display.h"
 #include "luts.h"
 #include "plots.h"
-#include "zenith/sky/gl/error.h"
-
-#include <vtkChartMatrix.h>
-#include <vtkAbstractContextItem.h>
-#include <vtkImageData.h>
-#include <vtkPolyData.h>
-#include <vtkRenderer.h>
-
 #include "zenith/base/error.h"
+#include "zenith/sky/gl/error.h"
 
 namespace {
 
@@ -31,11 +29,12 @@ using namespace zenith;
 glm::ivec2 ParseSize(const std::string& text, const char* option = "--size", int min = 64) {
     int w = 0, h = 0;
     char x = 0;
-    if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < min ||
-        h < min || w > 8192 || h > 8192) {
-        throw ArgumentError(fmt::format("{} = '{}' is not a size (expected WxH with "
-                                                "{}..8192 per axis)",
-                                                option, text, min));
+    if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < min || h < min ||
+        w > 8192 || h > 8192) {
+        throw ArgumentError(
+            fmt::format("{} = '{}' is not a size (expected WxH with "
+                        "{}..8192 per axis)",
+                        option, text, min));
     }
     return {w, h};
 }
@@ -47,20 +46,27 @@ void AddSceneOptions(CLI::App* app, vis::Scene& scene, bool frame_luts) {
         ->capture_default_str();
     if (!frame_luts) return;
     const std::string group = "Scene (Sky-View and aerial perspective; as `zenith render`)";
-    app->add_option("--utc", scene.utc, "UTC instant, ISO 8601")->capture_default_str()
+    app->add_option("--utc", scene.utc, "UTC instant, ISO 8601")
+        ->capture_default_str()
         ->group(group);
-    app->add_option("--lat", scene.lat_deg, "geodetic latitude, degrees")->capture_default_str()
+    app->add_option("--lat", scene.lat_deg, "geodetic latitude, degrees")
+        ->capture_default_str()
         ->group(group);
-    app->add_option("--lon", scene.lon_deg, "longitude, degrees")->capture_default_str()
+    app->add_option("--lon", scene.lon_deg, "longitude, degrees")
+        ->capture_default_str()
         ->group(group);
     app->add_option("--height", scene.height_m, "height above the WGS84 ellipsoid, metres")
-        ->capture_default_str()->group(group);
+        ->capture_default_str()
+        ->group(group);
     app->add_option("--heading", scene.heading_deg, "degrees from true north, clockwise")
-        ->capture_default_str()->group(group);
+        ->capture_default_str()
+        ->group(group);
     app->add_option("--pitch", scene.pitch_deg, "degrees, nose up positive")
-        ->capture_default_str()->group(group);
+        ->capture_default_str()
+        ->group(group);
     app->add_option("--fov", scene.fov_deg, "vertical field of view, degrees")
-        ->capture_default_str()->group(group);
+        ->capture_default_str()
+        ->group(group);
 }
 
 // A display before any VTK window: an interactive window needs a real one; a PNG can use Xvfb.
@@ -99,16 +105,20 @@ int main(int argc, char** argv) {
     std::string out, size_text = "800x500";
 
     vis::TransmittancePlotOptions transmittance;
-    CLI::App* transmittance_cmd = app.add_subcommand(
-        "transmittance", "Transmittance (R, G, B) to space versus view zenith angle for chosen "
-                         "altitudes, and versus altitude for chosen angles");
+    CLI::App* transmittance_cmd =
+        app.add_subcommand("transmittance",
+                           "Transmittance (R, G, B) to space versus view zenith angle for chosen "
+                           "altitudes, and versus altitude for chosen angles");
     AddSceneOptions(transmittance_cmd, scene, false);
-    transmittance_cmd->add_option("--altitudes", transmittance.altitudes_km,
-                                  "altitudes of the left chart, km")
-        ->delimiter(',')->capture_default_str();
-    transmittance_cmd->add_option("--zeniths", transmittance.zeniths_deg,
-                                  "view zenith angles of the right chart, degrees")
-        ->delimiter(',')->capture_default_str();
+    transmittance_cmd
+        ->add_option("--altitudes", transmittance.altitudes_km, "altitudes of the left chart, km")
+        ->delimiter(',')
+        ->capture_default_str();
+    transmittance_cmd
+        ->add_option("--zeniths", transmittance.zeniths_deg,
+                     "view zenith angles of the right chart, degrees")
+        ->delimiter(',')
+        ->capture_default_str();
     transmittance_cmd->add_flag("--reference", transmittance.reference,
                                 "overlay the independent CPU reference (path tracer quadrature)");
     transmittance_cmd->add_flag("--log", transmittance.log, "logarithmic transmittance axis");
@@ -120,16 +130,18 @@ int main(int argc, char** argv) {
     int slice = 8;
     CLI::App* lut_cmd = app.add_subcommand(
         "lut", "A slice of one LUT as an image with a colour bar, axes in physical units");
-    lut_cmd->add_option("--lut", lut_name,
-                        "transmittance, multiple-scattering, irradiance, sky-view or "
-                        "aerial-perspective")
+    lut_cmd
+        ->add_option("--lut", lut_name,
+                     "transmittance, multiple-scattering, irradiance, sky-view or "
+                     "aerial-perspective")
         ->capture_default_str();
     lut_cmd->add_option("--channel", channel_name, "r, g, b or luminance")->capture_default_str();
     lut_cmd->add_option("--scale", scale, "linear or log")->capture_default_str();
     lut_cmd->add_option("--slice", slice, "aerial-perspective depth slice k")
         ->capture_default_str();
-    lut_cmd->add_option("--samples", samples_text,
-                        "WxH samples of the physical grid the LUT is sampled on (GL_LINEAR)")
+    lut_cmd
+        ->add_option("--samples", samples_text,
+                     "WxH samples of the physical grid the LUT is sampled on (GL_LINEAR)")
         ->capture_default_str();
     AddSceneOptions(lut_cmd, scene, true);
     lut_cmd->add_option("--out", out, "write this PNG instead of opening a window");
@@ -171,9 +183,9 @@ int main(int argc, char** argv) {
             const vis::Luts luts = vis::ComputeLuts(scene);
             fs::create_directories(export_dir);
             for (vis::LutKind kind : vis::kAllLuts) {
-                const fs::path path = fs::path(export_dir) /
-                                      fmt::format("{}_{}.vti", luts.atmosphere.name,
-                                                  vis::LutName(kind));
+                const fs::path path =
+                    fs::path(export_dir) /
+                    fmt::format("{}_{}.vti", luts.atmosphere.name, vis::LutName(kind));
                 vis::WriteVti(vis::LutImageData(luts, kind), path);
                 fmt::print("{}\n", path.string());
             }
@@ -193,8 +205,8 @@ int main(int argc, char** argv) {
             const vis::LutKind kind = vis::ParseLutKind(lut_name);
             const vis::Channel channel = vis::ParseChannel(channel_name);
             if (scale != "linear" && scale != "log") {
-                throw ArgumentError(fmt::format(
-                    "--scale = '{}' is not a scale (expected linear or log)", scale));
+                throw ArgumentError(
+                    fmt::format("--scale = '{}' is not a scale (expected linear or log)", scale));
             }
             const glm::ivec2 samples = ParseSize(samples_text, "--samples", 2);
             const auto display = Display(out);

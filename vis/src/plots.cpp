@@ -1,24 +1,12 @@
 #include "plots.h"
 
-#include <algorithm>
-#include <cmath>
-#include <limits>
-#include <stdexcept>
-
 #include <fmt/format.h>
-
-#include "zenith/geo/ephemeris.h"
-#include "zenith/geo/observer.h"
-#include "zenith/geo/time.h"
-#include "zenith/track/flight_log.h"
-#include "zenith/track/trajectory.h"
-
+#include <vtkAbstractContextItem.h>
 #include <vtkActor.h>
 #include <vtkArrowSource.h>
 #include <vtkAxis.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
-#include <vtkAbstractContextItem.h>
 #include <vtkChartHistogram2D.h>
 #include <vtkChartLegend.h>
 #include <vtkChartMatrix.h>
@@ -57,7 +45,17 @@
 #include <vtkXMLImageDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
 #include "zenith/base/error.h"
+#include "zenith/geo/ephemeris.h"
+#include "zenith/geo/observer.h"
+#include "zenith/geo/time.h"
+#include "zenith/track/flight_log.h"
+#include "zenith/track/trajectory.h"
 
 namespace zenith::vis {
 namespace {
@@ -123,7 +121,8 @@ void AddCurve(vtkChartXY* chart, const Curve& curve, int style_index, bool refer
 
 std::vector<double> Range(double first, double last, int n) {
     std::vector<double> values(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) values[static_cast<std::size_t>(i)] = first + (last - first) * i / (n - 1);
+    for (int i = 0; i < n; ++i)
+        values[static_cast<std::size_t>(i)] = first + (last - first) * i / (n - 1);
     return values;
 }
 
@@ -276,8 +275,11 @@ vtkSmartPointer<vtkAbstractContextItem> MakeSliceChart(const Slice& slice, bool 
     if (!(range[1] > range[0])) range[1] = range[0] + 1.0;
     auto colours = vtkSmartPointer<vtkColorTransferFunction>::New();
     // "Inferno"-like ramp: dark for low values so that zero and NaN (grey) stay apart.
-    const double stops[][3] = {{0.0, 0.0, 0.02}, {0.34, 0.06, 0.43}, {0.73, 0.21, 0.33},
-                               {0.98, 0.55, 0.04}, {0.99, 1.0, 0.64}};
+    const double stops[][3] = {{0.0, 0.0, 0.02},
+                               {0.34, 0.06, 0.43},
+                               {0.73, 0.21, 0.33},
+                               {0.98, 0.55, 0.04},
+                               {0.99, 1.0, 0.64}};
     for (int i = 0; i < 5; ++i) {
         colours->AddRGBPoint(range[0] + (range[1] - range[0]) * i / 4.0, stops[i][0], stops[i][1],
                              stops[i][2]);
@@ -334,11 +336,21 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
     const auto rgba = NewArray("rgba", 4, count);
     const char* quantity = "value";
     switch (kind) {
-        case LutKind::kTransmittance: quantity = "transmittance"; break;
-        case LutKind::kMultipleScattering: quantity = "psi_ms"; break;
-        case LutKind::kIrradiance: quantity = "sky_irradiance_per_lux"; break;
-        case LutKind::kSkyView: quantity = "luminance_cd_m2"; break;
-        case LutKind::kAerialPerspective: quantity = "in_scattering_cd_m2"; break;
+        case LutKind::kTransmittance:
+            quantity = "transmittance";
+            break;
+        case LutKind::kMultipleScattering:
+            quantity = "psi_ms";
+            break;
+        case LutKind::kIrradiance:
+            quantity = "sky_irradiance_per_lux";
+            break;
+        case LutKind::kSkyView:
+            quantity = "luminance_cd_m2";
+            break;
+        case LutKind::kAerialPerspective:
+            quantity = "in_scattering_cd_m2";
+            break;
     }
     const auto rgb = NewArray(quantity, 3, count);
     for (vtkIdType i = 0; i < count; ++i) {
@@ -361,14 +373,16 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
                 for (int x = 0; x < n.x; ++x) {
                     double r = 0.0, mu = 0.0;
                     TransmittanceTexelRMu(luts, x, y, &r, &mu);
-                    altitude->SetValue(index(x, y, 0), static_cast<float>(r - luts.atmosphere.bottom_radius));
+                    altitude->SetValue(index(x, y, 0),
+                                       static_cast<float>(r - luts.atmosphere.bottom_radius));
                     zenith->SetValue(index(x, y, 0), static_cast<float>(std::acos(mu) / kDeg));
                 }
             }
             image->GetPointData()->AddArray(altitude);
             image->GetPointData()->AddArray(zenith);
-            axes = "x: texel (distance to the top of the atmosphere, B17); y: texel (distance to "
-                   "the horizon); see altitude_m, view_zenith_deg";
+            axes =
+                "x: texel (distance to the top of the atmosphere, B17); y: texel (distance to "
+                "the horizon); see altitude_m, view_zenith_deg";
             break;
         }
         case LutKind::kMultipleScattering: {
@@ -385,8 +399,9 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
             image->GetPointData()->AddArray(sun);
             image->GetPointData()->AddArray(altitude);
             image->SetSpacing(1.0, top / kKm / (n.y - 1), 1.0);
-            axes = "x: texel (u = 0.5 + 0.5 sign(mu_s) sqrt|mu_s|); y: altitude in km; see "
-                   "sun_zenith_deg, altitude_m";
+            axes =
+                "x: texel (u = 0.5 + 0.5 sign(mu_s) sqrt|mu_s|); y: altitude in km; see "
+                "sun_zenith_deg, altitude_m";
             break;
         }
         case LutKind::kIrradiance: {
@@ -416,8 +431,9 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
             image->GetPointData()->AddArray(azimuth);
             image->SetOrigin(0.5 * 360.0 / n.x, 0.0, 0.0);
             image->SetSpacing(360.0 / n.x, 1.0, 1.0);
-            axes = "x: azimuth from the sun in degrees; y: texel (non-linear in the view zenith "
-                   "angle, H20 §5.3); see view_zenith_deg";
+            axes =
+                "x: azimuth from the sun in degrees; y: texel (non-linear in the view zenith "
+                "angle, H20 §5.3); see view_zenith_deg";
             break;
         }
         case LutKind::kAerialPerspective: {
@@ -434,7 +450,8 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
                         transmittance->SetValue(i, lut.at(x, y, z).a);
                         horizontal->SetValue(i, static_cast<float>(h / kDeg));
                         vertical->SetValue(i, static_cast<float>(v / kDeg));
-                        depth->SetValue(i, static_cast<float>(AerialPerspectiveSliceDepth(luts, z)));
+                        depth->SetValue(i,
+                                        static_cast<float>(AerialPerspectiveSliceDepth(luts, z)));
                     }
                 }
             }
@@ -444,8 +461,9 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
             const double range_km = luts.settings.aerial_perspective_range / kKm;
             image->SetOrigin(0.0, 0.0, 0.5 * range_km / n.z);
             image->SetSpacing(1.0, 1.0, range_km / n.z);
-            axes = "x, y: screen cells of the camera; z: depth of the slice centre in km; see "
-                   "horizontal_angle_deg, vertical_angle_deg, depth_m";
+            axes =
+                "x, y: screen cells of the camera; z: depth of the slice centre in km; see "
+                "horizontal_angle_deg, vertical_angle_deg, depth_m";
             break;
         }
     }
@@ -466,8 +484,7 @@ void WriteVti(vtkImageData* image, const std::filesystem::path& path) {
 
 vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, double step_s) {
     if (!(step_s > 0.0)) {
-        throw ArgumentError(fmt::format("--step = {} s is out of range (expected > 0)",
-                                                step_s));
+        throw ArgumentError(fmt::format("--step = {} s is out of range (expected > 0)", step_s));
     }
     const track::FlightLog log = track::ReadFlightLog(flight);
     const track::Trajectory trajectory(log);
@@ -500,9 +517,9 @@ vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, dou
                 height->InsertNextValue(s.height);
                 lat->InsertNextValue(s.lat_deg);
                 lon->InsertNextValue(s.lon_deg);
-                const geo::SkyEphemeris e = ephemeris.Compute(
-                    geo::TimeFromUtc(geo::CivilFromUnixSeconds(tt)),
-                    geo::Observer(s.lat_deg, s.lon_deg, s.height));
+                const geo::SkyEphemeris e =
+                    ephemeris.Compute(geo::TimeFromUtc(geo::CivilFromUnixSeconds(tt)),
+                                      geo::Observer(s.lat_deg, s.lon_deg, s.height));
                 sun->InsertNextValue(e.sun.elevation / kDeg);
             }
             if (tt >= end) break;
@@ -512,7 +529,8 @@ vtkSmartPointer<vtkPolyData> FlightPath(const std::filesystem::path& flight, dou
     auto path = vtkSmartPointer<vtkPolyData>::New();
     path->SetPoints(points);
     path->SetLines(lines);
-    for (const auto& a : {time, unix_time, height, lat, lon, sun}) path->GetPointData()->AddArray(a);
+    for (const auto& a : {time, unix_time, height, lat, lon, sun})
+        path->GetPointData()->AddArray(a);
     path->GetPointData()->SetActiveScalars("sun_elevation_deg");
     return path;
 }
@@ -612,7 +630,8 @@ vtkSmartPointer<vtkRenderer> MakeOverview(const sky::Atmosphere& a, const Scene&
     }
     const geo::SkyEphemeris e = geo::Ephemeris().Compute(time, observer);
     const glm::dmat3 ecef_from_enu = observer.ecef_from_enu();
-    const glm::dvec3 sun = glm::normalize(ecef_from_enu * e.sun.topocentric.horizontal.direction_enu);
+    const glm::dvec3 sun =
+        glm::normalize(ecef_from_enu * e.sun.topocentric.horizontal.direction_enu);
     const glm::dvec3 moon =
         glm::normalize(ecef_from_enu * e.moon.topocentric.horizontal.direction_enu);
     renderer->AddActor(Arrow(sun, 2.0 * a.bottom_radius, 1.0, 0.85, 0.2));

@@ -3,16 +3,15 @@
 // only Render/Save do (see display.h).
 #pragma once
 
+#include <vtkSmartPointer.h>
+
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
 #include "luts.h"
-
-#include <vtkSmartPointer.h>
 
 class vtkChartMatrix;
 class vtkChartXY;
@@ -25,7 +24,7 @@ class vtkTable;
 namespace zenith::vis {
 
 struct TransmittancePlotOptions {
-    std::vector<double> altitudes_km{0.0, 5.0, 10.0, 30.0};     // curves of the left chart
+    std::vector<double> altitudes_km{0.0, 5.0, 10.0, 30.0};        // curves of the left chart
     std::vector<double> zeniths_deg{0.0, 60.0, 80.0, 85.0, 89.0};  // curves of the right chart
     // x samples: view zenith angles (deg) of the left chart and altitudes (km) of the right one;
     // empty: 0..180 deg in 0.25 deg steps and 0..top of the atmosphere in 200 steps.

@@ -17,8 +17,8 @@
 #include <limits>
 
 #include "flight_log_internal.h"
-#include "zenith/base/units.h"
 #include "zenith/base/error.h"
+#include "zenith/base/units.h"
 
 namespace zenith::track {
 
@@ -138,9 +138,8 @@ std::optional<double> ParseDouble(std::string_view text) {
     const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value)) {
         constexpr std::size_t kShown = 40;  // a fuzzed field can be megabytes long
-        throw ArgumentError(fmt::format("'{}{}' is not a finite number",
-                                                text.substr(0, kShown),
-                                                text.size() > kShown ? "..." : ""));
+        throw ArgumentError(fmt::format("'{}{}' is not a finite number", text.substr(0, kShown),
+                                        text.size() > kShown ? "..." : ""));
     }
     return value;
 }

@@ -35,7 +35,6 @@ struct AltitudeColumn {
     double metres_per_unit;
 };
 
-
 std::string Lower(std::string_view s) {
     std::string out(detail::Trim(s));
     std::transform(out.begin(), out.end(), out.begin(),

@@ -43,7 +43,6 @@ std::string Lower(std::string_view s) {
     return out;
 }
 
-
 std::string ReadWholeFile(const std::filesystem::path& path) {
     std::error_code ec;
     const std::uintmax_t size = std::filesystem::file_size(path, ec);

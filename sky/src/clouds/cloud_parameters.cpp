@@ -1,10 +1,9 @@
 #include "clouds/cloud_parameters.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
-
-#include <sstream>
 
 #include "zenith/base/error.h"
 
@@ -42,8 +41,7 @@ void CloudSettings::Validate() const {
     Require(shadow_steps >= 0 && shadow_steps <= 64, "shadow_steps", shadow_steps, "0..64");
     Require(shadow_first_step > 0.0 && shadow_first_step <= 10000.0, "shadow_first_step",
             shadow_first_step, "0 < m <= 10 km");
-    Require(shadow_growth >= 1.0 && shadow_growth <= 4.0, "shadow_growth", shadow_growth,
-            "[1, 4]");
+    Require(shadow_growth >= 1.0 && shadow_growth <= 4.0, "shadow_growth", shadow_growth, "[1, 4]");
     Require(min_transmittance >= 0.0 && min_transmittance < 1.0, "min_transmittance",
             min_transmittance, "[0, 1)");
     Require(max_distance > 0.0 && max_distance <= 1e7, "max_distance", max_distance,
@@ -57,8 +55,8 @@ void CloudSettings::Validate() const {
             "8..4096");
     Require(shadow_map_extent >= 1000.0 && shadow_map_extent <= 1e6, "shadow_map_extent",
             shadow_map_extent, "1 km .. 1000 km");
-    Require(shadow_map_steps >= 1 && shadow_map_steps <= 256, "shadow_map_steps",
-            shadow_map_steps, "1..256");
+    Require(shadow_map_steps >= 1 && shadow_map_steps <= 256, "shadow_map_steps", shadow_map_steps,
+            "1..256");
     Require(shadow_map_interval >= 1 && shadow_map_interval <= 1000, "shadow_map_interval",
             shadow_map_interval, "1..1000");
 }

@@ -42,8 +42,7 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_
 // ground_albedo: the atmosphere's (per channel), which the clouds' diffuse light sees as its
 // luminance, Rec. 709 weights.
 template <typename Parameters>
-Parameters MakeCloudScatteringParameters(const CloudSettings& s,
-                                         const glm::dvec3& ground_albedo) {
+Parameters MakeCloudScatteringParameters(const CloudSettings& s, const glm::dvec3& ground_albedo) {
     using Scalar = decltype(Parameters{}.albedo);
     Parameters p{};
     p.forward_g = Scalar(s.forward_g);
@@ -90,9 +89,8 @@ LightSet MakeCloudLightSet(const Lights& lights, const glm::dvec3& up,
     const glm::dvec3 sun = glm::normalize(lights.sun_direction);
     const bool sun_counts = glm::dot(sun, glm::normalize(up)) > -0.17364817766693033;  // sin 10 deg
     const bool moon_counts =
-        lights.moon_enabled &&
-        (!sun_counts || glm::length(lights.moon_illuminance) >=
-                            1e-3 * glm::length(lights.sun_illuminance));
+        lights.moon_enabled && (!sun_counts || glm::length(lights.moon_illuminance) >=
+                                                   1e-3 * glm::length(lights.sun_illuminance));
     LightSet l{};
     int count = 0;
     const auto add = [&](const glm::dvec3& direction, const glm::dvec3& illuminance) {

@@ -14,8 +14,8 @@
 #include "gl/draw.h"
 #include "gl/shader_library.h"
 #include "gl/textures.h"
-#include "zenith/sky/gl/error.h"
 #include "zenith/base/error.h"
+#include "zenith/sky/gl/error.h"
 
 namespace zenith::sky {
 namespace {
@@ -47,8 +47,7 @@ GLuint UploadNoise(const clouds::NoiseVolume& volume) {
 GLuint UploadWeatherMap(const clouds::WeatherMap& map) {
     const GLuint texture =
         gl::CreateTexture2D(glm::ivec2(map.size), GL_RGBA32F, GL_REPEAT, GL_REPEAT);
-    glTextureSubImage2D(texture, 0, 0, 0, map.size, map.size, GL_RGBA, GL_FLOAT,
-                        map.texels.data());
+    glTextureSubImage2D(texture, 0, 0, 0, map.size, map.size, GL_RGBA, GL_FLOAT, map.texels.data());
     return texture;
 }
 
@@ -129,16 +128,20 @@ enum CloudProgram : std::size_t {
 
 gl::Program BuildCloudProgram(CloudProgram program) {
     switch (program) {
-        case kTraceProgram: return gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts);
+        case kTraceProgram:
+            return gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts);
         case kReconstructProgram:
             return gl::FullscreenProgram("clouds/reconstruct.frag", {}, kCloudParts);
-        case kShadowMapProgram: return gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts);
+        case kShadowMapProgram:
+            return gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts);
         case kShadeTraceProgram:
             return gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts);
-        case kShadeProgram: return gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts);
+        case kShadeProgram:
+            return gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts);
         case kGroundShadowProgram:
             return gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts);
-        case kCloudProgramCount: break;
+        case kCloudProgramCount:
+            break;
     }
     throw gl::GlError("no cloud program " + std::to_string(program));
 }
@@ -169,10 +172,9 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
       cloud_tops_(tops) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(kCloudMaxLayers)) {
-        throw ArgumentError("weather '" + weather_.name + "' has " +
-                                    std::to_string(weather_.layers.size()) +
-                                    " layers (the renderer draws at most " +
-                                    std::to_string(kCloudMaxLayers) + ")");
+        throw ArgumentError(
+            "weather '" + weather_.name + "' has " + std::to_string(weather_.layers.size()) +
+            " layers (the renderer draws at most " + std::to_string(kCloudMaxLayers) + ")");
     }
     for (const clouds::WeatherMap& map : maps) weather_maps_.push_back(UploadWeatherMap(map));
     shape_ = UploadNoise(noise.shape);
@@ -201,8 +203,8 @@ CloudPasses::~CloudPasses() {
 }
 
 void CloudPasses::Resize(glm::ivec2 size) {
-    DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_,
-                        &history_framebuffer_[0], &history_framebuffer_[1]});
+    DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_, &history_framebuffer_[0],
+                        &history_framebuffer_[1]});
     DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &history_color_[0],
                     &history_color_[1]});
     size_ = size;
@@ -221,18 +223,17 @@ void CloudPasses::Resize(glm::ivec2 size) {
 }
 
 void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& camera,
-                                 const Lights& lights, const CloudView& view,
-                                 bool history_valid) {
+                                 const Lights& lights, const CloudView& view, bool history_valid) {
     gl::CloudUniforms u{};
     for (std::size_t i = 0; i < weather_.layers.size(); ++i) {
         u.layers[i] = MakeCloudLayerParameters<gl::CloudLayerUniforms>(
             weather_.layers[i], cloud_tops_[i], settings_, atmosphere.bottom_radius, view.time);
     }
-    u.scattering = MakeCloudScatteringParameters<gl::CloudScatteringUniforms>(settings_,
-                                                                       atmosphere.ground_albedo);
+    u.scattering = MakeCloudScatteringParameters<gl::CloudScatteringUniforms>(
+        settings_, atmosphere.ground_albedo);
     u.march = MakeCloudMarchParameters<gl::CloudMarchUniforms>(settings_);
-    u.lights = MakeCloudLightSet<gl::LightUniforms>(lights, camera.position,
-                                                   view.weather_from_world);
+    u.lights =
+        MakeCloudLightSet<gl::LightUniforms>(lights, camera.position, view.weather_from_world);
     for (int i = 0; i < 3; ++i) {
         u.weather_from_frame[i] = glm::vec4(glm::vec3(view.weather_from_world[i]), 0.0f);
     }
@@ -245,8 +246,8 @@ void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& cam
         for (int i = 0; i < 3; ++i) {
             u.previous_view_from_frame[i] = glm::vec4(glm::vec3(previous_view[i]), 0.0f);
         }
-        u.previous_camera_km = glm::vec3(glm::transpose(previous_from_current) *
-                                         previous_->camera.position / kKm);
+        u.previous_camera_km =
+            glm::vec3(glm::transpose(previous_from_current) * previous_->camera.position / kKm);
         u.previous_tan_half_fov =
             static_cast<float>(std::tan(0.5 * previous_->camera.vertical_fov));
         u.previous_aspect = static_cast<float>(previous_->camera.aspect);
@@ -265,8 +266,8 @@ void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& cam
     u.shadow_map_size = settings_.shadow_map_size;
     u.shadow_map_steps = settings_.shadow_map_steps;
     u.sky_shade_size = kCloudSkyShadeSize;
-    const std::vector<int> order = CloudLayerOrder(
-        weather_, glm::length(camera.position) - atmosphere.bottom_radius);
+    const std::vector<int> order =
+        CloudLayerOrder(weather_, glm::length(camera.position) - atmosphere.bottom_radius);
     const std::vector<int> ground_order = CloudLayerOrder(weather_, 0.0);
     for (std::size_t i = 0; i < order.size(); ++i) {
         u.layer_order[static_cast<int>(i)] = order[i];
@@ -286,8 +287,8 @@ void CloudPasses::BindTextures() const {
     }
 }
 
-void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera,
-                          const Lights& lights, const CloudView& view, GLuint light_buffer) {
+void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
+                          const CloudView& view, GLuint light_buffer) {
     // A cut starts the jitter sequence over too, so the frame does not depend on what came
     // before it (replayed frames match whether rendered in order, resumed or sharded).
     if (view.reset_history) frame_index_ = 0;
@@ -343,8 +344,8 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     UploadUniforms(atmosphere, camera, lights, options.clouds, history_valid);
     BindTextures();
 
-    gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_,
-                       glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace, queries_[kTraceQuery]);
+    gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_, glm::ivec4(0, 0, trace_size_),
+                       gl::Blend::kReplace, queries_[kTraceQuery]);
     query_used_[kTraceQuery] = true;
 
     const std::size_t previous = current_;
@@ -352,8 +353,7 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     glBindTextureUnit(kCloudTraceUnit, trace_color_);
     glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
     glBindTextureUnit(kCloudHistoryUnit, history_color_[previous]);
-    gl::DrawFullscreen(reconstruct_, vertex_array_,
-                       history_framebuffer_[current_],
+    gl::DrawFullscreen(reconstruct_, vertex_array_, history_framebuffer_[current_],
                        glm::ivec4(0, 0, size_), gl::Blend::kReplace, queries_[kReconstructQuery]);
     query_used_[kReconstructQuery] = true;
 

@@ -14,9 +14,9 @@
 #include <string_view>
 #include <vector>
 
+#include "zenith/base/error.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/shader.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sky {
 
@@ -72,8 +72,7 @@ class CloudPasses {
 
     clouds::Weather weather_;
     CloudSettings settings_;
-    gl::Program trace_, reconstruct_, shadow_pass_, shade_trace_pass_, shade_pass_,
-        ground_shadow_;
+    gl::Program trace_, reconstruct_, shadow_pass_, shade_trace_pass_, shade_pass_, ground_shadow_;
     GLuint uniforms_ = 0;
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;

@@ -104,12 +104,12 @@ glm::ivec3 CellsFor(int cells_x, const glm::ivec3& size, const char* what) {
     for (int a = 0; a < 3; ++a) {
         const long long product = static_cast<long long>(cells_x) * size[a];
         if (product % size.x != 0 || product / size.x < 1) {
-            throw ArgumentError(
-                std::string(what) + " noise of size " + std::to_string(size.x) + "x" +
-                std::to_string(size.y) + "x" + std::to_string(size.z) + ": axis " + "xyz"[a] +
-                " cannot hold a whole number of its " + std::to_string(cells_x) +
-                " cells along x; expected every axis to be a multiple of x / " +
-                std::to_string(cells_x) + " (e.g. 128x32x128)");
+            throw ArgumentError(std::string(what) + " noise of size " + std::to_string(size.x) +
+                                "x" + std::to_string(size.y) + "x" + std::to_string(size.z) +
+                                ": axis " + "xyz"[a] + " cannot hold a whole number of its " +
+                                std::to_string(cells_x) +
+                                " cells along x; expected every axis to be a multiple of x / " +
+                                std::to_string(cells_x) + " (e.g. 128x32x128)");
         }
         cells[a] = static_cast<int>(product / size.x);
     }
@@ -264,8 +264,7 @@ void WriteAll(int fd, const void* data, std::size_t size, const std::filesystem:
         const ssize_t written = ::write(fd, bytes, size);
         if (written < 0) {
             if (errno == EINTR) continue;
-            throw Error("cannot write noise cache " + Quoted(path) + ": " +
-                                     std::strerror(errno));
+            throw Error("cannot write noise cache " + Quoted(path) + ": " + std::strerror(errno));
         }
         bytes += written;
         size -= static_cast<std::size_t>(written);
@@ -425,8 +424,8 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
     std::error_code error;
     if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path(), error);
     if (error) {
-        throw Error("cannot create noise cache directory " +
-                                 Quoted(file.parent_path()) + ": " + error.message());
+        throw Error("cannot create noise cache directory " + Quoted(file.parent_path()) + ": " +
+                    error.message());
     }
     Header header = MakeHeader(settings);
     header.payload_bytes =
@@ -438,8 +437,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
         std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {
-        throw Error("cannot write noise cache " + Quoted(temporary) + ": " +
-                                 std::strerror(errno));
+        throw Error("cannot write noise cache " + Quoted(temporary) + ": " + std::strerror(errno));
     }
     try {
         WriteAll(fd, &header, sizeof header, temporary);
@@ -448,7 +446,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
         WriteAll(fd, noise.curl.texels.data(), noise.curl.texels.size(), temporary);
         if (::fsync(fd) != 0) {
             throw Error("cannot flush noise cache " + Quoted(temporary) + ": " +
-                                     std::strerror(errno));
+                        std::strerror(errno));
         }
     } catch (...) {
         ::close(fd);
@@ -459,8 +457,7 @@ void WriteNoiseCache(const std::filesystem::path& file, const CloudNoiseSettings
     std::filesystem::rename(temporary, file, error);
     if (error) {
         std::filesystem::remove(temporary, error);
-        throw Error("cannot rename noise cache into " + Quoted(file) + ": " +
-                                 error.message());
+        throw Error("cannot rename noise cache into " + Quoted(file) + ": " + error.message());
     }
 }
 

@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstddef>
-
 #include <glm/glm.hpp>
 
 #include "bindings.h"

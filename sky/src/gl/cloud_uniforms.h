@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstddef>
-
 #include <glm/glm.hpp>
 
 #include "bindings.h"

@@ -25,7 +25,7 @@ ContextKind ParseContextKind(std::string_view name) {
     if (name == "osmesa") return ContextKind::kOsMesa;
     if (name == "egl") return ContextKind::kEgl;
     throw ArgumentError("unknown GL context kind '" + std::string(name) +
-                                "': expected 'osmesa' (default, headless llvmpipe) or 'egl'");
+                        "': expected 'osmesa' (default, headless llvmpipe) or 'egl'");
 }
 
 std::string_view ToString(ContextKind kind) {
@@ -64,8 +64,8 @@ EglOptions ParseEglOptions(std::string_view text) {
         }
     }
     throw ArgumentError("unknown EGL platform '" + std::string(text) +
-                                "': expected 'auto', 'surfaceless', 'device' or 'device:N' "
-                                "(N = EGL device index, 0 or more)");
+                        "': expected 'auto', 'surfaceless', 'device' or 'device:N' "
+                        "(N = EGL device index, 0 or more)");
 }
 
 EglOptions EglOptionsFromEnvironment() {
@@ -75,7 +75,7 @@ EglOptions EglOptionsFromEnvironment() {
         return ParseEglOptions(value);
     } catch (const ArgumentError& error) {
         throw ArgumentError(std::string("environment variable ZENITH_EGL_PLATFORM: ") +
-                                    error.what());
+                            error.what());
     }
 }
 

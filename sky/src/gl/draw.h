@@ -3,9 +3,8 @@
 
 #include <glad/gl.h>
 
-#include <optional>
-
 #include <glm/glm.hpp>
+#include <optional>
 
 #include "zenith/sky/gl/shader.h"
 

@@ -11,9 +11,9 @@ namespace {
 
 // Parts every atmosphere compute pass is made of, before the pass's own file.
 // bindings.glsl comes first: the structs and blocks that follow are sized and bound by it.
-constexpr std::array<std::string_view, 4> kPrelude = {
-    "bindings.glsl", "common/definitions.glsl", "atmosphere/functions.glsl",
-    "atmosphere/interface.glsl"};
+constexpr std::array<std::string_view, 4> kPrelude = {"bindings.glsl", "common/definitions.glsl",
+                                                      "atmosphere/functions.glsl",
+                                                      "atmosphere/interface.glsl"};
 
 }  // namespace
 
@@ -47,7 +47,7 @@ namespace {
 
 // Rethrows a shader error with the legend of the #line source numbers.
 [[noreturn]] void RethrowWithLegend(const ShaderError& e, std::string_view pass_file,
-                                   std::span<const std::string_view> extra_parts) {
+                                    std::span<const std::string_view> extra_parts) {
     std::string legend = "\nsource numbers in the log: ";
     int index = 1;
     for (std::string_view part : kPrelude) {

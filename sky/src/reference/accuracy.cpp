@@ -5,8 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/base/error.h"
+#include "zenith/sky/reference/atmosphere_reference.h"
 
 namespace zenith::sky::reference {
 namespace {
@@ -137,12 +137,12 @@ AccuracyResult MeasureAccuracy(const AccuracyScenario& scenario, const AccuracyO
     if (!(options.width > 0 && options.height > 0 && options.width <= 4096 &&
           options.height <= 4096)) {
         throw ArgumentError("accuracy image size " + std::to_string(options.width) + "x" +
-                                    std::to_string(options.height) +
-                                    " is out of range (expected 1..4096 per axis)");
+                            std::to_string(options.height) +
+                            " is out of range (expected 1..4096 per axis)");
     }
     if (!(options.samples >= 2)) {
         throw ArgumentError("accuracy samples " + std::to_string(options.samples) +
-                                    " is out of range (expected >= 2, for a standard error)");
+                            " is out of range (expected >= 2, for a standard error)");
     }
     using Clock = std::chrono::steady_clock;
     const Atmosphere& atmosphere = scenario.atmosphere;
@@ -207,9 +207,8 @@ AccuracyResult MeasureAccuracy(const AccuracyScenario& scenario, const AccuracyO
     result.rmse = glm::sqrt(squared_error);
     result.noise = glm::sqrt(variance);
     if (!(Sum(result.reference_mean) > 0.0)) {
-        throw Error("scenario " + scenario.name +
-                                 ": the reference image is black (mean " +
-                                 std::to_string(Sum(result.reference_mean)) + " cd/m^2)");
+        throw Error("scenario " + scenario.name + ": the reference image is black (mean " +
+                    std::to_string(Sum(result.reference_mean)) + " cd/m^2)");
     }
     return result;
 }

@@ -2,7 +2,6 @@
 
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
-
 #include "shader_parameters.h"
 
 namespace zenith::sky::reference {
@@ -36,8 +35,7 @@ struct AtmosphereReference::Impl {
     }
 };
 
-AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere,
-                                         const LutSettings& settings)
+AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const LutSettings& settings)
     : impl_(std::make_unique<Impl>()) {
     Validate(atmosphere);
     settings.Validate();
@@ -76,10 +74,10 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere,
     for (int y = 0; y < irradiance.height(); ++y) {
         for (int x = 0; x < irradiance.width(); ++x) {
             const ref::vec3 value = ref::ComputeGroundIrradianceTexel(
-                d.atmosphere, d.transmittance, settings.transmittance_size,
-                d.multiple_scattering, settings.multiple_scattering_size, unused,
-                settings.irradiance_size, TexelCentre(x, y, settings.irradiance_size).x,
-                settings.irradiance_directions_sqrt, settings.irradiance_steps);
+                d.atmosphere, d.transmittance, settings.transmittance_size, d.multiple_scattering,
+                settings.multiple_scattering_size, unused, settings.irradiance_size,
+                TexelCentre(x, y, settings.irradiance_size).x, settings.irradiance_directions_sqrt,
+                settings.irradiance_steps);
             irradiance.at(x, y) = ref::vec4(value, 1.0);
         }
     }
@@ -95,9 +93,7 @@ const LutImage& AtmosphereReference::transmittance() const { return impl_->trans
 const LutImage& AtmosphereReference::multiple_scattering() const {
     return impl_->multiple_scattering_image;
 }
-const LutImage& AtmosphereReference::ground_irradiance() const {
-    return impl_->irradiance_image;
-}
+const LutImage& AtmosphereReference::ground_irradiance() const { return impl_->irradiance_image; }
 
 LutImage AtmosphereReference::SkyView(const glm::dvec3& camera, const Lights& lights) const {
     const Impl& d = *impl_;
@@ -107,18 +103,17 @@ LutImage AtmosphereReference::SkyView(const glm::dvec3& camera, const Lights& li
     for (int y = 0; y < size.y; ++y) {
         for (int x = 0; x < size.x; ++x) {
             const ref::vec3 value = ref::ComputeSkyViewTexel(
-                d.atmosphere, d.transmittance, d.settings.transmittance_size,
-                d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
-                d.settings.irradiance_size, light_set, camera / kKm, d.AltitudeKm(camera),
-                TexelCentre(x, y, size), size, d.settings.sky_view_steps);
+                d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
+                d.settings.multiple_scattering_size, d.irradiance, d.settings.irradiance_size,
+                light_set, camera / kKm, d.AltitudeKm(camera), TexelCentre(x, y, size), size,
+                d.settings.sky_view_steps);
             image.at(x, y) = glm::vec4(glm::vec3(value), 1.0f);
         }
     }
     return image;
 }
 
-LutImage AtmosphereReference::AerialPerspective(const Camera& camera,
-                                                const Lights& lights) const {
+LutImage AtmosphereReference::AerialPerspective(const Camera& camera, const Lights& lights) const {
     const Impl& d = *impl_;
     const ref::LightSet light_set = d.ToLightSet(lights, camera.position);
     const glm::ivec3 size = d.settings.aerial_perspective_size;
@@ -144,19 +139,17 @@ LutImage AtmosphereReference::AerialPerspective(const Camera& camera,
 }
 
 glm::dvec3 AtmosphereReference::TransmittanceFromLut(double r, double mu) const {
-    return ref::GetTransmittanceToTopAtmosphereBoundary(impl_->atmosphere, impl_->transmittance,
-                                                        impl_->settings.transmittance_size,
-                                                        r / kKm, mu);
+    return ref::GetTransmittanceToTopAtmosphereBoundary(
+        impl_->atmosphere, impl_->transmittance, impl_->settings.transmittance_size, r / kKm, mu);
 }
 
 glm::dvec3 AtmosphereReference::TransmittanceIntegrated(double r, double mu, int steps) const {
-    return ref::ComputeTransmittanceToTopAtmosphereBoundary(impl_->atmosphere, r / kKm, mu,
-                                                            steps);
+    return ref::ComputeTransmittanceToTopAtmosphereBoundary(impl_->atmosphere, r / kKm, mu, steps);
 }
 
-glm::dvec4 AtmosphereReference::InScattering(const glm::dvec3& origin,
-                                            const glm::dvec3& direction, const Lights& lights,
-                                            double distance, int steps) const {
+glm::dvec4 AtmosphereReference::InScattering(const glm::dvec3& origin, const glm::dvec3& direction,
+                                             const Lights& lights, double distance,
+                                             int steps) const {
     const Impl& d = *impl_;
     const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
         d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
@@ -170,10 +163,10 @@ glm::dvec3 AtmosphereReference::RayMarch(const glm::dvec3& origin, const glm::dv
                                          const Lights& lights, int steps) const {
     const Impl& d = *impl_;
     return ref::IntegrateScatteredLuminance(
-               d.atmosphere, d.transmittance, d.settings.transmittance_size,
-               d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
-               d.settings.irradiance_size, d.ToLightSet(lights, origin), origin / kKm,
-               d.AltitudeKm(origin), direction, 0.0, 1e9, steps, true)
+               d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
+               d.settings.multiple_scattering_size, d.irradiance, d.settings.irradiance_size,
+               d.ToLightSet(lights, origin), origin / kKm, d.AltitudeKm(origin), direction, 0.0,
+               1e9, steps, true)
         .luminance;
 }
 

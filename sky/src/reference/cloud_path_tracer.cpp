@@ -21,8 +21,8 @@
 
 #include "clouds/cloud_parameters.h"
 #include "reference/cloud_functions.h"
-#include "zenith/sky/reference/path_tracer.h"
 #include "zenith/base/error.h"
+#include "zenith/sky/reference/path_tracer.h"
 
 namespace zenith::sky::reference {
 namespace {

@@ -41,13 +41,13 @@ CloudMarchState MarchCloudLayers(const CloudScene& scene, vec3 origin, Number al
     const ivec2 irradiance_size(scene.irradiance.width(), scene.irradiance.height());
     for (int i : order) {
         const auto layer = static_cast<std::size_t>(i);
-        const vec2 interval = CloudLayerInterval(scene.layers[layer], r, mu, altitude,
-                                                 scene.march.max_distance);
-        MarchCloudLayer(scene.atmosphere, scene.transmittance, transmittance_size,
-                        scene.irradiance, irradiance_size, scene.layers[layer],
-                        scene.weather_maps[layer], scene.shape, scene.detail, scene.scattering,
-                        scene.march, scene.cloud_lights, scene.cloud_lights.count, origin,
-                        direction, interval, jitter, state);
+        const vec2 interval =
+            CloudLayerInterval(scene.layers[layer], r, mu, altitude, scene.march.max_distance);
+        MarchCloudLayer(scene.atmosphere, scene.transmittance, transmittance_size, scene.irradiance,
+                        irradiance_size, scene.layers[layer], scene.weather_maps[layer],
+                        scene.shape, scene.detail, scene.scattering, scene.march,
+                        scene.cloud_lights, scene.cloud_lights.count, origin, direction, interval,
+                        jitter, state);
     }
     return state;
 }
@@ -63,11 +63,10 @@ vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 vie
     if (depth != nullptr) *depth = CloudMeanDepth(state);
     return CloudApplyAerialPerspective(
         scene.atmosphere, scene.transmittance,
-        ivec2(scene.transmittance.width(), scene.transmittance.height()),
-        scene.multiple_scattering,
+        ivec2(scene.transmittance.width(), scene.transmittance.height()), scene.multiple_scattering,
         ivec2(scene.multiple_scattering.width(), scene.multiple_scattering.height()),
-        scene.irradiance, ivec2(scene.irradiance.width(), scene.irradiance.height()),
-        scene.lights, camera, altitude, view, state, scene.aerial_perspective_steps);
+        scene.irradiance, ivec2(scene.irradiance.width(), scene.irradiance.height()), scene.lights,
+        camera, altitude, view, state, scene.aerial_perspective_steps);
 }
 
 // A texel of clouds/shadow_map.comp: the transmittance toward the main cloud light from the
@@ -75,16 +74,14 @@ vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 vie
 Number CloudShadowMapTexel(const CloudScene& scene, const CloudSettings& settings, vec3 camera,
                            vec2 uv) {
     if (scene.cloud_lights.count == 0) return 1.0;
-    const vec3 origin =
-        scene.weather_from_frame * CloudShadowMapGroundPoint(camera, scene.atmosphere.bottom_radius,
-                                                              settings.shadow_map_extent / 1000.0,
-                                                              uv);
+    const vec3 origin = scene.weather_from_frame *
+                        CloudShadowMapGroundPoint(camera, scene.atmosphere.bottom_radius,
+                                                  settings.shadow_map_extent / 1000.0, uv);
     Number optical_depth = 0.0;
     for (std::size_t i = 0; i < scene.layers.size(); ++i) {
-        optical_depth += CloudLayerShadowDepth(scene.layers[i], scene.weather_maps[i],
-                                               scene.shape, scene.detail, scene.march, origin,
-                                               0.0, scene.cloud_lights.light[0].direction,
-                                               settings.shadow_map_steps);
+        optical_depth += CloudLayerShadowDepth(
+            scene.layers[i], scene.weather_maps[i], scene.shape, scene.detail, scene.march, origin,
+            0.0, scene.cloud_lights.light[0].direction, settings.shadow_map_steps);
     }
     return exp(-optical_depth);
 }
@@ -109,8 +106,8 @@ void ShadeLightsUnderClouds(const CloudScene& scene, const CloudSettings& settin
     Number shadow = 0.0;
     for (int y = 0; y < n; ++y) {
         for (int x = 0; x < n; ++x) {
-            shadow += CloudShadowMapTexel(scene, settings, camera,
-                                          (vec2(x, y) + vec2(0.5)) / Number(n));
+            shadow +=
+                CloudShadowMapTexel(scene, settings, camera, (vec2(x, y) + vec2(0.5)) / Number(n));
         }
     }
     Number base = scene.layers[0].base_altitude;

@@ -6,9 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "bindings.h"  // kMaxLights sizes LightSet
 
@@ -21,6 +20,7 @@ using vec4 = glm::dvec4;
 using ivec2 = glm::ivec2;
 using ivec3 = glm::ivec3;
 using mat3 = glm::dmat3;
+using glm::atan;
 using glm::clamp;
 using glm::cross;
 using glm::dot;
@@ -34,11 +34,10 @@ using glm::normalize;
 using glm::sign;
 using glm::smoothstep;
 using std::abs;
-using glm::atan;
 using std::acos;
 using std::asin;
-using std::cos;
 using std::ceil;
+using std::cos;
 using std::floor;
 using std::log;
 using std::pow;
@@ -50,11 +49,13 @@ inline constexpr double kPi = 3.14159265358979323846;
 // A float RGBA texture with GL_LINEAR + GL_CLAMP_TO_EDGE semantics (texel centres at
 // (i + 0.5) / size), so shared code samples the CPU LUTs exactly as the GPU samples its own.
 class Texture2D {
-public:
+  public:
     Texture2D() = default;
     // wrap_u: GL_REPEAT along u (the Sky-View azimuth), else GL_CLAMP_TO_EDGE.
     Texture2D(int width, int height, bool wrap_u = false)
-        : width_(width), height_(height), wrap_u_(wrap_u),
+        : width_(width),
+          height_(height),
+          wrap_u_(wrap_u),
           texels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {}
     int width() const { return width_; }
     int height() const { return height_; }
@@ -72,7 +73,7 @@ public:
         return mix(a, b, ty);
     }
 
-private:
+  private:
     std::size_t Index(int x, int y) const {
         return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
                static_cast<std::size_t>(x);
@@ -89,10 +90,11 @@ private:
 
 // A float RGBA volume with GL_LINEAR semantics, clamped (or repeating, for tileable noise).
 class Texture3D {
-public:
+  public:
     Texture3D() = default;
     Texture3D(int width, int height, int depth, bool wrap = false)
-        : size_(width, height, depth), wrap_(wrap),
+        : size_(width, height, depth),
+          wrap_(wrap),
           texels_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
                   static_cast<std::size_t>(depth)) {}
     ivec3 size() const { return size_; }
@@ -107,17 +109,18 @@ public:
         vec4 result(0.0);
         for (int corner = 0; corner < 8; ++corner) {
             const ivec3 o((corner & 1), (corner >> 1) & 1, (corner >> 2) & 1);
-            const double w = (o.x ? t.x : 1.0 - t.x) * (o.y ? t.y : 1.0 - t.y) *
-                             (o.z ? t.z : 1.0 - t.z);
+            const double w =
+                (o.x ? t.x : 1.0 - t.x) * (o.y ? t.y : 1.0 - t.y) * (o.z ? t.z : 1.0 - t.z);
             result += w * Fetch(i + o);
         }
         return result;
     }
 
-private:
+  private:
     std::size_t Index(int x, int y, int z) const {
         return (static_cast<std::size_t>(z) * static_cast<std::size_t>(size_.y) +
-                static_cast<std::size_t>(y)) * static_cast<std::size_t>(size_.x) +
+                static_cast<std::size_t>(y)) *
+                   static_cast<std::size_t>(size_.x) +
                static_cast<std::size_t>(x);
     }
     const vec4& Fetch(ivec3 p) const {

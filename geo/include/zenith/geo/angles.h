@@ -2,9 +2,8 @@
 #pragma once
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/glm.hpp>
+#include <numbers>
 
 namespace zenith::geo {
 

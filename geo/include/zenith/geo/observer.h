@@ -6,22 +6,21 @@
 // refraction is requested. Polar motion (< 0.5") is ignored.
 #pragma once
 
+#include <glm/glm.hpp>
 #include <stdexcept>
 
-#include <glm/glm.hpp>
-
-#include "zenith/geo/time.h"
 #include "zenith/base/error.h"
+#include "zenith/geo/time.h"
 
 namespace zenith::geo {
 
 class ObserverError : public ArgumentError {
-public:
+  public:
     using ArgumentError::ArgumentError;
 };
 
 class Observer {
-public:
+  public:
     // Throws ObserverError naming the parameter, its value and the allowed range for latitude
     // outside [-90, 90], longitude outside [-540, 540] (wrapped to [-180, 180)), or a height
     // outside [-12000 m, 1e8 m], or any NaN/infinity.
@@ -41,7 +40,7 @@ public:
     const glm::dmat3& ecef_from_enu() const { return ecef_from_enu_; }
     glm::dmat3 enu_from_ecef() const { return glm::transpose(ecef_from_enu_); }
 
-private:
+  private:
     double lat_deg_;
     double lon_deg_;
     double height_m_;
@@ -51,9 +50,9 @@ private:
 
 struct Horizontal {
     glm::dvec3 direction_enu{0.0, 0.0, 1.0};  // unit vector toward the body
-    double azimuth = 0.0;                      // radians, [0, 2pi), from north through east
-    double elevation = 0.0;                    // radians
-    double distance = 0.0;                     // metres, topocentric
+    double azimuth = 0.0;                     // radians, [0, 2pi), from north through east
+    double elevation = 0.0;                   // radians
+    double distance = 0.0;                    // metres, topocentric
 };
 
 // A position expressed in the TOD frame (true equator and equinox of date) as seen from the
@@ -68,8 +67,7 @@ struct Topocentric {
 // Reduces a geocentric apparent TOD position (metres) to the observer. Applies diurnal
 // aberration (observer velocity from Earth rotation, up to 0.32") unless disabled.
 Topocentric TopocentricFromGeocentricTod(const glm::dvec3& geocentric_tod, const Time& t,
-                                         const Observer& observer,
-                                         bool diurnal_aberration = true);
+                                         const Observer& observer, bool diurnal_aberration = true);
 // The same with EcefFromTod(t) already computed (earth_orientation.h), for many bodies at one
 // instant: the sidereal time and nutation behind it are most of the cost.
 Topocentric TopocentricFromGeocentricTod(const glm::dvec3& geocentric_tod,

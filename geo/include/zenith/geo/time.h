@@ -22,7 +22,7 @@ namespace zenith::geo {
 // Thrown for any input that cannot be a valid instant; the message names the parameter, the
 // value and the accepted range or format.
 class TimeError : public ArgumentError {
-public:
+  public:
     using ArgumentError::ArgumentError;
 };
 
@@ -99,7 +99,7 @@ Time TimeFromUnixSeconds(double unix_s, const TimeOptions& options = {});
 // table, that table (so TT - UTC steps at a leap second). A clock advanced to an instant and
 // TimeFromUtc of that instant are the same Time to the last bit.
 class SimulationClock {
-public:
+  public:
     SimulationClock() : SimulationClock(Time{}) {}
     explicit SimulationClock(const Time& start) { Set(start); }
 
@@ -118,7 +118,7 @@ public:
     // Seconds since the start instant (hi + lo of the compensated sum, rounded once).
     double elapsed_s() const { return elapsed_hi_ + elapsed_lo_; }
 
-private:
+  private:
     void Refresh() const;
 
     Time start_;

@@ -3,11 +3,11 @@
 #pragma once
 
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 
-#include <glm/glm.hpp>
-
+#include "zenith/base/error.h"
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/atmosphere_renderer.h"
@@ -15,7 +15,6 @@
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
 #include "zenith/weather/metar.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sim {
 
@@ -26,9 +25,9 @@ glm::ivec2 ParseFrameSize(const std::string& text);
 
 struct FrameRequest {
     std::string utc = "2024-06-21T19:00:00Z";  // ISO 8601
-    double lat_deg = 47.45;                     // the built-in scene: over Zurich at FL330,
-    double lon_deg = 8.56;                      // looking west-north-west into the sunset
-    double height_m = 10000.0;                  // above the WGS84 ellipsoid
+    double lat_deg = 47.45;                    // the built-in scene: over Zurich at FL330,
+    double lon_deg = 8.56;                     // looking west-north-west into the sunset
+    double height_m = 10000.0;                 // above the WGS84 ellipsoid
     double heading_deg = 300.0;
     double pitch_deg = 0.0;
     double roll_deg = 0.0;
@@ -66,8 +65,8 @@ struct FrameRequest {
 void ValidateFrameRequest(const FrameRequest& request);
 
 struct FrameResult {
-    sky::Image image;           // linear luminance, cd/m^2, row 0 = top
-    double ev100 = 0.0;         // exposure used for a PNG (resolved from "auto" if so)
+    sky::Image image;    // linear luminance, cd/m^2, row 0 = top
+    double ev100 = 0.0;  // exposure used for a PNG (resolved from "auto" if so)
     double sun_elevation_deg = 0.0;
     std::size_t stars_drawn = 0;
     std::string gl_description;

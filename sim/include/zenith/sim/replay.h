@@ -19,10 +19,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
-
-#include <glm/glm.hpp>
 
 #include "zenith/base/error.h"
 #include "zenith/sim/render_frame.h"
@@ -56,7 +55,6 @@ Shard ParseShard(const std::string& text);
 // whole number or the task is outside the array.
 std::optional<Shard> ShardFromEnvironment();
 
-
 struct ReplayRequest {
     std::filesystem::path flight;  // .igc .gpx .kml .csv
     track::ReadOptions read;       // which aircraft in a multi-aircraft log
@@ -71,8 +69,8 @@ struct ReplayRequest {
     sky::Exposure exposure;
     bool write_exr = false;
     bool write_png = true;
-    double time_offset_s = 0.0;  // added to the log's times for the sky
-    double time_warp = 1.0;      // sky time runs this much faster than flight time
+    double time_offset_s = 0.0;     // added to the log's times for the sky
+    double time_warp = 1.0;         // sky time runs this much faster than flight time
     std::optional<double> start_s;  // flight seconds after the first sample (default: start)
     std::optional<double> end_s;    // (default: the end)
     std::string preset = "earth";
@@ -101,8 +99,8 @@ struct ReplayResult {
     ReplayProgress progress;
     std::size_t frames_in_flight = 0;  // all shards
     bool interrupted = false;
-    std::string log_summary;  // what the reader used and skipped, and trajectory notes
-    std::string notes;        // where the ground observer stands, frames repaired, ...
+    std::string log_summary;   // what the reader used and skipped, and trajectory notes
+    std::string notes;         // where the ground observer stands, frames repaired, ...
     std::string video_status;  // "video: path" or why none was made (a sharded run)
 };
 

@@ -19,13 +19,13 @@
 
 #include <filesystem>
 #include <functional>
+#include <glm/glm.hpp>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
+#include "zenith/base/error.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
@@ -34,7 +34,6 @@
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
 #include "zenith/weather/metar.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sim {
 
@@ -46,8 +45,8 @@ using GetProcAddressFn = sky::gl::GetProcAddressFn;
 using NoticeFn = std::function<void(const std::string& message)>;
 
 struct SkySystemSettings {
-    std::string preset = "earth";     // built-in preset name or JSON file
-    sky::LutSettings lut_settings;    // LUT sizes and step counts
+    std::string preset = "earth";   // built-in preset name or JSON file
+    sky::LutSettings lut_settings;  // LUT sizes and step counts
     double star_magnitude_limit = 6.5;
     // Where the star catalogue is read from; empty: geo::DefaultStarDirectory() ($ZENITH_STAR_DIR
     // or /usr/share/kstars). Without it the sky has no stars and a notice says why.
@@ -95,7 +94,7 @@ struct SkyLighting {
 };
 
 class SkySystem {
-public:
+  public:
     // Owns a headless GL context (ZENITH_GL = osmesa | egl). Throws sky::gl::GlError when none
     // can be made, saying what was tried and what to install.
     static std::unique_ptr<SkySystem> CreateHeadless(const SkySystemSettings& settings = {});
@@ -208,7 +207,7 @@ public:
     // ReadCloudShadowMap has the layout); 0 without clouds.
     unsigned cloud_shadow_texture() const;
 
-private:
+  private:
     struct Impl;
     explicit SkySystem(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;

@@ -38,9 +38,9 @@ struct Atmosphere {
     // demo (UnrealEngineSkyAtmosphere) and Bruneton's (precomputed_atmospheric_scattering) use
     // extinction 4.44e-6 = scattering / 0.9, a single-scattering albedo of 0.9; 4.40e-6 would
     // make it 0.48, dark haze. Sources: data/presets/README.md.
-    glm::dvec3 mie_absorption{0.444e-6};                           // 1/m
-    double mie_scale_height = 1200.0;                              // m
-    double mie_g = 0.8;  // Cornette-Shanks asymmetry, (-1, 1)
+    glm::dvec3 mie_absorption{0.444e-6};  // 1/m
+    double mie_scale_height = 1200.0;     // m
+    double mie_g = 0.8;                   // Cornette-Shanks asymmetry, (-1, 1)
     glm::dvec3 absorption_extinction{0.650e-6, 1.881e-6, 0.085e-6};  // 1/m (ozone)
     double absorption_center = 25000.0;                              // m above the ground
     double absorption_width = 30000.0;                               // m, full width of the tent

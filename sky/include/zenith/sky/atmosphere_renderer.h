@@ -4,17 +4,16 @@
 #pragma once
 
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include <glm/glm.hpp>
-
+#include "zenith/base/error.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/clouds/noise.h"
 #include "zenith/sky/clouds/weather.h"
 #include "zenith/sky/lut.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sky {
 
@@ -32,11 +31,11 @@ struct SceneDepth {
 // units; the defaults are what `zenith render --weather` uses.
 struct CloudSettings {
     // Material (F16 §5.4.1, §5.7)
-    double extinction = 0.04;    // 1/m at density 1: a mean free path of 25 m in a dense core
-    double albedo = 1.0;         // water droplets scatter nearly all they remove (F16 §5.2)
-    double forward_g = 0.8;      // dual-lobe Henyey-Greenstein (F16 Eq. 18): silver lining...
-    double backward_g = -0.3;    // ...and the back-lit side
-    double lobe_weight = 0.3;    // share of the backward lobe
+    double extinction = 0.04;  // 1/m at density 1: a mean free path of 25 m in a dense core
+    double albedo = 1.0;       // water droplets scatter nearly all they remove (F16 §5.2)
+    double forward_g = 0.8;    // dual-lobe Henyey-Greenstein (F16 Eq. 18): silver lining...
+    double backward_g = -0.3;  // ...and the back-lit side
+    double lobe_weight = 0.3;  // share of the backward lobe
     // Share of the light scattered more than once that is added: the delta-Eddington diffuse
     // field of clouds/functions.glsl (CloudSunScattering); 1 is physical, 0 single scattering.
     double multiple_scattering = 1.0;
@@ -47,14 +46,14 @@ struct CloudSettings {
     double detail_period = 1800.0;  // m
     double erosion = 0.45;          // [0, 0.9]: how much the detail noise eats the edges
     // March (H16 §5.2, §6.2; F16 §5.5.2)
-    double min_step = 120.0;        // m: the step of a short crossing
-    int max_steps = 64;             // primary steps per layer crossing at most
-    int shadow_steps = 4;           // samples toward each light (F16 §5.5.2: four)
+    double min_step = 120.0;          // m: the step of a short crossing
+    int max_steps = 64;               // primary steps per layer crossing at most
+    int shadow_steps = 4;             // samples toward each light (F16 §5.5.2: four)
     double shadow_first_step = 80.0;  // m; each next is shadow_growth times longer
     double shadow_growth = 2.0;
-    double min_transmittance = 0.01;  // early exit
-    double max_distance = 250000.0;   // m marched in one layer at most, from where a ray enters
-    int aerial_perspective_steps = 8; // atmosphere between the camera and the clouds
+    double min_transmittance = 0.01;   // early exit
+    double max_distance = 250000.0;    // m marched in one layer at most, from where a ray enters
+    int aerial_perspective_steps = 8;  // atmosphere between the camera and the clouds
     // Reconstruction (H16 §6.1): each frame traces one pixel of every block x block (a Bayer
     // order over block^2 frames) and reprojects the rest from the previous frames. 1 traces
     // every pixel every frame (the reference, and single still frames).
@@ -114,7 +113,7 @@ struct RenderOptions {
     std::optional<unsigned> target_framebuffer;
     glm::ivec4 target_viewport{0, 0, 0, 0};
     std::optional<SceneDepth> scene_depth;  // with a host framebuffer only
-    CloudView clouds;  // used when the renderer has weather (SetWeather)
+    CloudView clouds;                       // used when the renderer has weather (SetWeather)
 };
 
 // GPU time of each pass in milliseconds, measured with GL timer queries.
@@ -133,7 +132,7 @@ struct PassTimes {
 };
 
 class AtmosphereRenderer {
-public:
+  public:
     explicit AtmosphereRenderer(const Atmosphere& atmosphere, const LutSettings& settings = {});
     ~AtmosphereRenderer();
     AtmosphereRenderer(const AtmosphereRenderer&) = delete;
@@ -154,8 +153,7 @@ public:
     // The per-frame LUTs (Sky-View, aerial perspective) for this camera and these lights; with
     // weather, first the clouds' shadow map and their shading of the air and the ground beneath
     // them (Frostbite 2016 Eq. 22), for the clouds placed by `clouds`.
-    void UpdateFrameLuts(const Camera& camera, const Lights& lights,
-                         const CloudView& clouds = {});
+    void UpdateFrameLuts(const Camera& camera, const Lights& lights, const CloudView& clouds = {});
     // Renders the frame into the renderer's RGBA32F colour texture (after UpdateFrameLuts for
     // the same camera, lights and CloudView).
     void Render(const Camera& camera, const Lights& lights, const RenderOptions& options);
@@ -195,7 +193,7 @@ public:
     // Times of the most recent run of each pass (waits for the GPU).
     PassTimes LastPassTimes() const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

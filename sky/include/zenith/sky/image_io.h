@@ -77,8 +77,8 @@ double ExposureScale(double ev100);
 // log-average (geometric mean) of the pixels' Rec.709 luminance Y = 0.2126 R + 0.7152 G + 0.0722 B,
 // taken over the pixels between the kMeteredLowPercentile-th and kMeteredHighPercentile-th
 // percentiles of Y (histogram metering: space beside a planet, or the sun disk, does not set it).
-// Non-finite pixels are skipped; Y below kMinMeteredLuminance counts as that. The result is clamped to
-// [kMinExposureEV100, kMaxExposureEV100]. Throws zenith::ArgumentError for an empty image or one
+// Non-finite pixels are skipped; Y below kMinMeteredLuminance counts as that. The result is clamped
+// to [kMinExposureEV100, kMaxExposureEV100]. Throws zenith::ArgumentError for an empty image or one
 // with no finite pixel.
 inline constexpr double kMinMeteredLuminance =
     1e-6;  // cd/m², about the absolute threshold of vision

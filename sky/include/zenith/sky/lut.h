@@ -4,9 +4,8 @@
 #pragma once
 
 #include <cmath>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "zenith/base/error.h"
 
@@ -47,7 +46,8 @@ struct LutImage {
                  static_cast<std::size_t>(depth)) {}
     std::size_t Index(int x, int y, int z = 0) const {
         return (static_cast<std::size_t>(z) * static_cast<std::size_t>(size.y) +
-                static_cast<std::size_t>(y)) * static_cast<std::size_t>(size.x) +
+                static_cast<std::size_t>(y)) *
+                   static_cast<std::size_t>(size.x) +
                static_cast<std::size_t>(x);
     }
     glm::vec4& at(int x, int y, int z = 0) { return texels[Index(x, y, z)]; }
@@ -70,8 +70,8 @@ struct Lights {
 struct MoonDisk {
     bool enabled = false;
     glm::dvec3 direction{0.0, 0.0, 1.0};  // unit, toward the Moon's centre
-    double angular_radius = 0.0045;        // rad
-    double albedo = 0.12;                  // Lambertian reflectance (the Moon's mean albedo)
+    double angular_radius = 0.0045;       // rad
+    double albedo = 0.12;                 // Lambertian reflectance (the Moon's mean albedo)
 };
 
 // A point source: a star, or the Sun when its disk is smaller than a pixel.
@@ -83,9 +83,9 @@ struct StarPoint {
 // A pinhole camera, OpenGL convention: it looks along -z of its view frame, +y up, +x right.
 struct Camera {
     glm::dvec3 position{0.0, 0.0, 6360e3 + 1.0};  // m, planet-centred
-    glm::dmat3 world_from_view{1.0};               // columns: right, up, backward
-    double vertical_fov = 1.0471975511965976;      // rad (60 deg)
-    double aspect = 16.0 / 9.0;                    // width / height
+    glm::dmat3 world_from_view{1.0};              // columns: right, up, backward
+    double vertical_fov = 1.0471975511965976;     // rad (60 deg)
+    double aspect = 16.0 / 9.0;                   // width / height
 
     // World direction through normalised device coordinates (x, y) in [-1, 1].
     glm::dvec3 Direction(double ndc_x, double ndc_y) const {

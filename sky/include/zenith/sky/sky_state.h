@@ -11,9 +11,8 @@
 // geocentric radius instead would misplace the ground by up to 21 km.
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/frames.h"

@@ -19,9 +19,9 @@
 #include <string_view>
 #include <utility>
 
+#include "zenith/base/error.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/gl/loader.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sky::gl {
 

@@ -31,10 +31,10 @@
 #include <string>
 #include <vector>
 
+#include "zenith/base/error.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/reference/path_tracer.h"
-#include "zenith/base/error.h"
 
 namespace zenith::sky::reference {
 

@@ -4,9 +4,8 @@
 // LUT convergence tests; the independent physical reference is reference/path_tracer.h.
 #pragma once
 
-#include <memory>
-
 #include <glm/glm.hpp>
+#include <memory>
 
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/lut.h"
@@ -14,7 +13,7 @@
 namespace zenith::sky::reference {
 
 class AtmosphereReference {
-public:
+  public:
     // Builds the transmittance, multiple-scattering and ground-irradiance LUTs.
     AtmosphereReference(const Atmosphere& atmosphere, const LutSettings& settings = {});
     ~AtmosphereReference();
@@ -40,14 +39,13 @@ public:
                             const Lights& lights, double distance, int steps) const;
 
     // Luminance (cd/m^2) along a view ray by ray marching with `steps` steps, ground included.
-    glm::dvec3 RayMarch(const glm::dvec3& origin, const glm::dvec3& direction,
-                        const Lights& lights, int steps) const;
+    glm::dvec3 RayMarch(const glm::dvec3& origin, const glm::dvec3& direction, const Lights& lights,
+                        int steps) const;
     // Luminance read from a Sky-View LUT made by SkyView(camera, lights).
     glm::dvec3 SampleSkyView(const LutImage& sky_view, const glm::dvec3& camera,
-                             const glm::dvec3& sun_direction,
-                             const glm::dvec3& direction) const;
+                             const glm::dvec3& sun_direction, const glm::dvec3& direction) const;
 
-private:
+  private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
