@@ -24,6 +24,8 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     # fuzzing the readers (ZENITH_FUZZ=ON, .ci/run's fuzz stage): clang's libFuzzer
     clang libclang-rt-14-dev
+    # .ci/run checks the formatting
+    clang-format
 )
 
 missing=()
