@@ -21,11 +21,20 @@
 
 #include "clouds/cloud_parameters.h"
 #include "reference/cloud_functions.h"
+#include "reference/monte_carlo.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/reference/path_tracer.h"
 
 namespace zenith::sky::reference {
 namespace {
+
+using monte_carlo::DirectionAround;
+using monte_carlo::ParallelFor;
+
+// This tracer's random streams (monte_carlo::StreamSeed's salt).
+std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t index) {
+    return monte_carlo::StreamSeed(seed, index, 0x6a09e667f3bcc909ULL);
+}
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kMajorantSlack = 1.0 + 1e-9;
@@ -37,48 +46,11 @@ constexpr double kRatioRoulette = 0.1;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr glm::dvec3 kRec709{0.2126, 0.7152, 0.0722};
 
-std::uint64_t SplitMix64(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
 // Independent stream for (seed, index).
-std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t index) {
-    std::uint64_t state = seed ^ (index * 0xd1342543de82ef95ULL + 0x6a09e667f3bcc909ULL);
-    SplitMix64(state);
-    return SplitMix64(state);
-}
-
 // Duff et al. 2017, "Building an orthonormal basis, revisited".
-glm::dvec3 DirectionAround(const glm::dvec3& axis, double cos_theta, double phi) {
-    const double sign = std::copysign(1.0, axis.z);
-    const double a = -1.0 / (sign + axis.z);
-    const double b = axis.x * axis.y * a;
-    const glm::dvec3 b1(1.0 + sign * axis.x * axis.x * a, sign * b, -sign * axis.x);
-    const glm::dvec3 b2(b, sign + axis.y * axis.y * a, -axis.y);
-    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-    return glm::normalize(cos_theta * axis + sin_theta * (std::cos(phi) * b1 + std::sin(phi) * b2));
-}
-
 glm::dvec3 CosineWeighted(const glm::dvec3& normal, Rng& rng) {
     const double u = rng.Uniform();
     return DirectionAround(normal, std::sqrt(1.0 - u), 2.0 * kPi * rng.Uniform());
-}
-
-template <class Task>
-void ParallelFor(std::int64_t count, int threads, const Task& task) {
-    int n = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
-    n = static_cast<int>(std::clamp<std::int64_t>(n, 1, std::max<std::int64_t>(count, 1)));
-    std::atomic<std::int64_t> next{0};
-    const auto worker = [&] {
-        for (std::int64_t i = next++; i < count; i = next++) task(i);
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < n; ++i) pool.emplace_back(worker);
-    worker();
-    for (std::thread& thread : pool) thread.join();
 }
 
 // Per-path estimates, summed in fixed chunks with their own streams and reduced in chunk order:

@@ -13,8 +13,19 @@
 #include <thread>
 #include <utility>
 
+#include "reference/monte_carlo.h"
+
 namespace zenith::sky::reference {
 namespace {
+
+using monte_carlo::DirectionAround;
+using monte_carlo::ParallelFor;
+using monte_carlo::SplitMix64;
+
+// This tracer's random streams (monte_carlo::StreamSeed's salt).
+std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t index) {
+    return monte_carlo::StreamSeed(seed, index, 0x2545f4914f6cdd1dULL);
+}
 
 constexpr double kPi = std::numbers::pi;
 // Relative slack on majorants so that rounding in the bound can never put sigma_t above it.
@@ -32,37 +43,6 @@ double TentDensity(const Atmosphere& atmosphere, double altitude) {
     const double half_width = 0.5 * atmosphere.absorption_width;
     if (!(half_width > 0.0)) return 0.0;
     return std::max(0.0, 1.0 - std::abs(altitude - atmosphere.absorption_center) / half_width);
-}
-
-std::uint64_t SplitMix64(std::uint64_t& state) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
-// Independent stream seed for (seed, index): one SplitMix64 step over a mixed key.
-std::uint64_t StreamSeed(std::uint64_t seed, std::uint64_t index) {
-    std::uint64_t state = seed ^ (index * 0xd1342543de82ef95ULL + 0x2545f4914f6cdd1dULL);
-    SplitMix64(state);
-    return SplitMix64(state);
-}
-
-// Orthonormal basis around a unit vector (Duff et al. 2017, "Building an orthonormal basis,
-// revisited"): no branch on a near-zero component, no loss of precision near the poles.
-void OrthonormalBasis(const glm::dvec3& n, glm::dvec3& b1, glm::dvec3& b2) {
-    const double sign = std::copysign(1.0, n.z);
-    const double a = -1.0 / (sign + n.z);
-    const double b = n.x * n.y * a;
-    b1 = glm::dvec3(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x);
-    b2 = glm::dvec3(b, sign + n.y * n.y * a, -n.y);
-}
-
-glm::dvec3 DirectionAround(const glm::dvec3& axis, double cos_theta, double phi) {
-    glm::dvec3 b1, b2;
-    OrthonormalBasis(axis, b1, b2);
-    const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-    return glm::normalize(cos_theta * axis + sin_theta * (std::cos(phi) * b1 + std::sin(phi) * b2));
 }
 
 // Times in (t_min, t_max) where the ray crosses the spheres at the absorbing layer's kinks
@@ -477,21 +457,6 @@ bool EnterAtmosphere(const Atmosphere& atmosphere, glm::dvec3& position,
     const double r_entry = glm::length(position);
     if (r_entry > atmosphere.top_radius) position *= atmosphere.top_radius / r_entry;
     return true;
-}
-
-// Runs task(i) for i in [0, count) on `threads` threads (0: hardware concurrency).
-template <class Task>
-void ParallelFor(std::int64_t count, int threads, const Task& task) {
-    int n = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
-    n = static_cast<int>(std::clamp<std::int64_t>(n, 1, std::max<std::int64_t>(count, 1)));
-    std::atomic<std::int64_t> next{0};
-    const auto worker = [&] {
-        for (std::int64_t i = next++; i < count; i = next++) task(i);
-    };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < n; ++i) pool.emplace_back(worker);
-    worker();
-    for (std::thread& thread : pool) thread.join();
 }
 
 // --- Single scattering: adaptive Dormand-Prince 5(4) -----------------------------------------
