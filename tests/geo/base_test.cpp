@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "zenith/base/atomic_file.h"
-#include "zenith/base/csv_line.h"
 #include "zenith/base/error.h"
+#include "zenith/base/text_lines.h"
 #include "zenith/base/units.h"
 
 namespace zenith {

@@ -17,8 +17,8 @@
 #include <numbers>
 
 #include "flight_log_internal.h"
-#include "zenith/base/csv_line.h"
 #include "zenith/base/error.h"
+#include "zenith/base/text_lines.h"
 
 namespace zenith::track {
 
@@ -36,7 +36,7 @@ struct AltitudeColumn {
 };
 
 std::string Lower(std::string_view s) {
-    std::string out(detail::Trim(s));
+    std::string out(Trim(s));
     std::transform(out.begin(), out.end(), out.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return out;
@@ -155,9 +155,9 @@ FlightLog ParseCsv(std::string_view text, std::string source, const ReadOptions&
     std::optional<std::size_t> icao24_col, callsign_col;
     std::size_t rows = 0;  // of the chosen aircraft
     while (!text.empty()) {
-        const std::string_view line = detail::NextLine(text);
+        const std::string_view line = NextLine(text);
         ++line_number;
-        const std::string_view trimmed = detail::Trim(line);
+        const std::string_view trimmed = Trim(line);
         if (trimmed.empty() || trimmed.front() == '#') continue;
         if (line.size() > kMaxLineBytes) {
             if (!have_header) {
@@ -263,7 +263,7 @@ FlightLog ParseCsv(std::string_view text, std::string source, const ReadOptions&
         ++rows;
         FlightSample s;
         s.line = line_number;
-        const std::string_view time_text = detail::Trim(fields[*time_col]);
+        const std::string_view time_text = Trim(fields[*time_col]);
         if (time_text.empty()) {
             out.Skip(line_number, "empty time");
             continue;

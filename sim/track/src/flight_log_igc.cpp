@@ -63,7 +63,7 @@ std::string Upper(std::string_view s) {
 std::string HeaderValue(std::string_view line) {
     const auto colon = line.find(':');
     return colon == std::string_view::npos ? std::string()
-                                           : std::string(detail::Trim(line.substr(colon + 1)));
+                                           : std::string(Trim(line.substr(colon + 1)));
 }
 
 struct Line {
@@ -77,7 +77,7 @@ template <class F>
 void ForEachLine(std::string_view text, F&& f) {
     int number = 0;
     while (!text.empty()) {
-        std::string_view line = detail::NextLine(text);
+        std::string_view line = NextLine(text);
         while (!line.empty() && line.back() == ' ') line.remove_suffix(1);
         f(Line{line, ++number});
     }

@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "zenith/base/text_lines.h"
 #include "zenith/track/flight_log.h"
 
 namespace zenith::track::detail {
@@ -47,10 +48,6 @@ class LogBuilder {
 // Prefix for messages about a line: "flight.igc:12: ".
 std::string Where(std::string_view source, int line);
 
-// The next line of text, which it removes from `text`: lines end in "\n", "\r\n" or a lone "\r"
-// (old Mac files), none of which is part of the line.
-std::string_view NextLine(std::string_view& text);
-
 // Strict numeric parsing of a whole field (no trailing junk, finite). Empty -> nullopt; throws
 // zenith::ArgumentError naming the text otherwise.
 std::optional<double> ParseDouble(std::string_view text);
@@ -60,7 +57,5 @@ double UnixSecondsFromIso8601(std::string_view text);
 
 // "hh:mm:ss" of a POSIX time, for messages.
 std::string FormatClock(double time_s);
-
-std::string_view Trim(std::string_view text);
 
 }  // namespace zenith::track::detail

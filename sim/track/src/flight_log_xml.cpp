@@ -62,7 +62,7 @@ const XMLElement* ChildByLocalName(const XMLElement& parent, std::string_view na
 
 std::string_view TextOf(const XMLElement& e) {
     const char* t = e.GetText();
-    return t ? detail::Trim(t) : std::string_view();
+    return t ? Trim(t) : std::string_view();
 }
 
 int LineAt(std::string_view text, std::size_t offset) {

@@ -11,30 +11,12 @@
 #include <iterator>
 #include <system_error>
 
-#include "zenith/base/csv_line.h"
+#include "zenith/base/text_lines.h"
 #include "zenith/geo/time.h"
 
 namespace zenith::weather {
 
 namespace {
-
-std::string_view NextLine(std::string_view& text) {
-    std::size_t end = 0;
-    while (end < text.size() && text[end] != '\n' && text[end] != '\r') ++end;
-    const std::string_view line = text.substr(0, end);
-    std::size_t skip = end;
-    if (skip < text.size()) {
-        skip += (text[skip] == '\r' && skip + 1 < text.size() && text[skip + 1] == '\n') ? 2u : 1u;
-    }
-    text.remove_prefix(skip);
-    return line;
-}
-
-std::string_view Trim(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-    return s;
-}
 
 std::string Lower(std::string_view s) {
     std::string out(Trim(s));

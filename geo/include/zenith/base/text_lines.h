@@ -1,0 +1,22 @@
+// Lines of text as the bounded readers (flight logs, METAR files) see them: any line ending, no
+// surrounding blanks, and one line of comma-separated values (RFC 4180 quoting: a field in
+// double quotes may hold commas, and "" inside it is one quote).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace zenith {
+
+// The next line of text, which it removes from `text`: lines end in "\n", "\r\n" or a lone "\r"
+// (old Mac files), none of which is part of the line.
+std::string_view NextLine(std::string_view& text);
+
+// `text` without leading and trailing white space.
+std::string_view Trim(std::string_view text);
+
+// Replaces `fields` with the line's fields; false when a quoted field is not closed.
+bool SplitCsvLine(std::string_view line, std::vector<std::string>& fields);
+
+}  // namespace zenith
