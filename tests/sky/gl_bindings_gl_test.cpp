@@ -199,7 +199,7 @@ void AddCloudMarch(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, shadow_first_step);
     ZENITH_SAME(S, shadow_growth);
     ZENITH_SAME(S, ambient_scale);
-    ZENITH_SAME(S, padding2);
+    ZENITH_SAME(S, thick_step_refinement);
     ZENITH_SAME(S, min_transmittance);
     ZENITH_SAME(S, max_distance);
     ZENITH_SAME(S, padding0);

@@ -42,6 +42,8 @@ void CloudSettings::Validate() const {
     Require(shadow_first_step > 0.0 && shadow_first_step <= 10000.0, "shadow_first_step",
             shadow_first_step, "0 < m <= 10 km");
     Require(shadow_growth >= 1.0 && shadow_growth <= 4.0, "shadow_growth", shadow_growth, "[1, 4]");
+    Require(thick_step_refinement >= 0 && thick_step_refinement <= 3, "thick_step_refinement",
+            thick_step_refinement, "0..3");
     Require(min_transmittance >= 0.0 && min_transmittance < 1.0, "min_transmittance",
             min_transmittance, "[0, 1)");
     Require(max_distance > 0.0 && max_distance <= 1e7, "max_distance", max_distance,

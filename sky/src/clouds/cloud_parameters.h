@@ -66,6 +66,7 @@ Parameters MakeCloudMarchParameters(const CloudSettings& s) {
     p.shadow_first_step = Scalar(s.shadow_first_step / kKm);
     p.shadow_growth = Scalar(s.shadow_growth);
     p.ambient_scale = Scalar(s.ambient_scale);
+    p.thick_step_refinement = Scalar(s.thick_step_refinement);
     p.min_transmittance = Scalar(s.min_transmittance);
     p.max_distance = Scalar(s.max_distance / kKm);
     return p;

@@ -46,7 +46,7 @@ struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float shadow_first_step;
     float shadow_growth;
     float ambient_scale;
-    float padding2;
+    float thick_step_refinement;
     float min_transmittance;
     float max_distance;
     float padding0;
