@@ -110,6 +110,7 @@ struct SkySystem::Impl {
         }
         calculator.emplace(catalog ? &*catalog : nullptr, s.star_refresh_s);
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
+        renderer->set_preserve_gl_state(s.preserve_gl_state);
         ground_irradiance = renderer->ReadGroundIrradiance();
         renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
     }

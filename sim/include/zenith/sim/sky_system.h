@@ -63,6 +63,7 @@ struct SkySystemSettings {
     // default traces one pixel in 16 per frame and reprojects the rest (a host's frame loop).
     std::string weather = "clear";
     sky::CloudSettings clouds;
+    bool preserve_gl_state = true;
 };
 
 enum class DayPhase { kDay, kCivilTwilight, kNauticalTwilight, kAstronomicalTwilight, kNight };

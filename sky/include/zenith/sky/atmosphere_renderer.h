@@ -138,6 +138,14 @@ class AtmosphereRenderer {
     AtmosphereRenderer(const AtmosphereRenderer&) = delete;
     AtmosphereRenderer& operator=(const AtmosphereRenderer&) = delete;
 
+    // GL state (zenith/sim/sky_system.h has the whole contract): every member that issues GL
+    // commands first sets the state its passes depend on (no culling, filled polygons, no depth
+    // or stencil test, ...), so the context may be in any state; and, unless this is turned
+    // off, it saves the state it sets or changes beforehand and restores it afterwards.
+    // Construction always saves and restores.
+    void set_preserve_gl_state(bool preserve);
+    bool preserve_gl_state() const;
+
     // Recomputes the transmittance, multiple-scattering and ground-irradiance LUTs.
     void SetAtmosphere(const Atmosphere& atmosphere);
     const Atmosphere& atmosphere() const;
