@@ -379,8 +379,14 @@ struct AtmosphereRenderer::Impl {
             u.viewport_y = options.target_viewport.y;
         }
         if (options.scene_depth) {
-            u.scene_near_m = static_cast<float>(options.scene_depth->near_m);
-            u.scene_far_m = static_cast<float>(options.scene_depth->far_m);
+            // Eye depth n / (offset + slope d); n / f -> 0 for an infinite far plane.
+            const SceneDepth& s = *options.scene_depth;
+            const double near_over_far = std::isinf(s.far_m) ? 0.0 : s.near_m / s.far_m;
+            u.scene_near_m = static_cast<float>(s.near_m);
+            u.scene_depth_offset = static_cast<float>(s.reversed ? near_over_far : 1.0);
+            u.scene_depth_slope =
+                static_cast<float>(s.reversed ? 1.0 - near_over_far : near_over_far - 1.0);
+            u.scene_depth_reversed = s.reversed ? 1 : 0;
         }
         // Per-frame constants, from the shared functions compiled as C++ (double).
         const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);

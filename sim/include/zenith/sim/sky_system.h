@@ -211,10 +211,15 @@ class SkySystem {
     // and its jitter sequence starts over, so it is the same whatever was drawn before. Call it
     // before that frame's Update(), which renews the clouds' shadow map on a cut.
     void ResetCloudHistory();
-    // The host's depth texture (0..1, standard perspective with these planes, metres) for the
-    // next Render calls: its geometry gets aerial perspective, framebuffer = L + T * colour, and
-    // the sky is drawn only where the depth is at the far plane. Clear with ClearSceneDepth().
-    void SetSceneDepth(unsigned depth_texture, double near_m, double far_m);
+    // The host's depth texture (0..1, a perspective projection with these planes, metres; far_m
+    // may be infinity) for the next Render calls: its geometry gets aerial perspective,
+    // framebuffer = L + T * colour, and the sky is drawn only where the depth is at the far
+    // plane. `reversed`: reversed-Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), 1 at near, 0
+    // at far, cleared to 0); sky::SceneDepth has the formulas. Throws ArgumentError for a texture
+    // that is not a single-sample 2-D texture (a multisampled depth buffer must be resolved
+    // first). Clear with ClearSceneDepth().
+    void SetSceneDepth(unsigned depth_texture, double near_m, double far_m, bool reversed = false);
+    void SetSceneDepth(const sky::SceneDepth& depth);
     void ClearSceneDepth();
 
     // Warm-up before the first frame, so that it costs what any frame costs: the programs are
