@@ -18,6 +18,12 @@
 namespace zenith::sim {
 namespace {
 
+std::string Hex(GLint value) {
+    char text[16];
+    std::snprintf(text, sizeof(text), "%04X", static_cast<unsigned>(value));
+    return text;
+}
+
 DayPhase PhaseOf(double sun_elevation) {
     // Sunrise/sunset at -0.833 deg (refraction and the Sun's radius); twilights by the usual
     // civil/nautical/astronomical depressions of 6, 12 and 18 deg.
@@ -110,6 +116,7 @@ struct SkySystem::Impl {
         }
         calculator.emplace(catalog ? &*catalog : nullptr, s.star_refresh_s);
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
+        renderer->set_preserve_gl_state(s.preserve_gl_state);
         ground_irradiance = renderer->ReadGroundIrradiance();
         renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
     }
@@ -245,11 +252,33 @@ const sky::clouds::Weather& SkySystem::weather() const { return impl_->renderer-
 
 void SkySystem::ResetCloudHistory() { impl_->cloud_view.reset_history = true; }
 
-void SkySystem::SetSceneDepth(unsigned depth_texture, double near_m, double far_m) {
-    if (!(depth_texture != 0 && near_m > 0.0 && far_m > near_m)) {
-        throw ArgumentError("SetSceneDepth: needs a texture and 0 < near_m < far_m");
+void SkySystem::SetSceneDepth(unsigned depth_texture, double near_m, double far_m, bool reversed) {
+    SetSceneDepth(sky::SceneDepth{depth_texture, near_m, far_m, reversed});
+}
+
+void SkySystem::SetSceneDepth(const sky::SceneDepth& depth) {
+    if (!(depth.texture != 0 && std::isfinite(depth.near_m) && depth.near_m > 0.0 &&
+          depth.far_m > depth.near_m)) {
+        throw ArgumentError(
+            "SetSceneDepth: needs a texture and 0 < near_m < far_m (far_m may be infinity)");
     }
-    impl_->scene_depth = sky::SceneDepth{depth_texture, near_m, far_m};
+    // The composite samples it as a sampler2D: anything else would draw no sky, silently.
+    if (glIsTexture(depth.texture) == GL_FALSE) {
+        throw ArgumentError("SetSceneDepth: " + std::to_string(depth.texture) +
+                            " is not a texture name");
+    }
+    GLint target = 0;
+    glGetTextureParameteriv(depth.texture, GL_TEXTURE_TARGET, &target);
+    if (target == GL_TEXTURE_2D_MULTISAMPLE) {
+        throw ArgumentError("SetSceneDepth: texture " + std::to_string(depth.texture) +
+                            " is multisampled; resolve the depth into a single-sample "
+                            "GL_TEXTURE_2D first (glBlitFramebuffer with GL_DEPTH_BUFFER_BIT)");
+    }
+    if (target != GL_TEXTURE_2D) {
+        throw ArgumentError("SetSceneDepth: texture " + std::to_string(depth.texture) +
+                            " is not a GL_TEXTURE_2D (target 0x" + Hex(target) + ")");
+    }
+    impl_->scene_depth = depth;
 }
 
 void SkySystem::ClearSceneDepth() { impl_->scene_depth.reset(); }

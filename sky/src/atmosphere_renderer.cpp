@@ -16,6 +16,7 @@
 #include "gl/atmosphere_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
+#include "gl/state_guard.h"
 #include "gl/textures.h"
 #include "reference/atmosphere_functions.h"
 #include "reference/cloud_march.h"
@@ -243,6 +244,7 @@ struct AtmosphereRenderer::Impl {
     std::vector<gl::Program> cloud_composites;
     clouds::Weather weather;  // as last set (also when clear)
     CloudSettings cloud_settings;
+    bool preserve_gl_state = true;  // what each entry point's gl::StateGuard does
 
     Impl(const Atmosphere& a, const LutSettings& s)
         : atmosphere(a), settings(s), programs(BuildPrograms()) {
@@ -377,8 +379,14 @@ struct AtmosphereRenderer::Impl {
             u.viewport_y = options.target_viewport.y;
         }
         if (options.scene_depth) {
-            u.scene_near_m = static_cast<float>(options.scene_depth->near_m);
-            u.scene_far_m = static_cast<float>(options.scene_depth->far_m);
+            // Eye depth n / (offset + slope d); n / f -> 0 for an infinite far plane.
+            const SceneDepth& s = *options.scene_depth;
+            const double near_over_far = std::isinf(s.far_m) ? 0.0 : s.near_m / s.far_m;
+            u.scene_near_m = static_cast<float>(s.near_m);
+            u.scene_depth_offset = static_cast<float>(s.reversed ? near_over_far : 1.0);
+            u.scene_depth_slope =
+                static_cast<float>(s.reversed ? 1.0 - near_over_far : near_over_far - 1.0);
+            u.scene_depth_reversed = s.reversed ? 1 : 0;
         }
         // Per-frame constants, from the shared functions compiled as C++ (double).
         const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
@@ -414,6 +422,7 @@ struct AtmosphereRenderer::Impl {
 AtmosphereRenderer::AtmosphereRenderer(const Atmosphere& atmosphere, const LutSettings& settings) {
     Validate(atmosphere);
     settings.Validate();
+    const gl::StateGuard guard(true);
     impl_ = std::make_unique<Impl>(atmosphere, settings);
     impl_->BuildStaticLuts();
 }
@@ -422,16 +431,22 @@ AtmosphereRenderer::~AtmosphereRenderer() = default;
 
 void AtmosphereRenderer::SetAtmosphere(const Atmosphere& atmosphere) {
     Validate(atmosphere);
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     impl_->atmosphere = atmosphere;
     impl_->BuildStaticLuts();
 }
 
 const Atmosphere& AtmosphereRenderer::atmosphere() const { return impl_->atmosphere; }
+void AtmosphereRenderer::set_preserve_gl_state(bool preserve) {
+    impl_->preserve_gl_state = preserve;
+}
+bool AtmosphereRenderer::preserve_gl_state() const { return impl_->preserve_gl_state; }
 
 void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudSettings& settings) {
     clouds::Validate(weather);
     settings.Validate();
     Impl& d = *impl_;
+    const gl::StateGuard guard(d.preserve_gl_state);
     // Built before the old passes go, so a bad map leaves the previous weather in place.
     std::unique_ptr<CloudPasses> passes;
     std::unique_ptr<CpuClouds> cpu;
@@ -460,6 +475,7 @@ const LutSettings& AtmosphereRenderer::settings() const { return impl_->settings
 void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lights,
                                          const CloudView& clouds) {
     Impl& d = *impl_;
+    const gl::StateGuard guard(d.preserve_gl_state);
     d.UploadLights(lights, camera);
     RenderOptions options;
     d.UploadFrame(camera, lights, options);
@@ -488,6 +504,7 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
                             std::to_string(options.size.y) +
                             " is out of range (expected 1..16384 per axis)");
     }
+    const gl::StateGuard guard(d.preserve_gl_state);
     const bool to_host = options.target_framebuffer.has_value();
     if (to_host && (options.target_viewport.z != options.size.x ||
                     options.target_viewport.w != options.size.y)) {
@@ -579,23 +596,29 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
 }
 
 LutImage AtmosphereRenderer::ReadTransmittance() const {
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return gl::ReadTexture(impl_->transmittance, glm::ivec3(impl_->settings.transmittance_size, 1));
 }
 LutImage AtmosphereRenderer::ReadMultipleScattering() const {
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return gl::ReadTexture(impl_->multiple_scattering,
                            glm::ivec3(impl_->settings.multiple_scattering_size, 1));
 }
 LutImage AtmosphereRenderer::ReadGroundIrradiance() const {
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return gl::ReadTexture(impl_->irradiance, glm::ivec3(impl_->settings.irradiance_size, 1));
 }
 LutImage AtmosphereRenderer::ReadSkyView() const {
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return gl::ReadTexture(impl_->sky_view, glm::ivec3(impl_->settings.sky_view_size, 1));
 }
 LutImage AtmosphereRenderer::ReadAerialPerspective() const {
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return gl::ReadTexture(impl_->aerial_perspective, impl_->settings.aerial_perspective_size);
 }
 LutImage AtmosphereRenderer::ReadFrame() const {
     if (impl_->frame == 0) throw gl::GlError("ReadFrame before any Render");
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return gl::ReadTexture(impl_->frame, glm::ivec3(impl_->frame_size, 1));
 }
 
@@ -610,6 +633,7 @@ unsigned AtmosphereRenderer::cloud_shadow_texture() const {
 
 LutImage AtmosphereRenderer::ReadClouds() const {
     if (!impl_->clouds) throw std::logic_error("ReadClouds: the renderer has no weather");
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return impl_->clouds->ReadClouds();
 }
 CloudShade AtmosphereRenderer::ReadCloudShade() const {
@@ -638,6 +662,7 @@ double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,
 
 LutImage AtmosphereRenderer::ReadCloudShadowMap() const {
     if (!impl_->clouds) throw std::logic_error("ReadCloudShadowMap: the renderer has no weather");
+    const gl::StateGuard guard(impl_->preserve_gl_state);
     return impl_->clouds->ReadShadowMap();
 }
 
@@ -653,6 +678,7 @@ std::size_t AtmosphereRenderer::LutMemoryBytes() const {
 
 PassTimes AtmosphereRenderer::LastPassTimes() const {
     const Impl& d = *impl_;
+    const gl::StateGuard guard(d.preserve_gl_state);  // a host's query buffer
     auto ms = [&](std::size_t query) {
         if (!d.query_used[query]) return 0.0;
         GLuint64 ns = 0;

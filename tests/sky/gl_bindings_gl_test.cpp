@@ -157,9 +157,9 @@ void AddFrame(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, sky_view_x);
     ZENITH_SAME(S, viewport_y);
     ZENITH_SAME(S, scene_near_m);
-    ZENITH_SAME(S, scene_far_m);
-    ZENITH_SAME(S, padding1);
-    ZENITH_SAME(S, padding2);
+    ZENITH_SAME(S, scene_depth_offset);
+    ZENITH_SAME(S, scene_depth_slope);
+    ZENITH_SAME(S, scene_depth_reversed);
 }
 
 void AddCloudLayer(Layout& layout, const std::string& prefix, std::size_t base) {

@@ -46,10 +46,13 @@ layout(std140, binding = kFrameBlockBinding) uniform FrameBlock {
     float cos_moon_radius;
     vec3 sky_view_x;
     int viewport_y;
-    float scene_near_m;  // the host's perspective projection, for its depth buffer
-    float scene_far_m;
-    int padding1;
-    int padding2;
+    // The host's depth d to eye depth: scene_near_m / (scene_depth_offset + scene_depth_slope d)
+    // (SceneDepth: standard or reversed, finite or infinite far plane); sky where d is at the
+    // far plane (1, or 0 when scene_depth_reversed).
+    float scene_near_m;
+    float scene_depth_offset;
+    float scene_depth_slope;
+    int scene_depth_reversed;
 };
 
 // Units and bindings: bindings.glsl.

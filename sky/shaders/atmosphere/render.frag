@@ -44,6 +44,7 @@ void main() {
     vec3 direction = CameraDirection(vec2(pixel), vec2(output_size));
 #if ZENITH_SCENE_DEPTH
     float depth = texelFetch(scene_depth_texture, pixel, 0).r;
+    bool geometry = scene_depth_reversed != 0 ? depth > 0.0 : depth < 1.0;  // nearer than far
 #endif
 
 #if ZENITH_DISKS
@@ -51,7 +52,7 @@ void main() {
     // disks: llvmpipe runs a shader's branches whether taken or not, so this code in the sky pass
     // cost every pixel 12 ms at 720p.
   #if ZENITH_SCENE_DEPTH
-    if (depth < 1.0) discard;  // behind the host's geometry
+    if (geometry) discard;  // behind the host's geometry
   #endif
     vec3 beyond = vec3(0.0);
     float cos_sun = dot(direction, lights.light[0].direction);
@@ -92,10 +93,8 @@ void main() {
     // The host's geometry: where its depth is nearer than the far plane, the output is the
     // aerial perspective in front of it, premultiplied for blending (ONE, SRC_ALPHA):
     // framebuffer = in-scattered + transmittance * the host's colour (H20 §5.4).
-    if (depth < 1.0) {
-        float z_ndc = 2.0 * depth - 1.0;
-        float eye_depth = 2.0 * scene_near_m * scene_far_m /
-                          (scene_far_m + scene_near_m - z_ndc * (scene_far_m - scene_near_m));
+    if (geometry) {
+        float eye_depth = scene_near_m / (scene_depth_offset + scene_depth_slope * depth);
         vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
         float distance_km = eye_depth * length(vec3(ndc.x * tan_half_fov * aspect,
                                                     ndc.y * tan_half_fov, 1.0)) / 1000.0;

@@ -95,9 +95,9 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     glm::vec3 sky_view_x;
     int viewport_y;
     float scene_near_m;
-    float scene_far_m;
-    int padding1;
-    int padding2;
+    float scene_depth_offset;
+    float scene_depth_slope;
+    int scene_depth_reversed;
 };
 static_assert(sizeof(FrameUniforms) == 176);
 static_assert(offsetof(FrameUniforms, scene_near_m) == 160);

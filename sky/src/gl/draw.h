@@ -1,4 +1,4 @@
-// One full-screen triangle into a framebuffer, leaving the host's GL state as it found it.
+// One full-screen triangle into a framebuffer.
 #pragma once
 
 #include <glad/gl.h>
@@ -17,59 +17,41 @@ enum class Blend {
 };
 
 // Draws `program` over `viewport` of `target` (optionally scissored to `scissor`, in viewport
-// pixels), timed by `query` when it is not 0. The draw framebuffer binding, viewport, scissor
-// and blending are restored afterwards, so a host's state survives.
+// pixels), timed by `query` when it is not 0. Sets the draw framebuffer, viewport 0, scissor 0
+// and blending of draw buffer 0; the rest of the state it relies on (no culling, filled
+// polygons, no depth or stencil test, ...) and the restoring of the host's are a StateGuard's
+// (gl/state_guard.h), which every renderer entry point holds.
 inline void DrawFullscreen(const Program& program, GLuint vertex_array, GLuint target,
                            glm::ivec4 viewport, Blend blend, GLuint query = 0,
                            std::optional<glm::ivec4> scissor = std::nullopt) {
-    GLint host_framebuffer = 0;
-    GLint host_viewport[4] = {0, 0, 0, 0};
-    GLint host_scissor[4] = {0, 0, 0, 0};
-    const GLboolean host_scissor_test = glIsEnabled(GL_SCISSOR_TEST);
-    const GLboolean host_blend = glIsEnabled(GL_BLEND);
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &host_framebuffer);
-    glGetIntegerv(GL_VIEWPORT, host_viewport);
-    glGetIntegerv(GL_SCISSOR_BOX, host_scissor);
     program.Use();
-    glBindFramebuffer(GL_FRAMEBUFFER, target);
-    glViewport(viewport.x, viewport.y, viewport.z, viewport.w);
-    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
+    glViewportIndexedf(0, static_cast<GLfloat>(viewport.x), static_cast<GLfloat>(viewport.y),
+                       static_cast<GLfloat>(viewport.z), static_cast<GLfloat>(viewport.w));
     switch (blend) {
         case Blend::kReplace:
-            glDisable(GL_BLEND);
+            glDisablei(GL_BLEND, 0);
             break;
         case Blend::kAdd:
-            glEnable(GL_BLEND);
-            glBlendFunc(GL_ONE, GL_ONE);
+            glEnablei(GL_BLEND, 0);
+            glBlendFunci(0, GL_ONE, GL_ONE);
             break;
         case Blend::kPremultiplied:
-            glEnable(GL_BLEND);
-            glBlendFuncSeparate(GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
+            glEnablei(GL_BLEND, 0);
+            glBlendFuncSeparatei(0, GL_ONE, GL_SRC_ALPHA, GL_ZERO, GL_ONE);
             break;
     }
     if (scissor) {
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(viewport.x + scissor->x, viewport.y + scissor->y, scissor->z, scissor->w);
+        glEnablei(GL_SCISSOR_TEST, 0);
+        glScissorIndexed(0, viewport.x + scissor->x, viewport.y + scissor->y, scissor->z,
+                         scissor->w);
     } else {
-        glDisable(GL_SCISSOR_TEST);
+        glDisablei(GL_SCISSOR_TEST, 0);
     }
     glBindVertexArray(vertex_array);
     if (query != 0) glBeginQuery(GL_TIME_ELAPSED, query);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     if (query != 0) glEndQuery(GL_TIME_ELAPSED);
-    if (host_blend) {
-        glEnable(GL_BLEND);
-    } else {
-        glDisable(GL_BLEND);
-    }
-    if (host_scissor_test) {
-        glEnable(GL_SCISSOR_TEST);
-    } else {
-        glDisable(GL_SCISSOR_TEST);
-    }
-    glScissor(host_scissor[0], host_scissor[1], host_scissor[2], host_scissor[3]);
-    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(host_framebuffer));
-    glViewport(host_viewport[0], host_viewport[1], host_viewport[2], host_viewport[3]);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 

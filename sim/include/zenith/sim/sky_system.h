@@ -63,6 +63,13 @@ struct SkySystemSettings {
     // default traces one pixel in 16 per frame and reprojects the rest (a host's frame loop).
     std::string weather = "clear";
     sky::CloudSettings clouds;
+    // The GL state contract below: with true, every call leaves the host's GL state as it found
+    // it (about 220 glGet calls to save and 200 to set and restore: 2.4 us per call on llvmpipe,
+    // two calls a frame; BENCHMARKS.md). A host that sets all of its own state before it draws may
+    // turn it off to skip the glGet calls, which on drivers with a threaded dispatch (Mesa's
+    // glthread, NVIDIA's threaded optimisation) can wait for the driver thread; zenith then still
+    // sets everything it depends on, and leaves behind the values it set.
+    bool preserve_gl_state = true;
 };
 
 enum class DayPhase { kDay, kCivilTwilight, kNauticalTwilight, kAstronomicalTwilight, kNight };
@@ -93,6 +100,40 @@ struct SkyLighting {
     DayPhase phase = DayPhase::kDay;
 };
 
+// The GL state contract. It covers every call that issues GL commands: creation, SetAtmosphere,
+// SetVisibility, SetMetar, SetWeather, Prepare, Update, Render and RenderOffscreen (and the
+// same members of sky::AtmosphereRenderer).
+//
+// A host may leave any of this in any state; zenith sets what it needs before its passes:
+//   face culling (so the front face does not matter), polygon mode, clip control (origin and depth
+//   mode), depth and stencil tests, colour masks and blending (enables, functions, equations; every
+//   draw buffer), scissor test and box, viewport, GL_FRAMEBUFFER_SRGB, rasterizer discard, logic
+//   op, alpha-to-coverage / alpha-to-one / sample coverage / sample mask / sample shading, polygon
+//   smooth, dither, clip distances, program, VAO, framebuffer bindings, textures and sampler
+//   objects on any unit, the active unit, uniform and storage buffer bindings, image units, the
+//   pixel pack / unpack / query buffers and every pixel store parameter.
+// It may also leave anything else in any state, which zenith's passes do not depend on: depth
+//   func, mask and range, stencil funcs, ops and masks, polygon offset, depth clamp, primitive
+//   restart (zenith draws no indexed primitives), provoking vertex, point and line sizes,
+//   program pipelines (a glUseProgram(0) program gives them back), bound vertex/index/indirect
+//   buffers, a bound transform feedback object that is not active.
+// Preserved (preserve_gl_state, the default): each call restores exactly what it set or
+//   changed: the capabilities listed first, polygon mode, clip control, blending and colour
+//   masks of draw buffers 0..7, viewport 0, scissor box and test 0, program, VAO, draw and
+//   read framebuffers, the active texture unit, the 2-D and 3-D textures and the sampler
+//   objects of units 0..18, uniform buffer bindings 0..4 and storage buffer binding 1 (ranges
+//   included) and the generic bindings of both, image units 0..1, the pack/unpack/query buffers
+//   and the pixel store parameters. Everything else zenith does not touch (it changes the
+//   state of its own GL objects only; Render writes only the viewport's colour).
+// A host must not call with: transform feedback active (begun and not paused), a
+//   GL_TIME_ELAPSED query active (zenith times its passes with its own), or conditional
+//   rendering active. Render writes draw buffer 0 of the host's framebuffer, which must be
+//   complete (other draw buffers get undefined values: give Render a framebuffer with one draw
+//   buffer). It
+//   writes no depth or stencil; sampling a scene depth texture (SetSceneDepth) that is also
+//   attached to that framebuffer is a feedback loop in GL's terms, so attach a copy or none.
+// tests/sim/gl_state_contract_gl_test.cpp draws under a hostile host state and compares ~250
+// state values before and after each call.
 class SkySystem {
   public:
     // Owns a headless GL context (ZENITH_GL = osmesa | egl). Throws sky::gl::GlError when none
@@ -170,10 +211,15 @@ class SkySystem {
     // and its jitter sequence starts over, so it is the same whatever was drawn before. Call it
     // before that frame's Update(), which renews the clouds' shadow map on a cut.
     void ResetCloudHistory();
-    // The host's depth texture (0..1, standard perspective with these planes, metres) for the
-    // next Render calls: its geometry gets aerial perspective, framebuffer = L + T * colour, and
-    // the sky is drawn only where the depth is at the far plane. Clear with ClearSceneDepth().
-    void SetSceneDepth(unsigned depth_texture, double near_m, double far_m);
+    // The host's depth texture (0..1, a perspective projection with these planes, metres; far_m
+    // may be infinity) for the next Render calls: its geometry gets aerial perspective,
+    // framebuffer = L + T * colour, and the sky is drawn only where the depth is at the far
+    // plane. `reversed`: reversed-Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), 1 at near, 0
+    // at far, cleared to 0); sky::SceneDepth has the formulas. Throws ArgumentError for a texture
+    // that is not a single-sample 2-D texture (a multisampled depth buffer must be resolved
+    // first). Clear with ClearSceneDepth().
+    void SetSceneDepth(unsigned depth_texture, double near_m, double far_m, bool reversed = false);
+    void SetSceneDepth(const sky::SceneDepth& depth);
     void ClearSceneDepth();
 
     // Warm-up before the first frame, so that it costs what any frame costs: the programs are
@@ -190,7 +236,8 @@ class SkySystem {
     // Ephemeris, lights, lighting and per-frame LUTs for the current state.
     void Update();
     // Draws the sky as linear luminance (cd/m^2) into the host's framebuffer object over
-    // viewport (x, y, width, height); framebuffer 0 is the default one.
+    // viewport (x, y, width, height); framebuffer 0 is the default one. The values are written
+    // as computed: no sRGB encoding (GL_FRAMEBUFFER_SRGB is off while zenith draws).
     void Render(unsigned framebuffer, const glm::ivec4& viewport);
     // Draws into the system's own RGBA32F frame and reads it back (row 0 = bottom).
     sky::LutImage RenderOffscreen(const glm::ivec2& size);

@@ -17,14 +17,25 @@
 
 namespace zenith::sky {
 
-// The host's depth buffer, to draw aerial perspective over its geometry: a depth texture (0..1,
-// standard OpenGL perspective projection with these near and far planes, metres) of the
-// viewport's size. Pixels nearer than the far plane get in-scattering and transmittance
-// blended over the host's colour (framebuffer = L + T * colour); the others get the sky.
+// The host's depth buffer, to draw aerial perspective over its geometry: a single-sample 2-D
+// depth texture (window depth 0..1) of the viewport's size, from a perspective projection with
+// these near and far planes (metres). Pixels nearer than the far plane get in-scattering and
+// transmittance blended over the host's colour (framebuffer = L + T * colour); the others get
+// the sky. Conventions, with eye depth z:
+//   standard (reversed = false): OpenGL's projection and depth range, glClipControl(...,
+//     GL_NEGATIVE_ONE_TO_ONE); the depth cleared to 1, 0 at near and 1 at far:
+//     d = f (z - n) / (z (f - n)); an infinite far plane (far_m = infinity) gives d = 1 - n / z.
+//   reversed (reversed = true): reversed-Z, glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), a
+//     projection that maps near to 1 and far to 0, depth cleared to 0 and GL_GREATER:
+//     d = n (f - z) / (z (f - n)); with an infinite far plane d = n / z.
+// A zero-to-one projection that is not reversed (near to 0, far to 1) gives the standard d. A
+// multisampled depth texture is refused (SkySystem::SetSceneDepth): resolve it first
+// (glBlitFramebuffer of the depth into a single-sample texture).
 struct SceneDepth {
     unsigned texture = 0;
     double near_m = 0.5;
-    double far_m = 100000.0;
+    double far_m = 100000.0;  // may be infinity
+    bool reversed = false;    // reversed-Z: 1 at near, 0 at far (see above)
 };
 
 // The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
@@ -143,6 +154,14 @@ class AtmosphereRenderer {
     ~AtmosphereRenderer();
     AtmosphereRenderer(const AtmosphereRenderer&) = delete;
     AtmosphereRenderer& operator=(const AtmosphereRenderer&) = delete;
+
+    // GL state (zenith/sim/sky_system.h has the whole contract): every member that issues GL
+    // commands first sets the state its passes depend on (no culling, filled polygons, no depth
+    // or stencil test, ...), so the context may be in any state; and, unless this is turned
+    // off, it saves the state it sets or changes beforehand and restores it afterwards.
+    // Construction always saves and restores.
+    void set_preserve_gl_state(bool preserve);
+    bool preserve_gl_state() const;
 
     // Recomputes the transmittance, multiple-scattering and ground-irradiance LUTs.
     void SetAtmosphere(const Atmosphere& atmosphere);
