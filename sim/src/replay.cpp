@@ -161,6 +161,13 @@ std::string Differences(const Json& folder, const Json& now, const std::string& 
                                key, it == folder.end() ? "(none)" : it->dump(), value.dump());
         }
     }
+    // Settings the folder has and this run does not (a METAR file given before, not now).
+    for (const auto& [key, value] : folder.items()) {
+        if (!now.contains(key)) {
+            out += fmt::format("{}{}{}: {} in the folder, (none) now", out.empty() ? "" : "; ",
+                               prefix, key, value.dump());
+        }
+    }
     return out;
 }
 
