@@ -76,6 +76,13 @@ int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
                result.progress.rendered, result.progress.skipped, result.progress.total,
                result.frames_in_flight, request.out_dir.string());
     if (!result.notes.empty()) fmt::print(stderr, "{}", result.notes);
+    if (!request.metar_file.empty()) {
+        fmt::print(stderr,
+                   "zenith replay: METAR weather set {} times (clouds) and {} (visibility) for {} "
+                   "frames, {:.2f} s\n",
+                   result.weather_sets, result.visibility_sets, result.progress.rendered,
+                   result.weather_seconds);
+    }
     if (!result.video_status.empty())
         fmt::print(stderr, "zenith replay: {}\n", result.video_status);
     if (result.interrupted) {
@@ -95,7 +102,7 @@ Command AddReplayCommand(CLI::App& app) {
         sim::ReplayRequest replay;
         std::string replay_size = "640x360", replay_exposure = "auto", replay_format = "png",
                     replay_camera = "cockpit", replay_shard, replay_flight, replay_out = "replay",
-                    replay_video;
+                    replay_video, replay_metar_file;
         std::optional<double> replay_start, replay_end;
         std::optional<std::string> replay_icao24, replay_callsign;
         std::optional<std::vector<double>> replay_observer;
@@ -134,6 +141,15 @@ Command AddReplayCommand(CLI::App& app) {
                      "clouds: clear, scattered_cumulus, broken, overcast_stratus, "
                      "cumulonimbus or a weather JSON file")
         ->capture_default_str();
+    auto* metar_file = replay_cmd->add_option(
+        "--metar-file", args->replay_metar_file,
+        "weather along the flight from METAR reports: a CSV (station,valid,lon,lat,metar) or "
+        "one report per line; the nearest station, blended in time and across stations");
+    replay_cmd
+        ->add_option("--station-elevation", replay.station_elevation_m,
+                     "the METAR stations' elevation above mean sea level, metres (default: the "
+                     "ground under them, 0 m)")
+        ->needs(metar_file);
     replay_cmd->add_option("--preset", replay.preset, "atmosphere preset or JSON file")
         ->capture_default_str();
     replay_cmd->add_option("--shard", args->replay_shard,
@@ -157,6 +173,7 @@ Command AddReplayCommand(CLI::App& app) {
                 request.flight = a.replay_flight;
                 request.out_dir = a.replay_out;
                 request.video = a.replay_video;
+                request.metar_file = a.replay_metar_file;
                 request.start_s = a.replay_start;
                 request.end_s = a.replay_end;
                 request.read.icao24 = a.replay_icao24;

@@ -5,6 +5,7 @@
 #include <unistd.h>
 #include <xxhash.h>
 
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <glm/gtc/quaternion.hpp>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
@@ -28,6 +30,9 @@
 #include "zenith/track/flight_log.h"
 #include "zenith/track/trajectory.h"
 #include "zenith/version.h"
+#include "zenith/weather/cloud_weather.h"
+#include "zenith/weather/metar_file.h"
+#include "zenith/weather/metar_timeline.h"
 
 namespace zenith::sim {
 namespace {
@@ -90,6 +95,18 @@ std::string WeatherFingerprint(const sky::clouds::Weather& weather) {
     return HashText(text);
 }
 
+// How METAR reports become each frame's weather: part of the manifest, so that a folder made
+// under other rules is not resumed with these.
+constexpr const char* kMetarRule =
+    "nearest station (great circle), 20 km blend band; log-visibility and per-layer linear "
+    "blends in 1/128 steps; wind of the first fix held";
+
+bool IsCsv(const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".csv";
+}
+
 // The settings every frame in a folder must share (not the shard, not the video).
 Json Manifest(const ReplayRequest& r, const sky::Atmosphere& atmosphere,
               const sky::clouds::Weather& weather) {
@@ -118,6 +135,17 @@ Json Manifest(const ReplayRequest& r, const sky::Atmosphere& atmosphere,
     j["preset"] = {{"name", r.preset}, {"xxh3_128", HashText(sky::AtmosphereToJson(atmosphere))}};
     j["weather"] = {{"name", r.weather}, {"xxh3_128", WeatherFingerprint(weather)}};
     j["cloud_passes"] = r.cloud_passes;
+    // Only with a METAR file, so that the folders of runs without one keep their manifest.
+    if (!r.metar_file.empty()) {
+        j["metar"] = {
+            {"file", r.metar_file.filename().string()},
+            {"bytes", fs::file_size(r.metar_file)},
+            {"xxh3_128", HashFile(r.metar_file)},
+            {"format", IsCsv(r.metar_file) ? "csv" : "lines"},
+            {"station_elevation_m", r.station_elevation_m ? Json(*r.station_elevation_m)
+                                                          : Json("ground under the station (0 m)")},
+            {"rule", kMetarRule}};
+    }
     return j;
 }
 
@@ -131,6 +159,13 @@ std::string Differences(const Json& folder, const Json& now, const std::string& 
         } else if (it == folder.end() || *it != value) {
             out += fmt::format("{}{}{}: {} in the folder, {} now", out.empty() ? "" : "; ", prefix,
                                key, it == folder.end() ? "(none)" : it->dump(), value.dump());
+        }
+    }
+    // Settings the folder has and this run does not (a METAR file given before, not now).
+    for (const auto& [key, value] : folder.items()) {
+        if (!now.contains(key)) {
+            out += fmt::format("{}{}{}: {} in the folder, (none) now", out.empty() ? "" : "; ",
+                               prefix, key, value.dump());
         }
     }
     return out;
@@ -289,6 +324,18 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
     if (!r.video.empty() && !r.write_png) {
         throw ArgumentError("video", "video: it is made from the PNG frames (format png or both)");
     }
+    if (!r.metar_file.empty() && r.weather != "clear") {
+        throw ArgumentError("weather",
+                            "weather = " + r.weather + " and a METAR file: give one of them");
+    }
+    if (r.metar_file.empty() && r.station_elevation_m) {
+        throw ArgumentError("station_elevation",
+                            "station_elevation: it places a METAR file's heights (give "
+                            "--metar-file too)");
+    }
+    if (r.station_elevation_m) {
+        Require("station_elevation", *r.station_elevation_m, "m", Range::Closed(-500.0, 9000.0));
+    }
     if (r.observer) {
         // Validates, naming the value.
         static_cast<void>(geo::Observer(r.observer->x, r.observer->y, r.observer->z));
@@ -338,6 +385,30 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
                         r.observer ? "as given" : "on the ground zenith draws under the first fix");
     }
 
+    // Weather from METAR reports: read (bounded by the reader) before anything is written.
+    std::unique_ptr<weather::MetarTimeline> timeline;
+    if (!r.metar_file.empty()) {
+        weather::MetarFile file = IsCsv(r.metar_file) ? weather::ReadMetarCsv(r.metar_file)
+                                                      : weather::ReadMetarLines(r.metar_file);
+        result.notes += file.Summary() + "\n";
+        weather::TimelineOptions options;
+        options.station_elevation_m = r.station_elevation_m;
+        options.clear_visibility_m =
+            std::log(20.0) / weather::GroundExtinctionGreen(sky::LoadAtmosphere(r.preset));
+        timeline = std::make_unique<weather::MetarTimeline>(
+            std::move(file), options, trajectory.start_time_s(), trajectory.end_time_s());
+        for (const std::string& note : timeline->notes()) result.notes += "METAR: " + note + "\n";
+        result.notes += fmt::format(
+            "METAR: {} stations; the weather of the nearest to the aircraft at the log's time; "
+            "heights above {}\n",
+            timeline->stations().size(),
+            r.station_elevation_m
+                ? fmt::format("the stations' elevation, {} m (--station-elevation)",
+                              *r.station_elevation_m)
+                : std::string("the ground zenith draws under them (0 m; give "
+                              "--station-elevation to place them)"));
+    }
+
     SkySystemSettings settings;
     settings.preset = r.preset;
     settings.weather = r.weather;
@@ -346,8 +417,18 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
     fs::create_directories(r.out_dir);
     ClaimFolder(r.out_dir, Manifest(r, sky->atmosphere(), sky->weather()));
 
+    const geo::Time weather_epoch =
+        geo::TimeFromUnixSeconds(trajectory.start_time_s() + r.time_offset_s);
     sky->SetWeatherOrigin(first.lat_deg, first.lon_deg);
-    sky->SetWeatherEpoch(geo::TimeFromUnixSeconds(trajectory.start_time_s() + r.time_offset_s));
+    sky->SetWeatherEpoch(weather_epoch);
+    // The weather drawn now, so that it is set again only when the quantised blend changes it;
+    // each frame's weather is a function of its own time and place only.
+    std::optional<weather::LayerWind> wind;
+    std::optional<double> visibility_drawn;
+    bool fog_drawn = false;
+    if (timeline) {
+        wind = timeline->WindAt(trajectory.start_time_s(), first.lat_deg, first.lon_deg);
+    }
     sky->SetProjection(Radians(r.fov_deg), static_cast<double>(r.size.x) / r.size.y);
     const auto started = std::chrono::steady_clock::now();
     for (std::size_t i = index; i < result.frames_in_flight; i += count) {
@@ -380,6 +461,26 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
             const double sky_time = trajectory.start_time_s() + r.time_offset_s +
                                     (t - trajectory.start_time_s()) * r.time_warp;
             sky->SetTime(geo::TimeFromUnixSeconds(sky_time));
+            if (timeline) {
+                const auto set_started = std::chrono::steady_clock::now();
+                const weather::TimelineSample sample =
+                    timeline->At(t, aircraft.lat_deg, aircraft.lon_deg, wind);
+                if (sample.weather.clouds.layers != sky->weather().layers) {
+                    sky->SetWeather(sample.weather.clouds, settings.clouds);
+                    sky->SetWeatherEpoch(weather_epoch);  // SetWeather restarts the wind
+                    ++result.weather_sets;
+                }
+                if (sample.weather.visibility_m != visibility_drawn ||
+                    sample.weather.fog != fog_drawn) {
+                    sky->SetVisibility(sample.weather.visibility_m, sample.weather.fog);
+                    visibility_drawn = sample.weather.visibility_m;
+                    fog_drawn = sample.weather.fog;
+                    ++result.visibility_sets;
+                }
+                result.weather_seconds +=
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - set_started)
+                        .count();
+            }
             glm::dvec3 camera_ecef = aircraft.ecef;
             glm::dmat3 ecef_from_view;
             if (r.camera == ReplayCamera::kCockpit) {

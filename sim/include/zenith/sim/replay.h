@@ -79,6 +79,16 @@ struct ReplayRequest {
     // jittered passes of its own (no history from other frames).
     std::string weather = "clear";
     int cloud_passes = 2;
+    // Weather along the flight from METAR reports (instead of `weather`): a CSV (.csv: the
+    // airport-archive columns station,valid,lon,lat,metar) or one report per line. Each frame
+    // draws weather::MetarTimeline::At of the log's own time (before time_offset_s and
+    // time_warp: the reports describe the air the flight flew through) at the aircraft:
+    // the nearest station, blended between its reports and across a change of station
+    // (zenith/weather/metar_timeline.h). The report's heights are above station_elevation_m
+    // (metres above mean sea level, every station), else above the ground zenith draws under
+    // them (0 m), as `zenith render` does. The manifest holds the file's hash and these options.
+    std::filesystem::path metar_file;
+    std::optional<double> station_elevation_m;
     Shard shard;
     // MP4 to encode once every frame of the flight exists (empty: none). Frames inside gaps of
     // the log hold the last frame before the gap, so the video keeps the flight's time.
@@ -99,8 +109,13 @@ struct ReplayResult {
     ReplayProgress progress;
     std::size_t frames_in_flight = 0;  // all shards
     bool interrupted = false;
-    std::string log_summary;   // what the reader used and skipped, and trajectory notes
-    std::string notes;         // where the ground observer stands, frames repaired, ...
+    std::string log_summary;  // what the reader used and skipped, and trajectory notes
+    std::string notes;        // where the ground observer stands, frames repaired, ...
+    // With a METAR file: how often the clouds and the visibility were set (only when the
+    // quantised weather changed) and the wall time that took.
+    std::size_t weather_sets = 0;
+    std::size_t visibility_sets = 0;
+    double weather_seconds = 0.0;
     std::string video_status;  // "video: path" or why none was made (a sharded run)
 };
 
