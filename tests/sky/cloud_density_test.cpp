@@ -256,6 +256,46 @@ TEST(CloudDensity, NothingAboveTheMapsCloudTopWhichIsTight) {
     EXPECT_EQ(clouds::CloudTopFraction(clouds::BuildWeatherMap(clear)), 0.0);
 }
 
+// A cumulonimbus spreads an anvil under the layer's top (the tropopause), wider than its tower:
+// over the cumulonimbus preset's map, more columns hold cloud at 90 % of the layer than at 50 %.
+// Congestus, the type below, has none: a uniform congestus layer keeps below its type's height.
+TEST(CloudDensity, CumulonimbusSpreadsAnAnvilWiderThanItsTower) {
+    const CloudLayer cb = clouds::LoadWeather("cumulonimbus").layers.at(0);
+    CloudLayerParameters layer = Layer();
+    layer.base_altitude = cb.base_altitude / 1000.0;
+    layer.top_altitude = cb.top_altitude / 1000.0;
+    layer.weather_period = cb.map_period / 1000.0;
+    const RepeatTexture2D weather = ToTexture(clouds::BuildWeatherMap(cb));
+    const auto covered = [&](double height_fraction) {
+        const double altitude =
+            layer.base_altitude + height_fraction * (layer.top_altitude - layer.base_altitude);
+        int n = 0;
+        const int side = 120;
+        for (int y = 0; y < side; ++y) {
+            for (int x = 0; x < side; ++x) {
+                const vec2 ground((x + 0.5) / side * layer.weather_period,
+                                  (y + 0.5) / side * layer.weather_period);
+                if (Density(layer, weather, {ground, altitude}) > 0.0) ++n;
+            }
+        }
+        return double(n) / (side * side);
+    };
+    const double tower = covered(0.5), anvil = covered(0.9);
+    std::printf(
+        "cumulonimbus: cloud over %.1f %% of the ground at half the layer, %.1f %% at 0.9\n",
+        100.0 * tower, 100.0 * anvil);
+    EXPECT_GT(tower, 0.02);
+    EXPECT_GT(anvil, 1.5 * tower);
+
+    CloudLayerParameters uniform = Layer();
+    const RepeatTexture2D congestus = WeatherFor(1.0, WeatherMapSource::Kind::kUniform, 0.75);
+    const double top = uniform.base_altitude + (uniform.top_altitude - uniform.base_altitude) *
+                                                   CloudTypeHeightFraction(0.75);
+    for (const Point& p : RandomPoints(20000, top, uniform.top_altitude, 5)) {
+        ASSERT_EQ(Density(uniform, congestus, p), 0.0) << p.altitude;
+    }
+}
+
 TEST(CloudDensity, PrecipitationDarkensTheBaseOnly) {
     for (int i = 0; i <= 10; ++i) {
         const double f = i / 10.0;

@@ -120,6 +120,35 @@ Number CloudHeightSignal(Number altitude, Number cloud_base, Number cloud_height
                          one_over_height * -4.0);
 }
 
+// Cumulonimbus (types above congestus, 0.75): 0 for every other type, 1 for a cell's core.
+// The cells map keeps this type well beyond a tower's cover (clouds/weather.h), so it also
+// tells a column that an anvil spreads over it.
+Number CloudConvection(Number type) { return CloudSaturate(4.0 * (type - 0.75)); }
+
+// A cumulonimbus tower rises with steep sides to the layer's top (the tropopause) instead of
+// H16's bell: its height signal is the parabola steepened k = 1 + 2 convection times and
+// clamped at 1, a plateau between a rounded base and top.
+Number CloudTowerSignal(Number altitude, Number cloud_base, Number cloud_height,
+                        Number convection) {
+    return CloudSaturate((1.0 + 2.0 * convection) *
+                         CloudHeightSignal(altitude, cloud_base, cloud_height));
+}
+
+// The anvil: a cumulonimbus' top spreading under the tropopause (WMO International Cloud
+// Atlas, Cb incus), its vertical profile from 0.95 - 0.2 c (c the column's convection: thick
+// over the cell, thin at its rim) to 0.985 of the layer, with soft edges; 0 where c is 0.
+Number CloudAnvilSignal(Number convection, Number height_fraction) {
+    if (!(convection > 0.0)) return 0.0;
+    Number bottom = 0.95 - 0.2 * convection;
+    return CloudSaturate((height_fraction - bottom) / 0.04) *
+           CloudSaturate((0.985 - height_fraction) / 0.015);
+}
+// The anvil's coverage over the shape noise times the convection (CloudApplyCoverage): its
+// edge is ragged where the two fall below 1 - coverage.
+const Number kCloudAnvilCoverage = 0.85;
+// How high an anvil reaches, as a share of the layer (CloudTopFraction's bound).
+const Number kCloudAnvilTop = 0.985;
+
 // H16 §4.5.1: a linear increase over the cloud's height that thins its base. Stratus keeps a
 // uniform profile; cumulus and above start at 30%.
 Number CloudHeightGradient(Number type, Number cloud_fraction) {
@@ -165,8 +194,9 @@ struct CloudSample {
 
 // H16 Alg. 4.1 at a ground position and altitude:
 //   weather; density = coverage; *= height signal; *= shape; -= detail; *= height gradient,
-// with S15's remaps for the coverage and the erosion. Exactly 0 outside the layer and wherever
-// the coverage is 0.
+// with S15's remaps for the coverage and the erosion, and for cumulonimbus a steep tower and
+// an anvil (its own coverage over the shape). Exactly 0 outside the layer and wherever the
+// coverage is 0.
 CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
                                  IN(CloudNoiseTexture) shape_noise,
                                  IN(CloudNoiseTexture) detail_noise, vec2 ground,
@@ -187,15 +217,18 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
 
     Number cloud_height = (layer.top_altitude - layer.base_altitude) *
                           CloudTypeHeightFraction(weather.type) * weather.height;
-    Number signal = CloudHeightSignal(altitude, layer.base_altitude, cloud_height);
-    if (!(signal > 0.0)) return s;
+    Number convection = CloudConvection(weather.type);
+    Number tower = CloudTowerSignal(altitude, layer.base_altitude, cloud_height, convection);
+    Number anvil = CloudAnvilSignal(convection, s.height_fraction);
+    if (!(max(tower, anvil) > 0.0)) return s;
     s.cloud_fraction = (altitude - layer.base_altitude) / cloud_height;
 
     vec2 shifted = CloudWindShiftedGround(layer, ground);
     vec3 shape_uvw = vec3(shifted.x / layer.shape_period, altitude / layer.shape_period_y,
                           shifted.y / layer.shape_period);
     Number shape = CloudShape(SampleTexture3D(shape_noise, shape_uvw));
-    Number density = CloudApplyCoverage(shape * signal, weather.coverage);
+    Number density = max(CloudApplyCoverage(shape * tower, weather.coverage),
+                         anvil * CloudApplyCoverage(shape * convection, kCloudAnvilCoverage));
     if (!(density > 0.0)) return s;
 
     vec3 detail_uvw = vec3(shifted.x, altitude, shifted.y) / layer.detail_period;

@@ -38,6 +38,12 @@ constexpr double kMaxWindSpeed = 150.0;      // m/s
 constexpr double kMinMapPeriod = 1e3;        // m
 constexpr double kMaxMapPeriod = 1e7;        // m
 constexpr int kMinMapSize = 16;
+
+// Smoothstep of x clamped to [0, 1].
+double SmoothUnit(double x) {
+    const double c = std::clamp(x, 0.0, 1.0);
+    return c * c * (3.0 - 2.0 * c);
+}
 constexpr int kMaxMapSize = 4096;
 
 struct NamedType {
@@ -374,18 +380,31 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer) {
                 case WeatherMapSource::Kind::kCells: {
                     // Isolated cells (Worley F1): full cover, full height and the rain in their
                     // cores; cumulus-type cloud at the layer's reduced coverage between them.
+                    // Cells differ in size (a Perlin factor 0.7-1.3 on their radius, so no two
+                    // neighbours look alike), and keep their type 1.7x as far out as their
+                    // cover: a cumulonimbus' anvil spreads over that rim (functions.glsl
+                    // CloudAnvilSignal), and the cumulus around it grow toward congestus.
                     const double f1 =
                         TileableWorley(glm::dvec3(u.x * n, u.y * n, 0.5), cells, seed);
-                    const double core = 1.0 - std::clamp(f1 / 0.6, 0.0, 1.0);
-                    const double w = core * core * (3.0 - 2.0 * core);
+                    const double size = std::clamp(
+                        1.0 + 0.3 * TileablePerlin(glm::dvec3(2.0 * u.x * n, 2.0 * u.y * n, 0.0),
+                                                   fine, seed + 3U),
+                        0.7, 1.3);
+                    const double w = SmoothUnit(1.0 - f1 / (0.45 * size));
+                    const double rim = SmoothUnit(1.0 - f1 / (0.75 * size));
                     coverage = layer.coverage > 0.0
                                    ? layer.coverage * (1.0 - source.variation) +
                                          w * (1.0 - layer.coverage * (1.0 - source.variation))
                                    : 0.0;
                     precipitation = layer.precipitation * w;
-                    type = layer.cloud_type +
-                           (std::min(layer.cloud_type, 0.5) - layer.cloud_type) * (1.0 - w);
-                    height = 0.5 + 0.5 * w;
+                    // Cumulonimbus keep a convective type (above 0.75) over the whole rim,
+                    // falling to congestus at its edge; other types fall with the cover.
+                    const double between = std::min(layer.cloud_type, 0.5);
+                    type = layer.cloud_type > 0.75
+                               ? between + (0.75 + (layer.cloud_type - 0.75) * rim - between) *
+                                               SmoothUnit(8.0 * rim)
+                               : layer.cloud_type + (between - layer.cloud_type) * (1.0 - w);
+                    height = (0.5 + 0.5 * SmoothUnit(2.0 * w)) * (0.85 + 0.15 * size);
                     break;
                 }
                 case WeatherMapSource::Kind::kFile:
@@ -402,8 +421,8 @@ double CloudTopFraction(const WeatherMap& map) {
     // Bilinear filtering keeps each channel within the four texels it mixes, and the height
     // grows with both the type and A: a cell's largest type profile times its largest A bounds
     // every cloud height h read inside it (GL_REPEAT: the cells wrap). And with shape <= 1, the
-    // coverage remap leaves density only where the height signal 4u(1 - u) (u the share of h
-    // above the base) exceeds 1 - coverage: below u = (1 + sqrt(coverage)) / 2.
+    // coverage remap leaves density only where the height signal (u the share of h above the
+    // base) exceeds 1 - coverage.
     double top = 0.0;
     for (int y = 0; y < map.size; ++y) {
         for (int x = 0; x < map.size; ++x) {
@@ -416,9 +435,14 @@ double CloudTopFraction(const WeatherMap& map) {
                 height = std::max(height, double(t.a));
             }
             if (coverage > 0.0) {
-                top =
-                    std::max(top, ref::CloudTypeHeightFraction(type) * ref::CloudSaturate(height) *
-                                      0.5 * (1.0 + std::sqrt(std::min(coverage, 1.0))));
+                // A tower's signal k 4u(1 - u) (k = 1 + 2 convection) exceeds 1 - coverage
+                // below u = (1 + sqrt(1 - (1 - coverage) / k)) / 2; an anvil reaches its top.
+                const double convection = ref::CloudConvection(type);
+                const double k = 1.0 + 2.0 * convection;
+                const double u = 0.5 * (1.0 + std::sqrt(1.0 - (1.0 - std::min(coverage, 1.0)) / k));
+                top = std::max(top,
+                               ref::CloudTypeHeightFraction(type) * ref::CloudSaturate(height) * u);
+                if (convection > 0.0) top = std::max(top, ref::kCloudAnvilTop);
             }
         }
     }

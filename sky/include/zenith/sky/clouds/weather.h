@@ -36,7 +36,9 @@ struct WeatherMapSource {
     enum class Kind {
         kUniform,  // every texel the layer's values
         kPatches,  // coverage varies in soft patches around the layer's (cumulus, broken decks)
-        kCells,    // isolated cells with raining cores (cumulonimbus)
+        kCells,    // isolated cells of varied size with raining cores (cumulonimbus); a
+                   // cumulonimbus layer keeps its type over a rim 1.7x the cells' cover,
+                   // where the anvil spreads under the layer's top
         kFile,     // an image: see LoadWeatherMapImage
     };
     Kind kind = Kind::kUniform;
