@@ -47,10 +47,6 @@ class MetarFramesTest : public ::testing::Test {
         sky_ = SkySystem::CreateHeadless().release();
         sky_->SetTime(geo::TimeFromIso8601(kTime));
         sky_->SetGeodetic(kLat, kLon, kEyeHeight);
-        // North: the Sun ~100 deg to the right, neither behind nor in front.
-        sky_->SetAttitude(0.0, 0.0, 0.0);
-        sky_->SetProjection(kVerticalFov, static_cast<double>(kWidth) / kHeight);
-        sky_->Update();
         glCreateTextures(GL_TEXTURE_2D, 1, &colour_);
         glTextureStorage2D(colour_, 1, GL_RGBA32F, kWidth, kHeight);
         glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
@@ -174,6 +170,10 @@ GLuint MetarFramesTest::depth_ = 0;
 GLuint MetarFramesTest::framebuffer_ = 0;
 
 TEST_F(MetarFramesTest, ABlackTargetAtTheVisibilityHasFivePercentContrast) {
+    // North: the Sun ~100 deg to the right, neither behind nor in front.
+    sky_->SetAttitude(0.0, 0.0, 0.0);
+    sky_->SetProjection(kVerticalFov, static_cast<double>(kWidth) / kHeight);
+    sky_->Update();
     const double sun = glm::degrees(sky_->lighting().sun_elevation);
     ASSERT_GT(sun, 30.0);
     ASSERT_LT(sun, 60.0);
@@ -192,6 +192,50 @@ TEST_F(MetarFramesTest, ABlackTargetAtTheVisibilityHasFivePercentContrast) {
     }
     sky_->SetVisibility(std::nullopt);
     sky_->Update();
+}
+
+// CAVOK and SKC (and CLR, NSC, NCD) are the clear sky of the same time and place, bit for bit:
+// no layer, and the preset's own air (a visibility of 10 km or more sets none). The frame looks
+// from the ground at the horizon and up to 60 deg, the Sun in it.
+TEST_F(MetarFramesTest, ClearReportsRenderTheClearSkyBitForBit) {
+    constexpr int kSize = 32;
+    const auto frame = [&] {
+        sky_->SetAttitude(glm::radians(110.0), glm::radians(25.0), 0.0);
+        sky_->SetProjection(1.2, 1.0);
+        sky_->ResetCloudHistory();
+        sky_->Update();
+        return sky_->RenderOffscreen({kSize, kSize});
+    };
+    sky_->SetWeather(sky::clouds::Weather{});
+    sky_->SetVisibility(std::nullopt);
+    const sky::LutImage clear = frame();
+    ASSERT_EQ(clear.texels.size(), static_cast<std::size_t>(kSize * kSize));
+    for (const char* report :
+         {"EGLL 210900Z 24012KT CAVOK 18/09 Q1018", "KJFK 210851Z 18010KT 10SM SKC 22/12 A3001",
+          "EDDF 210850Z 27005KT 9999 NSC 17/08 Q1020", "KSFO 210856Z 30012KT 10SM CLR 16/10 A2995",
+          "LFPG 210900Z AUTO 22008KT 9999 NCD 16/09 Q1019"}) {
+        sky_->SetMetar(weather::DecodeMetar(report), 0.0);
+        EXPECT_FALSE(sky_->has_clouds()) << report;
+        const sky::LutImage metar = frame();
+        ASSERT_EQ(metar.texels.size(), clear.texels.size());
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < clear.texels.size(); ++i) {
+            if (std::memcmp(&metar.texels[i], &clear.texels[i], sizeof(glm::vec4)) != 0) {
+                ++differing;
+            }
+        }
+        std::printf("%s: %zu of %zu pixels differ from the clear sky\n", report, differing,
+                    clear.texels.size());
+        EXPECT_EQ(differing, 0u) << report;
+    }
+    // The comparison sees a change: haze at 5 km is not the clear sky.
+    sky_->SetMetar(weather::DecodeMetar("EDDF 210850Z 27005KT 5000 HZ NSC 17/08 Q1020"), 0.0);
+    const sky::LutImage haze = frame();
+    EXPECT_NE(std::memcmp(haze.texels.data(), clear.texels.data(),
+                          clear.texels.size() * sizeof(glm::vec4)),
+              0);
+    sky_->SetWeather(sky::clouds::Weather{});
+    sky_->SetVisibility(std::nullopt);
 }
 
 }  // namespace
