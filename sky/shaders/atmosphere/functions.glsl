@@ -781,19 +781,43 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
 // which is exact and costs O(slices) rather than O(slices^2) for a march per froxel.
 
 // Reads the froxel volume at screen uv and a distance (km): slice centres are at
-// (z + 0.5) / slices * range. Nearer than the first centre, the first slice's in-scattering and
-// optical depth are scaled by the distance (they grow from zero at the camera); beyond the
-// range, the last slice is used. Returns (luminance, mean transmittance).
+// (z + 0.5) / slices * range, and the camera (distance 0) is (L = 0, T = 1). Between two
+// neighbouring points (the camera and the first centre, or two centres) the segment is taken as
+// homogeneous, which the march made each slice: with the segment's transmittance
+// Ts = T1 / T0, a share u of the way in has transmittance T0 Ts^u and in-scattering
+// L0 + (L1 - L0) (1 - Ts^u) / (1 - Ts). Linear interpolation is the limit Ts -> 1 (thin air);
+// in thick air (visibility under a few slices) it overstates the contrast of a target between
+// centres (a black target at a 1 km visibility read 12 % instead of 5 % with 1 km slices).
+// Ts is the mean transmittance's (the volume's alpha), exact for grey aerosol. Beyond the range,
+// the last slice is used. Returns (luminance, mean transmittance).
 vec4 SampleAerialPerspective(IN(AerialPerspectiveTexture) aerial_perspective_texture, vec2 uv,
                              Number distance, Number range, int slices) {
-    Number w = distance / range;
-    Number first = 0.5 / Number(slices);
-    if (w >= first) {
-        return SampleTexture3D(aerial_perspective_texture, vec3(uv, clamp(w, first, 1.0 - first)));
+    // s: the distance in slices from the first centre; the camera is at s = -0.5.
+    Number s = clamp(max(distance, 0.0) / range * Number(slices) - 0.5, -0.5,
+                     Number(slices) - 1.0);
+    int z1 = min(int(floor(s)) + 1, slices - 1);
+    Number u = z1 == 0 ? 2.0 * (s + 0.5) : clamp(s - Number(z1 - 1), 0.0, 1.0);
+    vec4 v1 = SampleTexture3D(aerial_perspective_texture,
+                               vec3(uv, (Number(z1) + 0.5) / Number(slices)));
+    vec4 v0 = vec4(0.0, 0.0, 0.0, 1.0);
+    if (z1 > 0) {
+        v0 = SampleTexture3D(aerial_perspective_texture,
+                               vec3(uv, (Number(z1) - 0.5) / Number(slices)));
     }
-    vec4 v = SampleTexture3D(aerial_perspective_texture, vec3(uv, first));
-    Number f = max(w, 0.0) / first;
-    return vec4(vec3(v.x, v.y, v.z) * f, pow(max(v.w, 1e-6), f));
+    if (u >= 1.0) return v1;
+    Number t0 = max(v0.w, 0.0), t1 = max(v1.w, 0.0);
+    // The weight of the far end: (1 - Ts^u) / (1 - Ts), u where the segment is (nearly) clear
+    // or nothing is left to see through.
+    Number weight = u;
+    Number transmittance = mix(t0, t1, u);
+    if (t0 > 1e-6 && t1 > 1e-12) {
+        Number ts = min(t1 / t0, 1.0);
+        Number ts_u = pow(ts, u);
+        transmittance = t0 * ts_u;
+        if (ts < 0.999) weight = (1.0 - ts_u) / (1.0 - ts);
+    }
+    vec3 luminance = vec3(v0.x, v0.y, v0.z) + (vec3(v1.x, v1.y, v1.z) - vec3(v0.x, v0.y, v0.z)) * weight;
+    return vec4(luminance, transmittance);
 }
 
 // Steps within one slice: the full-range step budget spread over the slices, at least one.

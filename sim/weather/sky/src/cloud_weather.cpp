@@ -36,8 +36,8 @@ struct CoverEntry {
     double coverage;
 };
 constexpr CoverEntry kCoverage[] = {
-    {Cover::kFew, 1.5 / 8.0}, {Cover::kScattered, 3.5 / 8.0}, {Cover::kBroken, 6.0 / 8.0},
-    {Cover::kOvercast, 1.0},  {Cover::kUnknown, 4.0 / 8.0},
+    {Cover::kFew, 0.38},     {Cover::kScattered, 0.48}, {Cover::kBroken, 0.75},
+    {Cover::kOvercast, 1.0}, {Cover::kUnknown, 0.48},
 };
 
 double Coverage(Cover cover) {
@@ -99,8 +99,9 @@ WeatherMapSource Map(WeatherMapSource::Kind kind, std::uint32_t seed, int cells,
 
 struct Built {
     CloudLayer layer;
-    bool convective = false;  // CB/TCU: where showers and thunderstorms rain from
-    bool can_rain = false;    // BKN/OVC
+    bool convective = false;     // CB/TCU: where showers and thunderstorms rain from
+    bool can_rain = false;       // BKN/OVC
+    double reported_base = 0.0;  // m, before the base is lowered to where its clouds start
 };
 
 }  // namespace
@@ -191,6 +192,7 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
             CloudLayer& l = b.layer;
             l.coverage = Coverage(s.cover);
             l.base_altitude = ground + height;
+            b.reported_base = l.base_altitude;
             const bool overcast = s.cover == Cover::kOvercast;
             const bool cumuliform = s.cover == Cover::kFew || s.cover == Cover::kScattered ||
                                     s.cover == Cover::kUnknown;
@@ -245,6 +247,19 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
                 l.map = Map(WeatherMapSource::Kind::kPatches, Seed(metar.station, i), 12, 0.6);
                 l.map_period = 60000.0;
             }
+            if (!overcast && !b.convective) {
+                // The density model starts a cloud at the layer's base only where the coverage
+                // is 1: with coverage c the noise must exceed 1 - c, which the base's parabola
+                // reaches a share x = (1 - sqrt(c)) / 2 of the cloud's height up (H16 Eq. 5.1).
+                // Half of that for the tallest clouds of the type is the lowest base measured
+                // over six stations' maps (tests/weather_sky/metar_sky_cover_test.cpp); the
+                // layer starts that much lower so that the base seen is the report's.
+                const double type_height = l.cloud_type < 0.5
+                                               ? 0.25 + (0.6 - 0.25) * 2.0 * l.cloud_type
+                                               : 0.6 + (1.0 - 0.6) * (2.0 * l.cloud_type - 1.0);
+                const double lift = 0.5 * 0.5 * (1.0 - std::sqrt(l.coverage)) * depth * type_height;
+                l.base_altitude = std::max(ground, l.base_altitude - lift);
+            }
             l.top_altitude = std::min(kMaxTop, l.base_altitude + depth);
             if (l.top_altitude - l.base_altitude < kMinThickness) {
                 out.notes.push_back(
@@ -284,7 +299,10 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
         if (i + 1 < layers.size()) {
             CloudLayer& next = layers[i + 1].layer;
             if (l.top_altitude > next.base_altitude) l.top_altitude = next.base_altitude;
-            if (l.top_altitude - l.base_altitude < kMinThickness) {
+            // Two reports of (nearly) one base are one layer, whatever their lowered bases.
+            if (l.top_altitude - l.base_altitude < kMinThickness ||
+                (layers[i].reported_base > 0.0 &&
+                 layers[i + 1].reported_base - layers[i].reported_base < kMinThickness)) {
                 out.notes.push_back(
                     fmt::format("{} merged into the {} above it", l.name, next.name));
                 next.base_altitude = l.base_altitude;

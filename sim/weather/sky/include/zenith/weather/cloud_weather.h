@@ -10,11 +10,11 @@
 //
 //   report                  layer coverage      cloud type                  depth (top - base)
 //   ----------------------  ------------------  --------------------------  --------------------
-//   FEW (1-2 oktas)         1.5/8 = 0.1875      low: cumulus (0.5)          low cumulus:
-//   SCT (3-4 oktas)         3.5/8 = 0.4375      low: cumulus (0.5)            1000 m + 50 m/degC
-//   BKN (5-7 oktas)         6/8   = 0.75        low: stratocumulus (0.25)     above 15 degC,
-//   OVC (8 oktas)           8/8   = 1           low: stratus (0)              [500, 2000] m
-//   /// (amount unknown)    4/8   = 0.5         as SCT                      stratocumulus 600 m
+//   FEW (1-2 oktas)         0.38                low: cumulus (0.5)          low cumulus:
+//   SCT (3-4 oktas)         0.48                low: cumulus (0.5)            1000 m + 50 m/degC
+//   BKN (5-7 oktas)         0.75                low: stratocumulus (0.25)     above 15 degC,
+//   OVC (8 oktas)           1                   low: stratus (0)              [500, 2000] m
+//   /// (amount unknown)    0.48                as SCT                      stratocumulus 600 m
 //   ...CB                   as its amount       cumulonimbus (1)            stratus 400 m (2000 m
 //   ...TCU                  as its amount       congestus (0.75)              with precipitation:
 //   middle (base >= 2 km)   as its amount       stratocumulus (0.25);         nimbostratus)
@@ -27,6 +27,14 @@
 //   FG (no VV), FZFG        fog layer at the ground, 100 m deep; MIFG 50 m; BCFG/PRFG 0.5
 //   CAVOK, SKC/CLR/NSC/NCD  no layer (a clear sky: the same Weather as the "clear" preset)
 //   ///hhh or XXX///        a layer without a base is left out, with a note
+//
+// Coverage is the density model's parameter, not the share of sky: its remap keeps only noise
+// above 1 - c, so 1.5/8 drew no sky below a transmittance of 0.5. The values are those whose
+// drawn share of the sky above 10 deg, seen from the station, is mid-range (FEW 1.5, SCT 3.5,
+// BKN 6 oktas on average over six stations' maps; measured in
+// tests/weather_sky/metar_sky_cover_test.cpp). A FEW/SCT/BKN layer's base is lowered by
+// (1 - sqrt(c)) / 4 of its clouds' tallest height, where its density starts, so the lowest base
+// seen is the report's (within 3 %); two layers reported less than 50 m apart are one.
 //
 // Map: FEW/SCT and TCU layers "patches" (12 cells per tile, variation 0.6), BKN "patches"
 // (8, 0.4), OVC and fog "uniform", CB "cells"; seeds from the station and the layer's index, so
