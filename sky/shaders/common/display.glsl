@@ -89,10 +89,15 @@ vec3 DisplayNightAdaptation(vec3 rgb) {
     mat3 xyz_from_rgb = mat3(0.4124, 0.2126, 0.0193, 0.3576, 0.7152, 0.1192, 0.1805, 0.0722, 0.9505);
     mat3 rgb_from_xyz =
         mat3(3.2406, -0.9689, 0.0557, -1.5372, 1.8758, -0.2040, -0.4986, 0.0415, 1.0570);
+    // A colour with a NaN or infinite channel is left alone (DisplayTransform gives those
+    // channels 0 or 1), and so is black.
+    Number y = DisplayLuminance(rgb);
+    if (isnan(y) || isinf(y)) return rgb;
     vec3 xyz = xyz_from_rgb * max(rgb, vec3(0.0));
-    Number w = DisplayScotopicWeight(xyz.y);
     Number sum = xyz.x + xyz.y + xyz.z;
-    if (w <= 0.0 || sum <= 0.0) return rgb;
+    if (!(sum > 0.0)) return rgb;
+    Number w = DisplayScotopicWeight(xyz.y);
+    if (w <= 0.0) return rgb;
     Number scotopic = xyz.x > 0.0 ? xyz.y * (1.33 * (1.0 + (xyz.y + xyz.z) / xyz.x) - 1.68) : 0.0;
     Number luminance = mix(xyz.y, min(0.4468 * max(scotopic, 0.0), xyz.y), w);
     Number cx = mix(xyz.x / sum, kDisplayNightX, w);

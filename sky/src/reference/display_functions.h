@@ -10,6 +10,8 @@
 namespace zenith::sky::ref {
 namespace {
 using glm::exp2;
+using glm::isinf;
+using glm::isnan;
 using glm::log2;
 #include "common/display.glsl"
 }  // namespace
