@@ -38,8 +38,8 @@ const int kDisplayMeteredHighPercentile = 95;
 // that a moonlit frame is bluish but less saturated than the day sky.
 const Number kDisplayScotopicLog10 = -2.0;
 const Number kDisplayPhotopicLog10 = 0.6;
-const Number kDisplayNightX = 0.28;
-const Number kDisplayNightY = 0.29;
+const Number kDisplayNightX = 0.30;
+const Number kDisplayNightY = 0.31;
 
 // The luminance that saturates the camera, [LR14] §5.1: L_max = 78 / (q S) 2^EV100 (1.2 2^EV100
 // cd/m^2). Its inverse scales scene luminance to the normalised sensor value (1 = saturated).
