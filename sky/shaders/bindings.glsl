@@ -59,7 +59,8 @@ const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
 // The display pass (zenith/sky/display.h): the meter's histogram of log2 luminance has
 // kDisplayHistogramBins bins over [kDisplayHistogramMinLog2, kDisplayHistogramMaxLog2) (1e-6 to
 // 4.3e9 cd/m^2: the threshold of vision to the Sun's disk), 0.05 EV each.
-const int kDisplayGroupSize = 16;  // display/histogram.comp: 16 x 16 pixels
+const int kDisplayGroupSize = 16;            // display/histogram.comp: 16 x 16 invocations...
+const int kDisplayPixelsPerInvocation = 4;  // ...of 4 x 4 pixels each
 const int kDisplayHistogramBins = 1024;
 const int kDisplayHistogramMinLog2 = -20;
 const int kDisplayHistogramMaxLog2 = 32;

@@ -113,9 +113,9 @@ void DisplayPass::Run(unsigned input, unsigned framebuffer, const glm::ivec4& vi
                                   &zero);
         d.histogram.Use();
         glProgramUniform2i(d.histogram.name(), 0, viewport.z, viewport.w);
-        glDispatchCompute(
-            static_cast<GLuint>((viewport.z + kDisplayGroupSize - 1) / kDisplayGroupSize),
-            static_cast<GLuint>((viewport.w + kDisplayGroupSize - 1) / kDisplayGroupSize), 1);
+        constexpr int kGroupPixels = kDisplayGroupSize * kDisplayPixelsPerInvocation;
+        glDispatchCompute(static_cast<GLuint>((viewport.z + kGroupPixels - 1) / kGroupPixels),
+                          static_cast<GLuint>((viewport.w + kGroupPixels - 1) / kGroupPixels), 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         d.meter.Use();
         const double ratio = settings.adaptation_time_s > 0.0 && dt_s > 0.0

@@ -13,11 +13,17 @@ void main() {
         group_histogram[b] = 0u;
     }
     barrier();
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (all(lessThan(pixel, display_size))) {
-        vec3 rgb = texelFetch(display_input, pixel, 0).rgb;
-        int bin = DisplayHistogramBin(float(DisplayLuminance(rgb)));
-        if (bin >= 0) atomicAdd(group_histogram[bin], 1u);
+    // Each invocation counts a kDisplayPixelsPerInvocation^2 block, so that clearing and adding
+    // the group's bins (2 x 1024 operations) is spread over 64 x 64 pixels, not 16 x 16.
+    ivec2 base = ivec2(gl_GlobalInvocationID.xy) * kDisplayPixelsPerInvocation;
+    for (int j = 0; j < kDisplayPixelsPerInvocation; ++j) {
+        for (int i = 0; i < kDisplayPixelsPerInvocation; ++i) {
+            ivec2 pixel = base + ivec2(i, j);
+            if (any(greaterThanEqual(pixel, display_size))) continue;
+            vec3 rgb = texelFetch(display_input, pixel, 0).rgb;
+            int bin = DisplayHistogramBin(float(DisplayLuminance(rgb)));
+            if (bin >= 0) atomicAdd(group_histogram[bin], 1u);
+        }
     }
     barrier();
     for (uint b = local; b < uint(kDisplayHistogramBins); b += kGroupInvocations) {
