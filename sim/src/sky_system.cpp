@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/constants.hpp>
@@ -11,6 +12,7 @@
 #include "zenith/geo/earth_orientation.h"
 #include "zenith/geo/frames.h"
 #include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/display.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/lighting.h"
 #include "zenith/weather/cloud_weather.h"
@@ -83,6 +85,19 @@ struct SkySystem::Impl {
     std::optional<glm::dvec2> weather_origin;
     std::optional<double> weather_epoch_jd;
     sky::CloudView cloud_view;
+    // The display pass (settings.display.output == kDisplay), made when first needed, and the
+    // time of its last Render (the adaptation's clock).
+    std::unique_ptr<sky::DisplayPass> display;
+    std::optional<std::chrono::steady_clock::time_point> last_display;
+    bool reset_adaptation = false;
+
+    sky::DisplayPass& DisplayPassMade() {
+        if (!display) {
+            display = std::make_unique<sky::DisplayPass>();
+            display->set_preserve_gl_state(settings.preserve_gl_state);
+        }
+        return *display;
+    }
 
     // The current sky state drawn with `options` (size and target set by the caller); a
     // requested cut applies to this frame only.
@@ -119,6 +134,8 @@ struct SkySystem::Impl {
         renderer->set_preserve_gl_state(s.preserve_gl_state);
         ground_irradiance = renderer->ReadGroundIrradiance();
         renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
+        s.display.Validate();
+        if (s.display.output == sky::DisplaySettings::Output::kDisplay) DisplayPassMade();
     }
 };
 
@@ -250,7 +267,26 @@ bool SkySystem::has_clouds() const { return !impl_->renderer->weather().layers.e
 const sky::Atmosphere& SkySystem::atmosphere() const { return impl_->atmosphere; }
 const sky::clouds::Weather& SkySystem::weather() const { return impl_->renderer->weather(); }
 
-void SkySystem::ResetCloudHistory() { impl_->cloud_view.reset_history = true; }
+void SkySystem::ResetCloudHistory() {
+    impl_->cloud_view.reset_history = true;
+    impl_->reset_adaptation = true;
+}
+
+void SkySystem::SetDisplay(const sky::DisplaySettings& display) {
+    display.Validate();
+    impl_->settings.display = display;
+    if (display.output == sky::DisplaySettings::Output::kDisplay) impl_->DisplayPassMade();
+}
+
+const sky::DisplaySettings& SkySystem::display() const { return impl_->settings.display; }
+
+std::optional<double> SkySystem::exposure_ev100() const {
+    if (impl_->settings.display.output != sky::DisplaySettings::Output::kDisplay ||
+        !impl_->display) {
+        return std::nullopt;
+    }
+    return impl_->display->exposure_ev100();
+}
 
 void SkySystem::SetSceneDepth(unsigned depth_texture, double near_m, double far_m, bool reversed) {
     SetSceneDepth(sky::SceneDepth{depth_texture, near_m, far_m, reversed});
@@ -350,6 +386,24 @@ void SkySystem::Prepare(const glm::ivec2& size) {
 void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
     sky::RenderOptions options;
     options.size = {viewport.z, viewport.w};
+    Impl& d = *impl_;
+    if (d.settings.display.output == sky::DisplaySettings::Output::kDisplay) {
+        // The linear frame into the renderer's own RGBA32F target, then the display pass from it
+        // into the host's framebuffer (the host's geometry, where a scene depth says so, kept).
+        d.Draw(options);
+        sky::DisplayPass& pass = d.DisplayPassMade();
+        if (d.reset_adaptation) {
+            pass.ResetAdaptation();
+            d.reset_adaptation = false;
+        }
+        const auto now = std::chrono::steady_clock::now();
+        const double dt_s =
+            d.last_display ? std::chrono::duration<double>(now - *d.last_display).count() : 0.0;
+        d.last_display = now;
+        pass.Run(d.renderer->frame_texture(), framebuffer, viewport, d.settings.display, dt_s,
+                 d.scene_depth);
+        return;
+    }
     options.target_framebuffer = framebuffer;
     options.target_viewport = viewport;
     options.scene_depth = impl_->scene_depth;

@@ -23,6 +23,9 @@ const int kCloudBlockBinding = 4;       // clouds/interface.glsl: CloudBlock
 
 // Shader storage block binding points (std140).
 const int kLightStorageBinding = 1;  // clouds/sky_shade.comp: LightStorage (a LightSet)
+// display/*: DisplayStorage (the histogram and the exposure). The same binding point as
+// kLightStorageBinding: no pass uses both, and the StateGuard saves only this one.
+const int kDisplayStorageBinding = 1;
 
 // Texture units of the samplers. The atmosphere's (0-6) are bound by AtmosphereRenderer before
 // every pass, the clouds' (7-18) by CloudPasses.
@@ -39,7 +42,7 @@ const int kWeatherMapsUnit = 9;  // the first of kCloudMaxLayers units (9-12)
 const int kCloudTraceUnit = 13;
 const int kCloudTraceDepthUnit = 14;
 const int kCloudHistoryUnit = 15;
-// Unit 16 is unused.
+const int kDisplayInputUnit = 16;  // display/*: the linear frame (cd/m^2) to display
 const int kCloudShadowMapUnit = 17;
 const int kCloudGroundShadowUnit = 18;
 
@@ -52,3 +55,12 @@ const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
 const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations
 const int kIrradianceGroupSize = 64;  // the irradiance LUT: 64 x 1
 const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
+
+// The display pass (zenith/sky/display.h): the meter's histogram of log2 luminance has
+// kDisplayHistogramBins bins over [kDisplayHistogramMinLog2, kDisplayHistogramMaxLog2) (1e-6 to
+// 4.3e9 cd/m^2: the threshold of vision to the Sun's disk), 0.05 EV each.
+const int kDisplayGroupSize = 16;            // display/histogram.comp: 16 x 16 invocations...
+const int kDisplayPixelsPerInvocation = 4;  // ...of 4 x 4 pixels each
+const int kDisplayHistogramBins = 1024;
+const int kDisplayHistogramMinLog2 = -20;
+const int kDisplayHistogramMaxLog2 = 32;

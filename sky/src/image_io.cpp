@@ -25,10 +25,17 @@
 #include <system_error>
 #include <vector>
 
+#include "reference/display_functions.h"
 #include "zenith/base/atomic_file.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sky {
+
+// The public constants are the shared display text's (common/display.glsl).
+static_assert(kMeteredLowPercentile == static_cast<std::size_t>(ref::kDisplayMeteredLowPercentile));
+static_assert(kMeteredHighPercentile ==
+              static_cast<std::size_t>(ref::kDisplayMeteredHighPercentile));
+
 namespace {
 
 // --- Helpers --------------------------------------------------------------------------------
@@ -194,11 +201,9 @@ std::vector<char> EncodePng(const Srgb8Image& srgb) {
 // --- Exposure and tone mapping ----------------------------------------------------------------
 
 double ExposureScale(double ev100) {
-    // [LR14] §5.1: L_max = 78 / (q · S) · 2^EV100, q = 0.65, S = 100 → 78 / 65 = 1.2.
-    constexpr double kLensAttenuation = 0.65;  // q
-    constexpr double kIso = 100.0;             // S
-    const double max_luminance = 78.0 / (kLensAttenuation * kIso) * std::exp2(ev100);
-    return 1.0 / max_luminance;
+    // [LR14] §5.1: L_max = 78 / (q · S) · 2^EV100, q = 0.65, S = 100 → 78 / 65 = 1.2; the formula
+    // is common/display.glsl's, which the GPU display pass runs.
+    return ref::DisplayExposureScale(ev100);
 }
 
 double AutoExposureEV100(const Image& image) {
@@ -207,7 +212,7 @@ double AutoExposureEV100(const Image& image) {
     log_luminance.reserve(image.pixels.size());
     for (const glm::vec4& p : image.pixels) {
         // Rec.709 / sRGB luminance weights (ITU-R BT.709-6, item 3.2).
-        const double y = 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
+        const double y = ref::DisplayLuminance(glm::dvec3(p.r, p.g, p.b));
         if (!std::isfinite(y)) continue;
         log_luminance.push_back(std::log2(std::max(y, kMinMeteredLuminance)));
     }
@@ -225,10 +230,8 @@ double AutoExposureEV100(const Image& image) {
     for (std::size_t i = first; i < last; ++i) sum_log += log_luminance[i];
     const std::size_t count = last - first;
     // [LR14] §5.1: EV100 = log2(L_avg · S / K), S = 100, K = 12.5; log2 of the geometric mean is
-    // the mean of log2.
-    constexpr double kIso = 100.0;
-    constexpr double kCalibration = 12.5;  // K, reflected-light meter constant
-    const double ev100 = sum_log / static_cast<double>(count) + std::log2(kIso / kCalibration);
+    // the mean of log2. The display pass's meter (display/meter.comp) uses the same function.
+    const double ev100 = ref::DisplayMeteredEV100(sum_log / static_cast<double>(count));
     return std::clamp(ev100, kMinExposureEV100, kMaxExposureEV100);
 }
 
@@ -258,19 +261,18 @@ double ResolveEV100(const Exposure& exposure, const Image& image) {
 double ToneMapAcesFitted(double x) {
     if (!(x > 0.0)) return 0.0;  // also NaN
     if (std::isinf(x)) return 1.0;
-    // [N16], coefficients a..e as published.
-    constexpr double a = 2.51, b = 0.03, c = 2.43, d = 0.59, e = 0.14;
-    return std::clamp((x * (a * x + b)) / (x * (c * x + d) + e), 0.0, 1.0);
+    // [N16], coefficients a..e as published (common/display.glsl).
+    return ref::DisplayToneMapAces(x);
 }
 
 double SrgbEncode(double linear) {
     if (!(linear > 0.0)) return 0.0;
     if (linear >= 1.0) return 1.0;
     // IEC 61966-2-1: linear segment below 0.0031308, then 1.055 · L^(1/2.4) - 0.055.
-    return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+    return ref::DisplaySrgbEncode(linear);
 }
 
-Srgb8Image ToneMapToSrgb8(const Image& image, double ev100) {
+Srgb8Image ToneMapToSrgb8(const Image& image, double ev100, bool night_adaptation) {
     if (const std::string problem = ImageProblem(image); !problem.empty()) {
         throw ImageError("ToneMapToSrgb8: " + problem);
     }
@@ -281,10 +283,13 @@ Srgb8Image ToneMapToSrgb8(const Image& image, double ev100) {
     out.height = image.height;
     out.rgb.resize(image.pixels.size() * 3);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const glm::vec4& p = image.pixels[i];
+        // The display pass's transform (common/display.glsl), in double precision.
+        const glm::dvec3 encoded =
+            ref::DisplayTransform(glm::dvec3(p.r, p.g, p.b), scale, night_adaptation);
         for (int c = 0; c < 3; ++c) {
-            const double encoded = SrgbEncode(ToneMapAcesFitted(scale * image.pixels[i][c]));
             out.rgb[i * 3 + static_cast<std::size_t>(c)] =
-                static_cast<std::uint8_t>(std::lround(encoded * 255.0));
+                static_cast<std::uint8_t>(std::lround(encoded[c] * 255.0));
         }
     }
     return out;

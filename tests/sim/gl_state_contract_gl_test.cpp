@@ -630,6 +630,23 @@ TEST_F(GlStateContractTest, CloudsUnderAHostileHostState) {
     CheckEveryCall(*sky, host, reference, offscreen);
 }
 
+// The display pass (metered, night adaptation on) is under the same contract: Render then draws
+// into zenith's own frame, meters it (compute passes, a storage buffer) and writes display values.
+TEST_F(GlStateContractTest, DisplayPassUnderAHostileHostState) {
+    const Host host;
+    const auto sky = MakeSky(true);
+    sky::DisplaySettings display;
+    display.output = sky::DisplaySettings::Output::kDisplay;
+    display.adaptation_time_s = 0.0;  // each frame its own exposure: frames comparable
+    sky->SetDisplay(display);
+    const std::vector<glm::vec4> reference = Reference(*sky, host);
+    const sky::LutImage offscreen = ReferenceOffscreen(*sky);
+    const double mean = MeanLuminance(reference);
+    EXPECT_GT(mean, 0.05);  // display values, not cd/m^2
+    EXPECT_LT(mean, 0.95);
+    CheckEveryCall(*sky, host, reference, offscreen);
+}
+
 // Without the save and restore, zenith still sets every state it depends on: the sky is right
 // under the hostile state; what it leaves behind is the host's to reset.
 TEST_F(GlStateContractTest, WithoutPreservingTheSkyIsStillRight) {

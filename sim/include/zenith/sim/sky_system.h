@@ -30,6 +30,7 @@
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/display.h"
 #include "zenith/sky/gl/loader.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
@@ -70,6 +71,9 @@ struct SkySystemSettings {
     // glthread, NVIDIA's threaded optimisation) can wait for the driver thread; zenith then still
     // sets everything it depends on, and leaves behind the values it set.
     bool preserve_gl_state = true;
+    // What Render writes (zenith/sky/display.h): linear cd/m^2 (the default), or display values
+    // (exposed, night-adapted, tone mapped, sRGB-encoded) for an 8-bit or sRGB target.
+    sky::DisplaySettings display;
 };
 
 enum class DayPhase { kDay, kCivilTwilight, kNauticalTwilight, kAstronomicalTwilight, kNight };
@@ -208,8 +212,9 @@ class SkySystem {
     const sky::Atmosphere& atmosphere() const;
     const sky::clouds::Weather& weather() const;
     // The next frame does not reproject earlier ones (after a cut or a jump in time or place),
-    // and its jitter sequence starts over, so it is the same whatever was drawn before. Call it
-    // before that frame's Update(), which renews the clouds' shadow map on a cut.
+    // and its jitter sequence starts over, so it is the same whatever was drawn before; a
+    // metered display exposure starts from that frame's own (no adaptation across the cut). Call
+    // it before that frame's Update(), which renews the clouds' shadow map on a cut.
     void ResetCloudHistory();
     // The host's depth texture (0..1, a perspective projection with these planes, metres; far_m
     // may be infinity) for the next Render calls: its geometry gets aerial perspective,
@@ -235,10 +240,29 @@ class SkySystem {
 
     // Ephemeris, lights, lighting and per-frame LUTs for the current state.
     void Update();
-    // Draws the sky as linear luminance (cd/m^2) into the host's framebuffer object over
-    // viewport (x, y, width, height); framebuffer 0 is the default one. The values are written
-    // as computed: no sRGB encoding (GL_FRAMEBUFFER_SRGB is off while zenith draws).
+    // Draws the sky into the host's framebuffer object over viewport (x, y, width, height);
+    // framebuffer 0 is the default one. GL_FRAMEBUFFER_SRGB is off while zenith draws.
+    //   display.output == kLinear (default): linear Rec.709 luminance, cd/m^2 per channel, as
+    //     computed (a noon sky ~1e4, a moonlit one ~1e-3, the Sun's disk up to ~7e7 after its
+    //     pixel footprint): for an RGBA32F target and a host that exposes and tone maps itself.
+    //     An RGBA16F target clips at 65504, an 8-bit one at 1 (white).
+    //   kDisplay: the frame is drawn into zenith's own RGBA32F target, then the display pass
+    //     (sky::DisplayPass) writes sRGB-encoded display values, the same as `zenith render`'s
+    //     PNGs, into an RGBA8 or SRGB8_ALPHA8 target (the same bytes in both). Its exposure is
+    //     display.ev100 or metered from the frame (adapted over display.adaptation_time_s of
+    //     wall-clock time between Render calls); with a scene depth (SetSceneDepth) the host's
+    //     geometry pixels are left as they are (no aerial perspective over them in this mode):
+    //     draw the geometry afterwards with exposure_ev100(), or use kLinear.
     void Render(unsigned framebuffer, const glm::ivec4& viewport);
+    // The display from now on (throws zenith::ArgumentError for bad settings).
+    void SetDisplay(const sky::DisplaySettings& display);
+    const sky::DisplaySettings& display() const;
+    // The exposure (EV100) of the last Render in kDisplay mode, metered or given; nullopt in
+    // kLinear mode or before that Render. A host shading its own geometry to match multiplies
+    // its linear cd/m^2 by 1 / (1.2 * 2^EV100) (image_io.h's ExposureScale, Lagarde & de
+    // Rousiers 2014 §5.1) before the same tone map. Metered, it is read back from the GPU, which
+    // waits for the frame to finish: call it once a frame, after Render, or less often.
+    std::optional<double> exposure_ev100() const;
     // Draws into the system's own RGBA32F frame and reads it back (row 0 = bottom).
     sky::LutImage RenderOffscreen(const glm::ivec2& size);
 

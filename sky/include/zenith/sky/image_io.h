@@ -108,10 +108,12 @@ double ToneMapAcesFitted(double x);
 // The sRGB transfer function [sRGB] (linear [0, 1] to encoded [0, 1]), input clamped to [0, 1].
 double SrgbEncode(double linear);
 
-// Per channel: SrgbEncode(ToneMapAcesFitted(ExposureScale(ev100) · L)), rounded to 8 bits. Alpha
-// is dropped. Throws ImageError for an inconsistent image, zenith::ArgumentError for an ev100
+// Per channel: SrgbEncode(ToneMapAcesFitted(ExposureScale(ev100) · L)), rounded to 8 bits, after
+// the night (scotopic) adaptation of each colour when `night_adaptation`. Alpha is dropped. The
+// formulas are one text with the GPU display pass (sky/shaders/common/display.glsl; zenith/sky/
+// display.h). Throws ImageError for an inconsistent image, zenith::ArgumentError for an ev100
 // outside [kMinExposureEV100, kMaxExposureEV100].
-Srgb8Image ToneMapToSrgb8(const Image& image, double ev100);
+Srgb8Image ToneMapToSrgb8(const Image& image, double ev100, bool night_adaptation = false);
 
 // --- Files --------------------------------------------------------------------------------------
 

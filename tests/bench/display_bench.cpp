@@ -1,0 +1,124 @@
+// The cost of the display pass (zenith/sky/display.h) at 1280x720 against the clear-sky frame
+// in the same run: the frame alone (UpdateFrameLuts + Render into the renderer's RGBA32F
+// target), the frame followed by the pass into an RGBA8 target (a given EV100; metered with the
+// night adaptation), and the pass alone on an already rendered frame. glFinish ends each
+// iteration, so the times are the GPU's (llvmpipe's) as well as the CPU's.
+#include <benchmark/benchmark.h>
+#include <glad/gl.h>
+
+#include <memory>
+
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/display.h"
+#include "zenith/sky/gl/context.h"
+
+namespace {
+
+using namespace zenith::sky;
+
+struct Fixture {
+    std::unique_ptr<gl::HeadlessContext> context = gl::CreateHeadlessContextFromEnvironment();
+    Atmosphere earth;
+    AtmosphereRenderer renderer{earth};
+    DisplayPass display;
+    Camera camera;
+    Lights lights;
+    RenderOptions options;
+    GLuint target = 0, framebuffer = 0;
+
+    Fixture() {
+        camera.position = glm::dvec3(0.0, 0.0, earth.bottom_radius + 1500.0);
+        camera.world_from_view =
+            glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 0, 0));
+        camera.vertical_fov = 1.0471975511965976;
+        camera.aspect = 16.0 / 9.0;
+        lights.sun_direction = glm::normalize(glm::dvec3(0.98, 0.0, 0.17));
+        options.size = {1280, 720};
+        glCreateTextures(GL_TEXTURE_2D, 1, &target);
+        glTextureStorage2D(target, 1, GL_RGBA8, 1280, 720);
+        glCreateFramebuffers(1, &framebuffer);
+        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+    }
+    void Frame() {
+        renderer.UpdateFrameLuts(camera, lights);
+        renderer.Render(camera, lights, options);
+    }
+    void Display(bool metered) {
+        DisplaySettings settings;
+        settings.output = DisplaySettings::Output::kDisplay;
+        if (!metered) settings.ev100 = 15.0;
+        display.Run(renderer.frame_texture(), framebuffer, {0, 0, 1280, 720}, settings, 1.0 / 60);
+    }
+};
+
+Fixture& Shared() {
+    static Fixture fixture;
+    return fixture;
+}
+
+void BM_ClearSkyFrame720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    for (auto _ : state) {
+        f.Frame();
+        glFinish();
+    }
+}
+BENCHMARK(BM_ClearSkyFrame720p)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_FrameAndDisplayGivenEv(benchmark::State& state) {
+    Fixture& f = Shared();
+    for (auto _ : state) {
+        f.Frame();
+        f.Display(false);
+        glFinish();
+    }
+}
+BENCHMARK(BM_FrameAndDisplayGivenEv)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_FrameAndDisplayMetered(benchmark::State& state) {
+    Fixture& f = Shared();
+    for (auto _ : state) {
+        f.Frame();
+        f.Display(true);
+        glFinish();
+    }
+}
+BENCHMARK(BM_FrameAndDisplayMetered)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DisplayOnlyGivenEv(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.Frame();
+    glFinish();
+    for (auto _ : state) {
+        f.Display(false);
+        glFinish();
+    }
+}
+BENCHMARK(BM_DisplayOnlyGivenEv)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DisplayOnlyMetered(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.Frame();
+    glFinish();
+    for (auto _ : state) {
+        f.Display(true);
+        glFinish();
+    }
+}
+BENCHMARK(BM_DisplayOnlyMetered)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// exposure_ev100() after a metered pass: the read-back (a sync) a host pays when it asks.
+void BM_DisplayMeteredAndReadExposure(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.Frame();
+    glFinish();
+    for (auto _ : state) {
+        f.Display(true);
+        benchmark::DoNotOptimize(f.display.exposure_ev100());
+    }
+}
+BENCHMARK(BM_DisplayMeteredAndReadExposure)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();
