@@ -223,5 +223,21 @@ TEST(CloudSlab, RadianceMatchesThePathTracerOnTheIssueGrid) {
     }
 }
 
+// The isolated cumulus of cloud_march_support.h (a lone cloud 3.2 km wide, the sun 30 deg up
+// behind the camera, beside it and behind the cloud) against the path tracer: the mean
+// luminance within 10 % (measured with 1024 paths per pixel: 0.963, 1.076, 1.009; the
+// horizontal slab gave 0.630, 1.014, 1.490). Issue 15's 5 % is met in two of the three, and
+// its median per-pixel 10 % in none (17-40 %; BENCHMARKS.md, cloud_reference_report).
+TEST(CloudSlab, IsolatedCumulusMeanLuminanceMatchesThePathTracer) {
+    const std::vector<IsolatedCumulusCase> cases =
+        CompareIsolatedCumulus(CloudSettings{}, clouds::test::CachedNoise(),
+                               clouds::test::TempDir("isolated_cumulus"), 128, 2, 1);
+    for (const IsolatedCumulusCase& c : cases) {
+        std::printf("isolated cumulus, %-22s: renderer / reference %.3f (+- %.3f)\n", c.name,
+                    c.renderer / c.reference, c.reference_error / c.reference);
+        EXPECT_NEAR(c.renderer, c.reference, 0.1 * c.reference + 4.0 * c.reference_error) << c.name;
+    }
+}
+
 }  // namespace
 }  // namespace zenith::sky::ref

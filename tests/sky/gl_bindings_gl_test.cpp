@@ -202,7 +202,7 @@ void AddCloudMarch(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, thick_step_refinement);
     ZENITH_SAME(S, min_transmittance);
     ZENITH_SAME(S, max_distance);
-    ZENITH_SAME(S, padding0);
+    ZENITH_SAME(S, oriented_slabs);
     ZENITH_SAME(S, padding1);
 }
 

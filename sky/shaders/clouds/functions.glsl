@@ -380,7 +380,8 @@ Number CloudSkyScattering(IN(CloudScatteringParameters) p, Number tau, Number ta
 
 // Light scattered toward the viewer per unit sigma_s and unit illuminance (normal to the light)
 // by a cloud sample with optical depth sun_optical_depth toward the light (the shadow march) and
-// depth_below straight down to the cloud's base, the light at zenith cosine mu0:
+// depth_below through its slab away from the lit face (straight down to the base, for a deck),
+// the light at cosine mu0 to the slab's normal (its zenith cosine, for a deck):
 // - first order: the sunlight left after the shadow, with the dual-lobe phase p(nu);
 // - higher orders: the sample's slab, tau = sun_optical_depth mu0 below the top, tau_total =
 //   tau + depth_below. Its diffuse light, scattered with the true phase, adds I0 + g mu_view I1
@@ -388,8 +389,9 @@ Number CloudSkyScattering(IN(CloudScatteringParameters) p, Number tau, Number ta
 //   unscaled extinction needs back: f I + (1 - f)(I0 + g' mu I1) = I0 + g mu I1 in P1). The
 //   light the delta peak kept in the scaled beam, exp(-tau' / mu0) - exp(-tau / mu0), scatters
 //   out of it with (1 - f) and the scaled lobe g'.
-// nu = dot(view, light); mu_view = dot(view, up), the cosine between the light's way to the
-// camera (-view) and down. mu0 is clamped to 0.05: a light at the horizon still enters sides.
+// nu = dot(view, light); mu_view = dot(view, normal), the cosine between the light's way to the
+// camera (-view) and the slab's inward normal (down, for a deck). mu0 is clamped to 0.05: a
+// light grazing the slab still enters it.
 Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_depth,
                           Number depth_below, Number mu0, Number nu, Number mu_view) {
     Number single = CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *

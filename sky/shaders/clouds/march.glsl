@@ -23,7 +23,7 @@ struct CloudMarchParameters {
     Number thick_step_refinement;  // halvings of a thick step's shadow march at most (0-3)
     Number min_transmittance;      // the march stops below this (H16 §6.2 early exit)
     Number max_distance;           // km marched in one layer at most (from where the ray enters it)
-    Number padding0;
+    Number oriented_slabs;  // 1: the diffuse slab follows the clouds' surface; 0: horizontal
     Number padding1;
 };
 
@@ -31,6 +31,9 @@ struct CloudMarchParameters {
 // with the shadow march's first step halved for each doubling of its optical depth, up to
 // CloudMarchParameters::thick_step_refinement times.
 const Number kCloudMaxStepOpticalDepth = 1.0;
+// A slab whose normal is within 26 deg of the vertical takes its depth below from the density
+// profile (CloudDepthBelow, exact for a deck) rather than a march.
+const Number kCloudVerticalSlab = 0.9;
 
 // What the march has gathered so far, front to back.
 struct CloudMarchState {
@@ -101,7 +104,8 @@ vec2 CloudLayerInterval(IN(CloudLayerParameters) layer, Number r, Number mu, Num
 // shadow_first_step (g^n - 1) / (g - 1) km, so clouds shade themselves and their neighbours.
 // `refinement` r halves the first step r times and adds r steps (the same reach at growth 2):
 // the primary march asks for it where it splits an optically thick step, whose samples lie
-// within one optical depth of each other and would all see the same coarse first shadow step.
+// within one optical depth of each other and would all see the same coarse first shadow step;
+// a negative r doubles it and drops steps, a coarser march (CloudSampleSource's slab depth).
 // The full density, with the detail erosion: the cheap sample without it (H16 §6.2) saved
 // only 10 % of the trace here and darkened the clouds by 23 % in the mean (measured).
 Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
@@ -122,14 +126,60 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture
     return optical_depth;
 }
 
+// The large-scale cloud field at a ground position and altitude: the density's argument before
+// the coverage remap clamps it, with the shape noise at 1 (SampleCloudDensityAt: tower signal +
+// coverage - 1, or the anvil's), positive inside the clouds' envelope. Its gradient gives the
+// envelope's orientation without the noise's small-scale structure.
+Number CloudEnvelope(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map, vec2 ground,
+                     Number altitude) {
+    CloudWeather w = CloudWeatherAt(layer, weather_map, ground);
+    Number cloud_height =
+        (layer.top_altitude - layer.base_altitude) * CloudTypeHeightFraction(w.type) * w.height;
+    Number convection = CloudConvection(w.type);
+    Number height_fraction =
+        (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
+    return max(CloudTowerSignal(altitude, layer.base_altitude, cloud_height, convection) +
+                   w.coverage - 1.0,
+               CloudAnvilSignal(convection, height_fraction) *
+                   (convection - (1.0 - kCloudAnvilCoverage)));
+}
+
+// The clouds' outward normal at p (cloud frame, km): minus the envelope's gradient, by forward
+// differences over 1 % of the weather tile across the ground and 2 % of the layer in altitude
+// (four weather reads); straight up where the envelope is flat.
+vec3 CloudOutwardNormal(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map, vec3 p) {
+    Number r = length(p);
+    vec3 up = p / r;
+    // Ground coordinates run along the frame's x and y near the map's origin (the dome
+    // projection), so the tangent plane's x and y axes carry their derivatives.
+    vec3 east = normalize(vec3(1.0, 0.0, 0.0) - up * up.x);
+    vec3 north = cross(up, east);
+    vec2 ground = CloudGroundCoordinates(layer, p);
+    Number altitude = r - layer.bottom_radius;
+    Number dx = 0.01 * layer.weather_period;
+    Number dz = 0.02 * (layer.top_altitude - layer.base_altitude);
+    Number f = CloudEnvelope(layer, weather_map, ground, altitude);
+    vec3 gradient =
+        east * (CloudEnvelope(layer, weather_map, ground + vec2(dx, 0.0), altitude) - f) / dx +
+        north * (CloudEnvelope(layer, weather_map, ground + vec2(0.0, dx), altitude) - f) / dx +
+        up * (CloudEnvelope(layer, weather_map, ground, altitude + dz) - f) / dz;
+    Number magnitude = length(gradient);
+    return magnitude > 1e-6 ? -gradient / magnitude : up;
+}
+
 // Luminance scattered per km (sigma_s L_i, cd/m^2/km) at a cloud sample p of density `s` seen
 // along `view`: for each light, its illuminance at the top of the atmosphere, the atmosphere's
 // transmittance from p toward it (which colours sunsets), and CloudSunScattering's first order
-// in the clouds' own shadow plus the diffuse light of the slab through p, whose depth below p
-// comes from the density profile (CloudDepthBelow); darkened at the base of raining clouds
-// (H16 §4.4.1);
-// plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an isotropic
-// radiance on the same slab's top (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1).
+// in the clouds' own shadow plus the diffuse light of the slab through p. The slab lies across
+// the clouds' outward normal (CloudOutwardNormal), turned to face the light: over a deck it is
+// the horizontal plane-parallel slab, whose depth below p comes from the density profile
+// (CloudDepthBelow); on the side of a cumulus it stands upright, lit at the cosine between the
+// light and the side, and its depth beyond p is marched like the shadow. A horizontal slab lit
+// through a cumulus' side made its sunlit face 37 % too dark and its shadowed side 49 % too
+// bright against the path tracer (BENCHMARKS.md). Darkened at the base of raining clouds
+// (H16 §4.4.1); plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an
+// isotropic radiance on the horizontal slab's top (CloudSkyScattering), scaled by ambient_scale
+// (F16 §5.5.1).
 vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
                        IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
@@ -142,6 +192,10 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
     vec3 up = p / r;
     Number depth_below = CloudDepthBelow(layer, s, r - layer.bottom_radius, march.extinction);
     Number mu_view = dot(view, up);
+    vec3 normal = up;
+    for (int oriented = 0; oriented < (march.oriented_slabs > 0.0 ? 1 : 0); ++oriented) {
+        normal = CloudOutwardNormal(layer, weather_map, p);
+    }
     vec3 direct = vec3(0.0);
     vec3 ambient = vec3(0.0);
     for (int l = 0; l < light_count; ++l) {
@@ -151,9 +205,20 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
             GetTransmittanceToSun(atmosphere, transmittance_texture, transmittance_size, r, mu_l);
         Number optical_depth = CloudShadowOpticalDepth(
             layer, weather_map, shape_noise, detail_noise, march, p, direction, refinement);
+        // The slab faces the light: the normal or its opposite, whichever the light enters.
+        // Beyond p it reaches as deep as a short march away from the light's side shows (two
+        // samples, 320 m and 640 m long: a quarter of the shadow march's samples gave the same
+        // means against the path tracer); over a deck, the density profile's depth below p.
+        vec3 facing = dot(normal, direction) >= 0.0 ? normal : -normal;
+        Number depth_beyond = depth_below;
+        for (int side = 0; side < (dot(facing, up) < kCloudVerticalSlab ? 1 : 0); ++side) {
+            depth_beyond = CloudShadowOpticalDepth(layer, weather_map, shape_noise, detail_noise,
+                                                   march, p, -facing, -2);
+        }
         direct += lights.light[l].illuminance * atmosphere_transmittance *
-                  CloudSunScattering(scattering, optical_depth, depth_below, mu_l,
-                                     dot(view, direction), mu_view);
+                  CloudSunScattering(scattering, optical_depth, depth_beyond,
+                                     dot(facing, direction), dot(view, direction),
+                                     dot(view, facing));
         // The depth below the cloud's top as the sun's slab has it.
         Number depth_above = optical_depth * max(mu_l, 0.05);
         ambient += lights.light[l].illuminance *

@@ -67,6 +67,7 @@ Parameters MakeCloudMarchParameters(const CloudSettings& s) {
     p.shadow_growth = Scalar(s.shadow_growth);
     p.ambient_scale = Scalar(s.ambient_scale);
     p.thick_step_refinement = Scalar(s.thick_step_refinement);
+    p.oriented_slabs = Scalar(s.oriented_slabs ? 1.0 : 0.0);
     p.min_transmittance = Scalar(s.min_transmittance);
     p.max_distance = Scalar(s.max_distance / kKm);
     return p;

@@ -49,7 +49,7 @@ struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float thick_step_refinement;
     float min_transmittance;
     float max_distance;
-    float padding0;
+    float oriented_slabs;
     float padding1;
 };
 static_assert(sizeof(CloudMarchUniforms) == 48);
