@@ -81,7 +81,8 @@ int main() try {
 
     glDeleteFramebuffers(1, &framebuffer);
     glDeleteTextures(1, &colour);
-    std::printf("host glad %d.%d and zenith: one frame, mean G %.0f cd/m^2\n",
+    std::printf("host glad " HOST_GLAD_API
+                " (context %d.%d) and zenith: one frame, mean G %.0f cd/m^2\n",
                 GLAD_VERSION_MAJOR(version), GLAD_VERSION_MINOR(version), mean_green);
     return 0;
 } catch (const std::exception& e) {
