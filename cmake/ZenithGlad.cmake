@@ -1,10 +1,28 @@
 # Generates the GL loader with glad2 (Debian `python3-glad`) into the build tree at build time and
 # defines `zenith_glad`, an OBJECT library that zenith_sky compiles in.
 #
-# The loader takes a getProcAddress callback (gladLoadGL), so the same code runs on OSMesa, EGL or
-# a host application's own context. The generated code is third party: it is compiled without the
-# project's warning flags and its headers are SYSTEM. Its symbols (gladLoadGL, glad_gl*) are global:
-# a host that links its own glad into the same binary would clash with them.
+# The loader takes a getProcAddress callback (zenith_gladLoadGL), so the same code runs on OSMesa,
+# EGL or a host application's own context. The generated code is third party: it is compiled
+# without the project's warning flags and its headers are SYSTEM.
+#
+# The loader is private to zenith: after generating, cmake/ZenithGladPrefix.cmake renames every
+# symbol glad makes global (gladLoadGL, gladLoadGLUserPtr, glad_gl*, GLAD_GL_*) to zenith_glad* /
+# ZENITH_GLAD_GL_*. glad's own names would clash with a host that links its own glad (a GL 3.3
+# host failed to link with 358 "multiple definition" errors), or worse, a host glad covering every
+# function zenith uses won the link and zenith ran on the host's pointers, loaded for the host's
+# context. tests/host_glad (CTest package_host_glad_gl) links both kinds of host. Why a prefix:
+#  - glad's --mx (python3-glad 2.0.2 has it) puts the pointers in a GladGLContext struct, so every
+#    call site becomes gl->Clear(...) (thousands, shaders' host code and tests included), and its
+#    entry points (gladLoadGLContext, ...) are still global glad names that a host using --mx
+#    would clash with;
+#  - symbol visibility or objcopy --prefix-symbols act on the objects, not the names: a static
+#    libzenith_sky.a is never linked before the host's link, so hidden visibility hides nothing,
+#    and a shared build would also have to hide the pointers from zenith's own GL tests;
+#  - renaming the generated text keeps the `#define glClear zenith_glad_glClear` macros, so
+#    zenith's code still writes plain GL calls, and it holds for static and shared builds alike:
+#    the symbols are zenith_glad* whichever library they end up in.
+# The header stays at glad/gl.h in the build tree only (it is not installed): zenith's public
+# headers include no GL header, so a host may use any loader of its own.
 #
 # Inputs (cache variables):
 #   ZENITH_GLAD_PYTHON      a Python 3 that can `import glad`. Not the `python3` on PATH, which
@@ -14,6 +32,7 @@
 #   ZENITH_GLAD_EXTENSIONS  comma-separated extensions to load besides the core API.
 # Output:
 #   zenith_glad             OBJECT library: add $<TARGET_OBJECTS:zenith_glad> to a target
+#                           (entry points zenith_gladLoadGL / zenith_gladLoadGLUserPtr)
 #   ZENITH_GLAD_INCLUDE_DIR directory holding glad/gl.h and KHR/khrplatform.h
 include_guard(GLOBAL)
 
@@ -65,7 +84,10 @@ add_custom_command(
     OUTPUT ${_zenith_glad_outputs}
     COMMAND ${CMAKE_COMMAND} -E rm -rf ${_zenith_glad_dir}
     COMMAND ${_zenith_glad_command}
+    COMMAND ${CMAKE_COMMAND} -DDIR=${_zenith_glad_dir}
+            -P ${CMAKE_CURRENT_LIST_DIR}/ZenithGladPrefix.cmake
     DEPENDS ${CMAKE_BINARY_DIR}/glad.stamp ${CMAKE_CURRENT_LIST_FILE}
+            ${CMAKE_CURRENT_LIST_DIR}/ZenithGladPrefix.cmake
     COMMENT "Generating GL loader with glad2 (${ZENITH_GLAD_API})"
     VERBATIM)
 

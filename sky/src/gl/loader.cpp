@@ -1,5 +1,6 @@
 #include "zenith/sky/gl/loader.h"
 
+// zenith's own glad, renamed (cmake/ZenithGladPrefix.cmake): zenith_gladLoadGL, zenith_glad_gl*.
 #include <glad/gl.h>
 
 #include <string>
@@ -25,10 +26,10 @@ std::string ToString(GlVersion version) {
     return std::to_string(version.major) + "." + std::to_string(version.minor);
 }
 
-// Checks what gladLoadGL returned; `glad_version` is 0 when glGetString could not be loaded or
-// returned nothing, which is what happens without a current context.
+// Checks what zenith_gladLoadGL returned; `glad_version` is 0 when glGetString could not be loaded
+// or returned nothing, which is what happens without a current context.
 GlInfo CheckLoaded(int glad_version, GlVersion required) {
-    if (glad_version == 0 || glad_glGetString == nullptr) {
+    if (glad_version == 0 || zenith_glad_glGetString == nullptr) {
         throw ContextError(
             "GL function loading failed: glGetString(GL_VERSION) gave nothing. Is a GL context "
             "current on this thread, and does the getProcAddress callback belong to its library?");
@@ -42,8 +43,8 @@ GlInfo CheckLoaded(int glad_version, GlVersion required) {
     }
     // The loader reports a version once glGetString works; a broken callback shows up as null
     // pointers for the entry points that version promises.
-    if (glad_glDispatchCompute == nullptr || glad_glCreateBuffers == nullptr ||
-        glad_glGetNamedBufferSubData == nullptr) {
+    if (zenith_glad_glDispatchCompute == nullptr || zenith_glad_glCreateBuffers == nullptr ||
+        zenith_glad_glGetNamedBufferSubData == nullptr) {
         throw ContextError("the context reports " + Describe(info) +
                            " but getProcAddress returned null for glDispatchCompute, "
                            "glCreateBuffers or glGetNamedBufferSubData");
@@ -56,7 +57,7 @@ GlInfo CheckLoaded(int glad_version, GlVersion required) {
 GlInfo LoadGlFunctions(GetProcAddressFn get_proc_address, GlVersion required) {
     if (get_proc_address == nullptr) throw ContextError("LoadGlFunctions: getProcAddress is null");
     g_last_loader = nullptr;
-    GlInfo info = CheckLoaded(gladLoadGL(get_proc_address), required);
+    GlInfo info = CheckLoaded(zenith_gladLoadGL(get_proc_address), required);
     g_last_loader = get_proc_address;
     return info;
 }
@@ -67,11 +68,11 @@ GlInfo LoadGlFunctions(const std::function<GlProc(const char* name)>& get_proc_a
     g_last_loader = nullptr;
     // glad only uses the callback during this call, so a pointer to the caller's object is safe.
     auto* user = const_cast<std::function<GlProc(const char*)>*>(&get_proc_address);
-    return CheckLoaded(gladLoadGLUserPtr(&CallStdFunction, user), required);
+    return CheckLoaded(zenith_gladLoadGLUserPtr(&CallStdFunction, user), required);
 }
 
 GlInfo QueryGlInfo() {
-    if (glad_glGetString == nullptr || glad_glGetIntegerv == nullptr) {
+    if (zenith_glad_glGetString == nullptr || zenith_glad_glGetIntegerv == nullptr) {
         throw GlError("QueryGlInfo: GL functions are not loaded (call LoadGlFunctions first)");
     }
     GlInfo info;

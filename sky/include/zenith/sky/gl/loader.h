@@ -1,9 +1,11 @@
 // GL function loading through a getProcAddress callback, so the renderer runs on zenith's own
 // headless contexts and inside a host application's context alike.
 //
-// The function pointers are process-wide (glad): drive GL from one thread, and after switching to
-// a context from another GL library (OSMesa <-> EGL/libGL), load again. HeadlessContext does this
-// in MakeCurrent(); a host that owns several contexts calls LoadGlFunctions() itself.
+// The function pointers are zenith's own and process-wide (a glad2 loader whose symbols are renamed
+// zenith_glad*, so a host's glad, GLEW or epoxy neither clashes with them nor is touched by them):
+// drive GL from one thread, and after switching to a context from another GL library (OSMesa <->
+// EGL/libGL), load again. HeadlessContext does this in MakeCurrent(); a host that owns several
+// contexts calls LoadGlFunctions() itself.
 #pragma once
 
 #include <functional>
