@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "daytime_frame.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 
@@ -13,30 +14,8 @@ namespace {
 
 using namespace zenith::sky;
 
-struct Fixture {
-    std::unique_ptr<gl::HeadlessContext> context = gl::CreateHeadlessContextFromEnvironment();
-    Atmosphere earth;
-    AtmosphereRenderer renderer{earth};
-    Camera camera;
-    Lights lights;
-    RenderOptions options;
-
-    Fixture() {
-        camera.position = glm::dvec3(0.0, 0.0, earth.bottom_radius + 1500.0);
-        // Looking at the horizon toward the sun's azimuth, sun 10 deg up: a daytime frame.
-        camera.world_from_view =
-            glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 0, 0));
-        camera.vertical_fov = 1.0471975511965976;
-        camera.aspect = 16.0 / 9.0;
-        lights.sun_direction = glm::normalize(glm::dvec3(0.98, 0.0, 0.17));
-        options.size = {1280, 720};
-    }
-};
-
-Fixture& Shared() {
-    static Fixture fixture;
-    return fixture;
-}
+using Fixture = bench::DaytimeFrame;
+using bench::Shared;
 
 void ReportPassTimes(benchmark::State& state, const PassTimes& t) {
     state.counters["transmittance_ms"] = t.transmittance;

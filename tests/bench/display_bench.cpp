@@ -8,6 +8,7 @@
 
 #include <memory>
 
+#include "daytime_frame.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/display.h"
 #include "zenith/sky/gl/context.h"
@@ -16,24 +17,11 @@ namespace {
 
 using namespace zenith::sky;
 
-struct Fixture {
-    std::unique_ptr<gl::HeadlessContext> context = gl::CreateHeadlessContextFromEnvironment();
-    Atmosphere earth;
-    AtmosphereRenderer renderer{earth};
+struct Fixture : bench::DaytimeFrame {
     DisplayPass display;
-    Camera camera;
-    Lights lights;
-    RenderOptions options;
     GLuint target = 0, framebuffer = 0;
 
     Fixture() {
-        camera.position = glm::dvec3(0.0, 0.0, earth.bottom_radius + 1500.0);
-        camera.world_from_view =
-            glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 0, 0));
-        camera.vertical_fov = 1.0471975511965976;
-        camera.aspect = 16.0 / 9.0;
-        lights.sun_direction = glm::normalize(glm::dvec3(0.98, 0.0, 0.17));
-        options.size = {1280, 720};
         glCreateTextures(GL_TEXTURE_2D, 1, &target);
         glTextureStorage2D(target, 1, GL_RGBA8, 1280, 720);
         glCreateFramebuffers(1, &framebuffer);
@@ -51,10 +39,7 @@ struct Fixture {
     }
 };
 
-Fixture& Shared() {
-    static Fixture fixture;
-    return fixture;
-}
+Fixture& Shared() { return bench::Shared<Fixture>(); }
 
 void BM_ClearSkyFrame720p(benchmark::State& state) {
     Fixture& f = Shared();
