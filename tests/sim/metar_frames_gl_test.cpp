@@ -22,6 +22,7 @@
 #include <optional>
 #include <vector>
 
+#include "host_frame.h"
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
@@ -47,17 +48,10 @@ class MetarFramesTest : public ::testing::Test {
         sky_ = SkySystem::CreateHeadless().release();
         sky_->SetTime(geo::TimeFromIso8601(kTime));
         sky_->SetGeodetic(kLat, kLon, kEyeHeight);
-        glCreateTextures(GL_TEXTURE_2D, 1, &colour_);
-        glTextureStorage2D(colour_, 1, GL_RGBA32F, kWidth, kHeight);
-        glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
-        glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, kWidth, kHeight);
-        glCreateFramebuffers(1, &framebuffer_);
-        glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
+        frame_ = new test::HostFrame(kWidth, kHeight);
     }
     static void TearDownTestSuite() {
-        glDeleteFramebuffers(1, &framebuffer_);
-        glDeleteTextures(1, &colour_);
-        glDeleteTextures(1, &depth_);
+        delete frame_;
         delete sky_;
     }
 
@@ -79,17 +73,8 @@ class MetarFramesTest : public ::testing::Test {
                     static_cast<float>(kNear / eye_depth);
             }
         }
-        glTextureSubImage2D(depth_, 0, 0, 0, kWidth, kHeight, GL_DEPTH_COMPONENT, GL_FLOAT,
-                            depth.data());
-        const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
-        glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, black);
-        sky_->SetSceneDepth(depth_, kNear, std::numeric_limits<double>::infinity(), true);
-        sky_->Render(framebuffer_, {0, 0, kWidth, kHeight});
-        sky_->ClearSceneDepth();
-        std::vector<glm::vec4> pixels(kWidth * kHeight);
-        glGetTextureImage(colour_, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
-                          pixels.data());
-        return pixels;
+        return frame_->Render(*sky_, depth, 0.0f, kNear, std::numeric_limits<double>::infinity(),
+                              true);
     }
 
     struct VisualRange {
@@ -162,12 +147,10 @@ class MetarFramesTest : public ::testing::Test {
     }
 
     static SkySystem* sky_;
-    static GLuint colour_, depth_, framebuffer_;
+    static test::HostFrame* frame_;
 };
 SkySystem* MetarFramesTest::sky_ = nullptr;
-GLuint MetarFramesTest::colour_ = 0;
-GLuint MetarFramesTest::depth_ = 0;
-GLuint MetarFramesTest::framebuffer_ = 0;
+test::HostFrame* MetarFramesTest::frame_ = nullptr;
 
 TEST_F(MetarFramesTest, ABlackTargetAtTheVisibilityHasFivePercentContrast) {
     // North: the Sun ~100 deg to the right, neither behind nor in front.

@@ -10,6 +10,7 @@
 #include <glm/gtc/constants.hpp>
 #include <vector>
 
+#include "host_frame.h"
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
@@ -177,26 +178,8 @@ TEST_F(SkySystemTest, AerialPerspectiveOverTheHostsGeometry) {
         for (int x = 0; x < kSize / 2; ++x)
             depth[static_cast<std::size_t>(y * kSize + x)] = geometry_depth;
     }
-    GLuint colour = 0, depth_texture = 0, framebuffer = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &colour);
-    glTextureStorage2D(colour, 1, GL_RGBA32F, kSize, kSize);
-    glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture);
-    glTextureStorage2D(depth_texture, 1, GL_DEPTH_COMPONENT32F, kSize, kSize);
-    glTextureSubImage2D(depth_texture, 0, 0, 0, kSize, kSize, GL_DEPTH_COMPONENT, GL_FLOAT,
-                        depth.data());
-    glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
-    const float host_colour[4] = {kColour, kColour, kColour, 1.0f};
-    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, host_colour);
-    sky_->SetSceneDepth(depth_texture, kNear, kFar);
-    sky_->Render(framebuffer, {0, 0, kSize, kSize});
-    sky_->ClearSceneDepth();
-    std::vector<glm::vec4> pixels(kSize * kSize);
-    glGetTextureImage(colour, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
-                      pixels.data());
-    glDeleteFramebuffers(1, &framebuffer);
-    glDeleteTextures(1, &colour);
-    glDeleteTextures(1, &depth_texture);
+    test::HostFrame frame(kSize, kSize);
+    const std::vector<glm::vec4> pixels = frame.Render(*sky_, depth, kColour, kNear, kFar);
 
     // The CPU reference of the same atmosphere and lights, marched directly.
     const sky::reference::AtmosphereReference reference(sky::Atmosphere{});
