@@ -14,6 +14,7 @@
 #include "clouds/cloud_parameters.h"
 #include "clouds/cloud_passes.h"
 #include "gl/atmosphere_uniforms.h"
+#include "gl/display_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
 #include "gl/state_guard.h"
@@ -220,6 +221,7 @@ std::vector<gl::Program> BuildRendererPrograms() {
     for (gl::Program& p : BuildPrograms()) programs.push_back(std::move(p));
     for (gl::Program& p : BuildCloudComposites()) programs.push_back(std::move(p));
     for (gl::Program& p : CloudPasses::BuildPrograms()) programs.push_back(std::move(p));
+    for (gl::Program& p : gl::BuildDisplayPrograms()) programs.push_back(std::move(p));
     return programs;
 }
 

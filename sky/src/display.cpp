@@ -10,7 +10,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
+#include "gl/display_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
 #include "gl/state_guard.h"
@@ -19,21 +21,22 @@
 namespace zenith::sky {
 namespace {
 
-// DisplayStorage (display/storage.glsl), std430.
-struct DisplayStorageHeader {
-    float ev100;
-    float target_ev100;
-    float log2_average;
-    std::uint32_t valid;
-};
-static_assert(sizeof(DisplayStorageHeader) == 16);
-constexpr std::size_t kHistogramOffset = sizeof(DisplayStorageHeader);
-constexpr std::size_t kStorageBytes =
-    kHistogramOffset + sizeof(std::uint32_t) * static_cast<std::size_t>(kDisplayHistogramBins);
+constexpr std::size_t kHistogramOffset = offsetof(gl::DisplayStorage, histogram);
+constexpr std::size_t kStorageBytes = sizeof(gl::DisplayStorage);
 
 constexpr std::array<std::string_view, 2> kParts = {"common/display.glsl", "display/storage.glsl"};
 
 }  // namespace
+
+namespace gl {
+std::vector<Program> BuildDisplayPrograms() {
+    std::vector<Program> programs;
+    programs.push_back(ComputeProgram("display/histogram.comp", kParts));
+    programs.push_back(ComputeProgram("display/meter.comp", kParts));
+    programs.push_back(FullscreenProgram("display/display.frag", {}, kParts));
+    return programs;
+}
+}  // namespace gl
 
 void DisplaySettings::Validate() const {
     if (ev100) Require("display.ev100", *ev100, "EV100", Range::Closed(-20.0, 30.0));
@@ -42,9 +45,10 @@ void DisplaySettings::Validate() const {
 }
 
 struct DisplayPass::Impl {
-    gl::Program histogram = gl::ComputeProgram("display/histogram.comp", kParts);
-    gl::Program meter = gl::ComputeProgram("display/meter.comp", kParts);
-    gl::Program display = gl::FullscreenProgram("display/display.frag", {}, kParts);
+    std::vector<gl::Program> programs = gl::BuildDisplayPrograms();
+    gl::Program& histogram = programs[gl::kDisplayHistogramProgram];
+    gl::Program& meter = programs[gl::kDisplayMeterProgram];
+    gl::Program& display = programs[gl::kDisplayDisplayProgram];
     GLuint storage = 0;
     GLuint vertex_array = 0;
     bool preserve = true;
@@ -66,10 +70,11 @@ struct DisplayPass::Impl {
         glDeleteBuffers(1, &storage);
     }
 
-    DisplayStorageHeader ReadHeader() const {
-        DisplayStorageHeader header{};
+    // The storage up to the histogram (which stays on the GPU).
+    gl::DisplayStorage ReadHeader() const {
+        gl::DisplayStorage header{};
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glGetNamedBufferSubData(storage, 0, sizeof(header), &header);
+        glGetNamedBufferSubData(storage, 0, static_cast<GLsizeiptr>(kHistogramOffset), &header);
         return header;
     }
 };
@@ -82,8 +87,7 @@ void DisplayPass::set_preserve_gl_state(bool preserve) { impl_->preserve = prese
 void DisplayPass::ResetAdaptation() {
     gl::StateGuard guard(impl_->preserve);
     const std::uint32_t zero = 0;
-    glNamedBufferSubData(impl_->storage, offsetof(DisplayStorageHeader, valid), sizeof(zero),
-                         &zero);
+    glNamedBufferSubData(impl_->storage, offsetof(gl::DisplayStorage, valid), sizeof(zero), &zero);
 }
 
 void DisplayPass::Run(unsigned input, unsigned framebuffer, const glm::ivec4& viewport,
@@ -112,7 +116,7 @@ void DisplayPass::Run(unsigned input, unsigned framebuffer, const glm::ivec4& vi
                                   kStorageBytes - kHistogramOffset, GL_RED_INTEGER, GL_UNSIGNED_INT,
                                   &zero);
         d.histogram.Use();
-        glProgramUniform2i(d.histogram.name(), 0, viewport.z, viewport.w);
+        glProgramUniform2i(d.histogram.name(), gl::kDisplaySizeLocation, viewport.z, viewport.w);
         constexpr int kGroupPixels = kDisplayGroupSize * kDisplayPixelsPerInvocation;
         glDispatchCompute(static_cast<GLuint>((viewport.z + kGroupPixels - 1) / kGroupPixels),
                           static_cast<GLuint>((viewport.w + kGroupPixels - 1) / kGroupPixels), 1);
@@ -121,9 +125,11 @@ void DisplayPass::Run(unsigned input, unsigned framebuffer, const glm::ivec4& vi
         const double ratio = settings.adaptation_time_s > 0.0 && dt_s > 0.0
                                  ? dt_s / settings.adaptation_time_s
                                  : 0.0;
-        glProgramUniform1f(d.meter.name(), 0, static_cast<float>(std::min(ratio, 1e6)));
-        glProgramUniform1i(d.meter.name(), 1, night ? 1 : 0);
-        glProgramUniform1f(d.meter.name(), 2, static_cast<float>(settings.compensation_ev));
+        glProgramUniform1f(d.meter.name(), gl::kDisplayDtOverTauLocation,
+                           static_cast<float>(std::min(ratio, 1e6)));
+        glProgramUniform1i(d.meter.name(), gl::kDisplayMeterNightLocation, night ? 1 : 0);
+        glProgramUniform1f(d.meter.name(), gl::kDisplayCompensationLocation,
+                           static_cast<float>(settings.compensation_ev));
         glDispatchCompute(1, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         d.given_ev100.reset();
@@ -135,9 +141,9 @@ void DisplayPass::Run(unsigned input, unsigned framebuffer, const glm::ivec4& vi
         glBindTextureUnit(kSceneDepthUnit, scene_depth->texture);
         glBindSampler(kSceneDepthUnit, 0);
     }
-    glProgramUniform2i(d.display.name(), 0, viewport.x, viewport.y);
-    glProgramUniform1i(d.display.name(), 1, night ? 1 : 0);
-    glProgramUniform1i(d.display.name(), 2, depth_mode);
+    glProgramUniform2i(d.display.name(), gl::kDisplayOriginLocation, viewport.x, viewport.y);
+    glProgramUniform1i(d.display.name(), gl::kDisplayNightLocation, night ? 1 : 0);
+    glProgramUniform1i(d.display.name(), gl::kDisplayDepthModeLocation, depth_mode);
     gl::DrawFullscreen(d.display, d.vertex_array, framebuffer, viewport, gl::Blend::kReplace);
     d.ran = true;
 }

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <glm/glm.hpp>
 #include <map>
@@ -20,6 +21,7 @@
 #include "bindings.h"
 #include "gl/atmosphere_uniforms.h"
 #include "gl/cloud_uniforms.h"
+#include "gl/display_uniforms.h"
 #include "gl_test_support.h"
 #include "renderer_programs.h"
 
@@ -33,6 +35,8 @@ constexpr GLenum GlType() {
         return GL_FLOAT;
     else if constexpr (std::is_same_v<T, int>)
         return GL_INT;
+    else if constexpr (std::is_same_v<T, std::uint32_t>)
+        return GL_UNSIGNED_INT;
     else if constexpr (std::is_same_v<T, glm::vec2>)
         return GL_FLOAT_VEC2;
     else if constexpr (std::is_same_v<T, glm::vec3>)
@@ -238,6 +242,15 @@ void AddCloud(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_MEMBER("cloud_ground_layer_order", S, ground_layer_order);
 }
 
+void AddDisplayStorage(Layout& layout, const std::string& prefix, std::size_t base) {
+    using S = DisplayStorage;
+    ZENITH_MEMBER("display_ev100", S, ev100);
+    ZENITH_MEMBER("display_target_ev100", S, target_ev100);
+    ZENITH_MEMBER("display_log2_average", S, log2_average);
+    ZENITH_MEMBER("display_valid", S, valid);
+    ZENITH_MEMBER("display_histogram", S, histogram);
+}
+
 #undef ZENITH_SAME
 #undef ZENITH_MEMBER
 
@@ -280,6 +293,9 @@ std::map<std::string, BlockMirror> Mirrors() {
     m.emplace("LightStorage",
               MakeBlock<LightUniforms>(GL_SHADER_STORAGE_BLOCK, kLightStorageBinding, AddLights,
                                        "shaded_lights."));
+    m.emplace("DisplayStorage",
+              MakeBlock<DisplayStorage>(GL_SHADER_STORAGE_BLOCK, kDisplayStorageBinding,
+                                        AddDisplayStorage, ""));
     return m;
 }
 
@@ -301,6 +317,8 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"cloud_history", kCloudHistoryUnit},
         {"cloud_shadow_map", kCloudShadowMapUnit},
         {"cloud_ground_shadow", kCloudGroundShadowUnit},
+        {"display_input", kDisplayInputUnit},
+        {"display_scene_depth", kSceneDepthUnit},
         // Images.
         {"output_image", kOutputImageUnit},
         {"shadow_map", kOutputImageUnit},
@@ -320,8 +338,29 @@ const std::map<std::string, glm::ivec3>& ExpectedGroupSizes() {
         {"atmosphere/aerial_perspective.comp", {kLutGroupSize, kLutGroupSize, 1}},
         {"clouds/shadow_map.comp", {kShadowMapGroupSize, kShadowMapGroupSize, 1}},
         {"clouds/sky_shade.comp", {1, 1, 1}},
+        {"display/histogram.comp", {kDisplayGroupSize, kDisplayGroupSize, 1}},
+        {"display/meter.comp", {1, 1, 1}},
     };
     return sizes;
+}
+
+// The plain (non-block, non-opaque) uniforms, set with glProgramUniform* at the locations of
+// gl/display_uniforms.h: by program label and name, the location and GL type C++ uses.
+struct ExpectedUniform {
+    GLint location;
+    GLenum type;
+};
+const std::map<std::string, ExpectedUniform>& ExpectedPlainUniforms() {
+    static const std::map<std::string, ExpectedUniform> uniforms = {
+        {"display/histogram.comp:display_size", {kDisplaySizeLocation, GL_INT_VEC2}},
+        {"display/meter.comp:display_dt_over_tau", {kDisplayDtOverTauLocation, GL_FLOAT}},
+        {"display/meter.comp:display_night", {kDisplayMeterNightLocation, GL_INT}},
+        {"display/meter.comp:display_compensation_ev", {kDisplayCompensationLocation, GL_FLOAT}},
+        {"display/display.frag:display_origin", {kDisplayOriginLocation, GL_INT_VEC2}},
+        {"display/display.frag:display_night", {kDisplayNightLocation, GL_INT}},
+        {"display/display.frag:display_depth_mode", {kDisplayDepthModeLocation, GL_INT}},
+    };
+    return uniforms;
 }
 
 std::string Hex(GLint value) {
@@ -431,7 +470,8 @@ std::vector<std::string> CheckBlocks(const Program& program,
 }
 
 // Samplers and images outside blocks: each on its bindings.glsl unit.
-std::vector<std::string> CheckUnits(const Program& program) {
+// `seen_plain` collects the plain uniforms found (program label:name).
+std::vector<std::string> CheckUnits(const Program& program, std::set<std::string>& seen_plain) {
     std::vector<std::string> errors;
     const std::string where = program.label() + ": ";
     GLint uniforms = 0;
@@ -439,6 +479,21 @@ std::vector<std::string> CheckUnits(const Program& program) {
     for (GLuint u = 0; u < static_cast<GLuint>(uniforms); ++u) {
         if (ResourceInt(program.name(), GL_UNIFORM, u, GL_BLOCK_INDEX) != -1) continue;
         const std::string name = ResourceName(program.name(), GL_UNIFORM, u);
+        const auto plain = ExpectedPlainUniforms().find(program.label() + ":" + name);
+        if (plain != ExpectedPlainUniforms().end()) {
+            seen_plain.insert(plain->first);
+            const GLint location = ResourceInt(program.name(), GL_UNIFORM, u, GL_LOCATION);
+            const GLint type = ResourceInt(program.name(), GL_UNIFORM, u, GL_TYPE);
+            if (location != plain->second.location) {
+                errors.push_back(where + name + " at location " + std::to_string(location) +
+                                 ", in C++ at " + std::to_string(plain->second.location));
+            }
+            if (static_cast<GLenum>(type) != plain->second.type) {
+                errors.push_back(where + name + " has GL type " + Hex(type) + ", in C++ " +
+                                 Hex(plain->second.type));
+            }
+            continue;
+        }
         const auto expected = ExpectedUnits().find(name);
         if (expected == ExpectedUnits().end()) {
             errors.push_back(where + "uniform " + name +
@@ -492,8 +547,8 @@ std::string Join(const std::vector<std::string>& lines) {
 }
 
 TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
-    // 5 LUT passes, 6 composites, the 6 again with clouds, 6 cloud programs.
-    ASSERT_EQ(programs_.size(), 23u);
+    // 5 LUT passes, 6 composites, the 6 again with clouds, 6 cloud programs, 3 display programs.
+    ASSERT_EQ(programs_.size(), 26u);
     const std::map<std::string, BlockMirror> mirrors = Mirrors();
     std::set<std::string> seen;
     std::vector<std::string> errors;
@@ -508,13 +563,16 @@ TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
 
 TEST_F(GlBindingsTest, EverySamplerImageAndWorkGroupIsOnItsBindingsGlslValue) {
     std::vector<std::string> errors;
-    std::set<std::string> compute;
+    std::set<std::string> compute, plain;
     for (const Program& program : programs_) {
-        for (std::string& e : CheckUnits(program)) errors.push_back(e);
+        for (std::string& e : CheckUnits(program, plain)) errors.push_back(e);
         if (ExpectedGroupSizes().count(program.label()) != 0) compute.insert(program.label());
     }
     EXPECT_TRUE(errors.empty()) << Join(errors);
     EXPECT_EQ(compute.size(), ExpectedGroupSizes().size());
+    for (const auto& [name, uniform] : ExpectedPlainUniforms()) {
+        EXPECT_EQ(plain.count(name), 1u) << name << " is in no program the renderer builds";
+    }
 }
 
 // The check is not vacuous: a mirror with two members swapped (as a change in one language
