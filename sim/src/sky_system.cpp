@@ -90,6 +90,7 @@ struct SkySystem::Impl {
     std::unique_ptr<sky::DisplayPass> display;
     std::optional<std::chrono::steady_clock::time_point> last_display;
     bool reset_adaptation = false;
+    bool display_rendered = false;  // a Render has run the display pass (not only Prepare)
 
     sky::DisplayPass& DisplayPassMade() {
         if (!display) {
@@ -282,7 +283,7 @@ const sky::DisplaySettings& SkySystem::display() const { return impl_->settings.
 
 std::optional<double> SkySystem::exposure_ev100() const {
     if (impl_->settings.display.output != sky::DisplaySettings::Output::kDisplay ||
-        !impl_->display) {
+        !impl_->display || !impl_->display_rendered) {
         return std::nullopt;
     }
     return impl_->display->exposure_ev100();
@@ -378,9 +379,26 @@ void SkySystem::Prepare(const glm::ivec2& size) {
     Update();
     sky::RenderOptions options;
     options.size = size;
-    impl_->Draw(options);
+    Impl& d = *impl_;
+    d.Draw(options);
+    if (d.settings.display.output == sky::DisplaySettings::Output::kDisplay) {
+        // The display pass over that frame, metered (all three of its programs run; a given
+        // exposure runs one), into a scratch RGBA8 target of the same size.
+        sky::DisplayPass& pass = d.DisplayPassMade();
+        GLuint texture = 0, framebuffer = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+        glTextureStorage2D(texture, 1, GL_RGBA8, size.x, size.y);
+        glCreateFramebuffers(1, &framebuffer);
+        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+        sky::DisplaySettings metered = d.settings.display;
+        metered.ev100.reset();
+        pass.Run(d.renderer->frame_texture(), framebuffer, {0, 0, size.x, size.y}, metered, 0.0);
+        glDeleteFramebuffers(1, &framebuffer);
+        glDeleteTextures(1, &texture);
+        d.reset_adaptation = true;  // the next Render meters from its own frame
+    }
     glFinish();  // the driver's compilation happens when the GPU runs the frame
-    impl_->cloud_view.reset_history = true;
+    d.cloud_view.reset_history = true;
 }
 
 void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
@@ -402,6 +420,7 @@ void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
         d.last_display = now;
         pass.Run(d.renderer->frame_texture(), framebuffer, viewport, d.settings.display, dt_s,
                  d.scene_depth);
+        d.display_rendered = true;
         return;
     }
     options.target_framebuffer = framebuffer;

@@ -2,8 +2,12 @@
 // drivers keep compiled shaders per process). Run with the Mesa disk cache off for a cold start:
 //
 //   MESA_SHADER_CACHE_DISABLE=true build/tests/bench/first_frame_report [prepare] [weather]
+//       [display]
 //
 // prints creation, Prepare, and each of the first frames (Update + Render + read-back) in ms.
+// With "display", the display output (metered) into an RGBA8 target, waited for with glFinish.
+#include <glad/gl.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -24,10 +28,12 @@ int main(int argc, char** argv) try {
     using namespace zenith;
     const bool prepare = argc > 1 && std::strcmp(argv[1], "prepare") == 0;
     const std::string weather = argc > 2 ? argv[2] : "clear";
+    const bool display = argc > 3 && std::strcmp(argv[3], "display") == 0;
     const glm::ivec2 size(1280, 720);
     auto t0 = std::chrono::steady_clock::now();
     sim::SkySystemSettings settings;
     settings.weather = weather;
+    if (display) settings.display.output = sky::DisplaySettings::Output::kDisplay;
     settings.clouds.noise_cache_directory =
         std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
     auto sky = sim::SkySystem::CreateHeadless(settings);
@@ -42,13 +48,26 @@ int main(int argc, char** argv) try {
         sky->Prepare(size);
         prepare_ms = MsSince(t0);
     }
-    std::printf("%-8s weather %-18s create %7.1f ms  prepare %7.1f ms  frames",
-                prepare ? "prepare" : "cold", weather.c_str(), create_ms, prepare_ms);
+    GLuint texture = 0, framebuffer = 0;
+    if (display) {
+        glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+        glTextureStorage2D(texture, 1, GL_RGBA8, size.x, size.y);
+        glCreateFramebuffers(1, &framebuffer);
+        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    }
+    std::printf("%-8s %-7s weather %-18s create %7.1f ms  prepare %7.1f ms  frames",
+                prepare ? "prepare" : "cold", display ? "display" : "linear", weather.c_str(),
+                create_ms, prepare_ms);
     for (int frame = 0; frame < 4; ++frame) {
         t0 = std::chrono::steady_clock::now();
         sky->AdvanceTime(0.04);
         sky->Update();
-        sky->RenderOffscreen(size);  // the read-back waits for the GPU
+        if (display) {
+            sky->Render(framebuffer, {0, 0, size.x, size.y});
+            glFinish();
+        } else {
+            sky->RenderOffscreen(size);  // the read-back waits for the GPU
+        }
         std::printf(" %7.1f", MsSince(t0));
     }
     std::printf(" ms\n");

@@ -234,8 +234,11 @@ class SkySystem {
     // runs Update and draws one frame of `size` (the host's viewport size) into the system's
     // own target, then waits for the GPU. Time, place, view and lighting are as an Update would
     // leave them; the clouds' history starts over (as after ResetCloudHistory), so the next
-    // frame is the one it would have been. A host with scene depth still compiles the depth
-    // variant at its first Render.
+    // frame is the one it would have been. With display.output == kDisplay it also runs the
+    // display pass, metered, over that frame into a scratch target (~100 ms once on llvmpipe at
+    // 1280x720, taken from the first Render; BENCHMARKS.md), restarts its adaptation and reports
+    // no exposure (exposure_ev100() waits for a Render). A host with scene depth still compiles
+    // the depth variant at its first Render.
     void Prepare(const glm::ivec2& size);
 
     // Ephemeris, lights, lighting and per-frame LUTs for the current state.
