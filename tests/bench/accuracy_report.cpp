@@ -1,18 +1,36 @@
-// Accuracy of the LUT renderer against the path tracer in the scenarios of Hillaire 2020 §6, as a
-// markdown table (BENCHMARKS.md, "sky: accuracy against the path tracer"). Not a Google Benchmark:
-// a plain main, built by tests/bench/CMakeLists.txt's glob.
+// Accuracy of the LUT renderer against the path tracer, as markdown tables (BENCHMARKS.md, "sky:
+// accuracy against the path tracer"). Not a Google Benchmark: a plain main, built by
+// tests/bench/CMakeLists.txt's glob.
 //
-//   accuracy_report [--width W] [--height H] [--samples N] [--thick-samples N] [--threads T]
-//                   [--seed S] [--only NAME]
+//   accuracy_report [--grid paper] [--width W] [--height H] [--samples N] [--thick-samples N]
+//                   [--threads T] [--seed S] [--only NAME]
+//   accuracy_report --grid twilight [--samples N] [--max-samples M] [--target-se E]
+//                   [--converged-se C] [--threads T] [--seed S]
 //
-// Defaults (96x64, 1024 paths per pixel, 256 for the 50x atmosphere whose paths scatter hundreds
-// of times) take several minutes on 2 cores.
+// paper: the scenarios of Hillaire 2020 §6 as images. Defaults (96x64, 1024 paths per pixel, 256
+// for the 50x atmosphere whose paths scatter hundreds of times) take several minutes on 2 cores.
+//
+// twilight (issue 18 §2): single view rays on the Earth preset (black ground, no sun disk), sun
+// zenith 80-102 deg x observer altitude 0 (1 m), 1, 5, 10 km x four views (horizon toward the
+// sun, 90 deg off it, away from it; the zenith). The renderer is the Sky-View LUT read as
+// render.frag reads it (every camera here is inside the atmosphere); the reference is PathTrace.
+// Each ray gets N paths, then doubles them until the path tracer's relative standard error is
+// below E in every channel or M paths are spent (defaults 16384, 1048576, 0.01); a ray that
+// cannot reach C (below) within M at its rate after 65536 paths stops there. The summary
+// (median and p95 of |renderer / path tracer - 1|) keeps the rays whose relative standard error
+// is <= C (0.025) in every channel; past sunset the path tracer may not get there within M.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <numbers>
 #include <string>
+#include <vector>
 
 #include "zenith/sky/reference/accuracy.h"
+#include "zenith/sky/reference/atmosphere_reference.h"
 
 namespace {
 
@@ -30,8 +48,10 @@ std::string Triple(const glm::dvec3& v, double scale, int digits) {
 
 [[noreturn]] void Usage(const char* message) {
     std::fprintf(stderr,
-                 "accuracy_report: %s\nusage: accuracy_report [--width W] [--height H] "
-                 "[--samples N] [--thick-samples N] [--threads T] [--seed S] [--only NAME]\n",
+                 "accuracy_report: %s\nusage: accuracy_report [--grid paper] [--width W] "
+                 "[--height H] [--samples N] [--thick-samples N] [--threads T] [--seed S] "
+                 "[--only NAME]\n       accuracy_report --grid twilight [--samples N] "
+                 "[--max-samples M] [--target-se E] [--converged-se C] [--threads T] [--seed S]\n",
                  message);
     std::exit(2);
 }
@@ -47,6 +67,306 @@ long long ParseInteger(const char* flag, const char* text, long long low, long l
     return value;
 }
 
+double ParseReal(const char* flag, const char* text, double low, double high) {
+    char* end = nullptr;
+    const double value = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !(value >= low && value <= high)) {
+        Usage((std::string(flag) + " " + text + " is out of range").c_str());
+    }
+    return value;
+}
+
+// --- The twilight grid ----------------------------------------------------------------------
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr glm::dvec3 kRec709{0.2126, 0.7152, 0.0722};
+
+struct TwilightOptions {
+    std::int64_t samples = 16384;        // first batch of paths per ray
+    std::int64_t max_samples = 1 << 20;  // cap per ray
+    double target_se = 0.01;             // relative standard error to reach in every channel
+    // Rays whose relative standard error stays above this in a channel are not converged: listed,
+    // but left out of the summary (their |error| would be the path tracer's noise).
+    double converged_se = 0.025;
+    std::uint64_t seed = 1;
+    int threads = 2;
+};
+
+struct TwilightView {
+    const char* name;
+    double elevation;  // rad, above the astronomical horizon
+    double azimuth;    // rad, from the sun's azimuth
+};
+
+// The horizon views look 1 deg above the astronomical horizon: a ray that stays in the air from
+// every altitude of the grid (from 1 m, 0 deg would graze the ground).
+const TwilightView kTwilightViews[] = {
+    {"horizon, sun side", 1.0 * kDeg, 0.0},
+    {"horizon, 90 deg off", 1.0 * kDeg, 90.0 * kDeg},
+    {"horizon, anti-solar", 1.0 * kDeg, 180.0 * kDeg},
+    {"zenith", 90.0 * kDeg, 0.0},
+};
+const double kSunZenithsDeg[] = {80.0, 85.0, 90.0, 95.0, 96.0, 100.0, 102.0};
+const double kAltitudesM[] = {1.0, 1e3, 5e3, 10e3};  // "0 km" is 1 m above the ground
+
+// Local frame of the observer: +y up, azimuth 0 along +x (the sun's azimuth).
+glm::dvec3 LocalDirection(double elevation, double azimuth) {
+    return {std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+            std::cos(elevation) * std::sin(azimuth)};
+}
+
+struct TwilightRow {
+    double sun_zenith_deg = 0.0;
+    double altitude_m = 0.0;
+    const char* view = "";
+    glm::dvec4 renderer{0.0};   // R, G, B, Y, cd/m²
+    glm::dvec4 reference{0.0};  // path tracer
+    glm::dvec4 reference_se{0.0};
+    glm::dvec4 renderer_point_sun{0.0};  // the renderer with a point sun (the path tracer's)
+    std::int64_t paths = 0;
+    bool converged = false;
+    glm::dvec4 Error() const { return renderer / reference - 1.0; }
+    // The ratio's standard error (the renderer is deterministic).
+    glm::dvec4 ErrorSe() const { return renderer / reference * (reference_se / reference); }
+};
+
+glm::dvec4 WithLuminance(const glm::dvec3& rgb) { return {rgb, glm::dot(rgb, kRec709)}; }
+
+// Path traces one ray until the target relative error or the cap, by doubling batches with
+// independent seeds, merged as one sample.
+zenith::sky::reference::PathTraceResult TraceRay(const zenith::sky::Atmosphere& atmosphere,
+                                                 const glm::dvec3& position,
+                                                 const glm::dvec3& direction, const glm::dvec3& sun,
+                                                 const TwilightOptions& o, std::uint64_t seed) {
+    using zenith::sky::reference::PathTraceOptions;
+    using zenith::sky::reference::PathTraceResult;
+    glm::dvec3 sum(0.0), sum_squares(0.0);
+    std::int64_t n = 0;
+    std::int64_t batch = o.samples;
+    PathTraceResult total;
+    for (int round = 0;; ++round) {
+        PathTraceOptions trace;
+        trace.samples = std::min(batch, o.max_samples - n);
+        trace.seed = seed * std::uint64_t{1000003} + static_cast<std::uint64_t>(round);
+        trace.ground = false;
+        trace.threads = o.threads;
+        const PathTraceResult r =
+            zenith::sky::reference::PathTrace(atmosphere, position, direction, sun, trace);
+        const double m = static_cast<double>(r.samples);
+        // Back to sums: mean m, variance of the mean se² -> sample variance m se².
+        sum += r.luminance * m;
+        sum_squares +=
+            (r.standard_error * r.standard_error * m * (m - 1.0)) + m * r.luminance * r.luminance;
+        n += r.samples;
+        const double count = static_cast<double>(n);
+        total.samples = n;
+        total.luminance = sum / count;
+        const glm::dvec3 variance =
+            glm::max(glm::dvec3(0.0),
+                     (sum_squares - count * total.luminance * total.luminance) / (count - 1.0));
+        total.standard_error = glm::sqrt(variance / count);
+        const glm::dvec3 relative = total.standard_error / total.luminance;
+        const bool converged = std::max({relative.x, relative.y, relative.z}) <= o.target_se;
+        if (converged || n >= o.max_samples) break;
+        // Hopeless within the cap (the error falls as 1/sqrt(paths)): stop once the estimate
+        // has 65536 paths behind it, and spend the time on the rays that can converge.
+        const double worst = std::max({relative.x, relative.y, relative.z});
+        if (n >= 65536 &&
+            !(worst * std::sqrt(count / static_cast<double>(o.max_samples)) <= o.converged_se)) {
+            break;
+        }
+        batch = n;  // doubles the total
+    }
+    return total;
+}
+
+// Type-7 quantile (linear between order statistics) of |values|.
+double AbsQuantile(std::vector<double> values, double q) {
+    for (double& v : values) v = std::abs(v);
+    std::sort(values.begin(), values.end());
+    if (values.empty()) return 0.0;
+    const double position = q * static_cast<double>(values.size() - 1);
+    const auto i = static_cast<std::size_t>(position);
+    const double f = position - static_cast<double>(i);
+    return i + 1 < values.size() ? values[i] * (1.0 - f) + values[i + 1] * f : values[i];
+}
+
+enum class SummaryKind {
+    kConverged,  // |error| over the converged rays
+    kPointSun,   // the same with the point-sun renderer
+    // max(0, |error| - 2 SE) over every ray with a non-zero reference: what the error is at
+    // least, granting the path tracer two standard errors, converged or not
+    kLowerBound,
+};
+
+// " n (left out) | median / p95 | ..." per channel (R, G, B, Y) of |error| over the rows that
+// pass `keep`, in percent.
+template <class Keep>
+std::string Summary(const std::vector<TwilightRow>& rows, Keep keep, SummaryKind kind) {
+    const auto use = [&](const TwilightRow& row) {
+        if (kind != SummaryKind::kLowerBound) return row.converged;
+        return row.reference.x > 0.0 && row.reference.y > 0.0 && row.reference.z > 0.0;
+    };
+    std::size_t count = 0, skipped = 0;
+    for (const TwilightRow& row : rows) {
+        if (keep(row)) ++(use(row) ? count : skipped);
+    }
+    char head[64];
+    std::snprintf(head, sizeof(head), " %zu (%zu) |", count, skipped);
+    std::string text = head;
+    for (int c = 0; c < 4; ++c) {
+        std::vector<double> errors;
+        for (const TwilightRow& row : rows) {
+            if (!keep(row) || !use(row)) continue;
+            switch (kind) {
+                case SummaryKind::kConverged:
+                    errors.push_back(row.Error()[c]);
+                    break;
+                case SummaryKind::kPointSun:
+                    errors.push_back(row.renderer_point_sun[c] / row.reference[c] - 1.0);
+                    break;
+                case SummaryKind::kLowerBound:
+                    errors.push_back(
+                        std::max(0.0, std::abs(row.Error()[c]) - 2.0 * row.ErrorSe()[c]));
+                    break;
+            }
+        }
+        char cell[64];
+        if (errors.empty()) {
+            text += " — |";
+            continue;
+        }
+        std::snprintf(cell, sizeof(cell), " %.1f / %.1f |", 100.0 * AbsQuantile(errors, 0.5),
+                      100.0 * AbsQuantile(errors, 0.95));
+        text += cell;
+    }
+    return text;
+}
+
+int RunTwilight(const TwilightOptions& options) {
+    using Clock = std::chrono::steady_clock;
+    using zenith::sky::Atmosphere;
+    using zenith::sky::Lights;
+    using zenith::sky::reference::AtmosphereReference;
+    Atmosphere earth = zenith::sky::LoadAtmosphere("earth");
+    earth.ground_albedo = glm::dvec3(0.0);
+    Atmosphere point_sun = earth;
+    point_sun.sun_angular_radius = 1e-7;  // rad: the path tracer's point sun, for comparison
+    const AtmosphereReference renderer(earth, zenith::sky::LutSettings::Pc());
+    const AtmosphereReference renderer_point(point_sun, zenith::sky::LutSettings::Pc());
+
+    std::printf(
+        "Earth preset, black ground, no sun disk; renderer: Sky-View LUT (LutSettings::Pc()); "
+        "reference: PathTrace, %lld paths per ray doubled until the relative standard error is "
+        "<= %.3g in R, G and B or %lld paths (from 65536 on, stopped where %.3g is out of reach "
+        "within that); seed %llu; horizon views 1 deg above the "
+        "astronomical horizon; \"0 km\" is 1 m\n\n",
+        static_cast<long long>(options.samples), options.target_se,
+        static_cast<long long>(options.max_samples), options.converged_se,
+        static_cast<unsigned long long>(options.seed));
+    std::printf(
+        "| sun zenith | altitude | view | path tracer Y, cd/m² | renderer / path tracer − 1 (R, "
+        "G, B, Y) ± path-tracer SE | point sun, Y | paths |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    std::fflush(stdout);
+
+    std::vector<TwilightRow> rows;
+    double renderer_seconds = 0.0, reference_seconds = 0.0;
+    std::uint64_t ray_index = 0;
+    for (const double sun_zenith : kSunZenithsDeg) {
+        Lights lights;
+        lights.sun_direction = LocalDirection((90.0 - sun_zenith) * kDeg, 0.0);
+        lights.sun_illuminance = earth.solar_illuminance;
+        for (const double altitude : kAltitudesM) {
+            const glm::dvec3 camera(0.0, earth.bottom_radius + altitude, 0.0);
+            auto start = Clock::now();
+            const zenith::sky::LutImage sky_view = renderer.SkyView(camera, lights);
+            const zenith::sky::LutImage sky_view_point = renderer_point.SkyView(camera, lights);
+            renderer_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+            for (const TwilightView& view : kTwilightViews) {
+                const glm::dvec3 direction = LocalDirection(view.elevation, view.azimuth);
+                TwilightRow row;
+                row.sun_zenith_deg = sun_zenith;
+                row.altitude_m = altitude;
+                row.view = view.name;
+                row.renderer = WithLuminance(
+                    renderer.SampleSkyView(sky_view, camera, lights.sun_direction, direction));
+                row.renderer_point_sun = WithLuminance(renderer_point.SampleSkyView(
+                    sky_view_point, camera, lights.sun_direction, direction));
+                start = Clock::now();
+                const zenith::sky::reference::PathTraceResult r =
+                    TraceRay(earth, camera, direction, lights.sun_direction, options,
+                             options.seed + ray_index++);
+                reference_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+                row.reference = WithLuminance(r.luminance);
+                // Y's error as if R, G and B were fully correlated (they come from the same
+                // paths): an upper bound.
+                row.reference_se = {r.standard_error, glm::dot(r.standard_error, kRec709)};
+                row.paths = r.samples;
+                const glm::dvec3 relative_se = r.standard_error / r.luminance;
+                row.converged =
+                    r.luminance.x > 0.0 && r.luminance.y > 0.0 && r.luminance.z > 0.0 &&
+                    std::max({relative_se.x, relative_se.y, relative_se.z}) <= options.converged_se;
+                const glm::dvec4 e = 100.0 * row.Error();
+                const glm::dvec4 se = 100.0 * row.ErrorSe();
+                std::printf(
+                    "| %.0f° | %.0f km | %s | %.3g | %+.1f ± %.1f, %+.1f ± %.1f, %+.1f ± %.1f, "
+                    "%+.1f ± %.1f %% | %+.1f %% | %lld%s |\n",
+                    sun_zenith, altitude < 100.0 ? 0.0 : altitude / 1e3, view.name, row.reference.w,
+                    e.x, se.x, e.y, se.y, e.z, se.z, e.w, se.w,
+                    100.0 * (row.renderer_point_sun.w / row.reference.w - 1.0),
+                    static_cast<long long>(row.paths), row.converged ? "" : " (not converged)");
+                std::fflush(stdout);
+                rows.push_back(row);
+            }
+        }
+    }
+
+    const auto all = [](const TwilightRow&) { return true; };
+    const auto core = [](const TwilightRow& row) {
+        return row.sun_zenith_deg != 96.0 && row.sun_zenith_deg != 102.0;
+    };
+    const auto by_sun = [&](double sun_zenith) {
+        return [sun_zenith](const TwilightRow& row) { return row.sun_zenith_deg == sun_zenith; };
+    };
+    const auto by_altitude = [&](double altitude) {
+        return [altitude](const TwilightRow& row) { return row.altitude_m == altitude; };
+    };
+    const auto by_view = [&](const char* name) {
+        return [name](const TwilightRow& row) { return std::strcmp(row.view, name) == 0; };
+    };
+    const auto print_slices = [&](SummaryKind kind) {
+        std::printf("| all |%s\n", Summary(rows, all, kind).c_str());
+        std::printf("| sun zenith 80, 85, 90, 95, 100 |%s\n", Summary(rows, core, kind).c_str());
+        for (const double sun_zenith : kSunZenithsDeg) {
+            std::printf("| sun zenith %.0f° |%s\n", sun_zenith,
+                        Summary(rows, by_sun(sun_zenith), kind).c_str());
+        }
+        for (const double altitude : kAltitudesM) {
+            std::printf("| altitude %.0f km |%s\n", altitude < 100.0 ? 0.0 : altitude / 1e3,
+                        Summary(rows, by_altitude(altitude), kind).c_str());
+        }
+        for (const TwilightView& view : kTwilightViews) {
+            std::printf("| %s |%s\n", view.name, Summary(rows, by_view(view.name), kind).c_str());
+        }
+    };
+    std::printf(
+        "\n|error| over the converged rays (path-tracer relative SE <= %.3g in R, G and B), median "
+        "/ p95 in %% (goal, issue 18: median <= 5, p95 <= 10); n (rays left out)\n\n"
+        "| rays | n | R | G | B | Y |\n|---|---|---|---|---|---|\n",
+        options.converged_se);
+    print_slices(SummaryKind::kConverged);
+    std::printf("| all, renderer with a point sun |%s\n",
+                Summary(rows, all, SummaryKind::kPointSun).c_str());
+    std::printf(
+        "\nLower bound, every ray with a non-zero reference: max(0, |error| - 2 SE), median / p95 "
+        "in %%\n\n| rays | n | R | G | B | Y |\n|---|---|---|---|---|---|\n");
+    print_slices(SummaryKind::kLowerBound);
+    std::printf("\nrenderer %.1f s (two Sky-View LUTs per sun and altitude), path tracer %.0f s\n",
+                renderer_seconds, reference_seconds);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,6 +376,9 @@ int main(int argc, char** argv) {
     options.samples = 1024;
     std::int64_t thick_samples = 256;
     std::string only;
+    std::string grid = "paper";
+    bool samples_given = false;
+    TwilightOptions twilight;
     for (int i = 1; i < argc; ++i) {
         const char* flag = argv[i];
         if (i + 1 >= argc) Usage((std::string("missing value after ") + flag).c_str());
@@ -66,6 +389,16 @@ int main(int argc, char** argv) {
             options.height = static_cast<int>(ParseInteger(flag, value, 1, 4096));
         } else if (!std::strcmp(flag, "--samples")) {
             options.samples = ParseInteger(flag, value, 2, 1 << 24);
+            samples_given = true;
+        } else if (!std::strcmp(flag, "--max-samples")) {
+            twilight.max_samples = ParseInteger(flag, value, 2, 1LL << 40);
+        } else if (!std::strcmp(flag, "--target-se")) {
+            twilight.target_se = ParseReal(flag, value, 0.0, 1.0);
+        } else if (!std::strcmp(flag, "--converged-se")) {
+            twilight.converged_se = ParseReal(flag, value, 0.0, 1.0);
+        } else if (!std::strcmp(flag, "--grid")) {
+            grid = value;
+            if (grid != "paper" && grid != "twilight") Usage("--grid is paper or twilight");
         } else if (!std::strcmp(flag, "--thick-samples")) {
             thick_samples = ParseInteger(flag, value, 2, 1 << 24);
         } else if (!std::strcmp(flag, "--threads")) {
@@ -77,6 +410,14 @@ int main(int argc, char** argv) {
         } else {
             Usage((std::string("unknown option ") + flag).c_str());
         }
+    }
+
+    if (grid == "twilight") {
+        if (samples_given) twilight.samples = options.samples;
+        twilight.max_samples = std::max(twilight.max_samples, twilight.samples);
+        twilight.seed = options.seed;
+        twilight.threads = options.threads;
+        return RunTwilight(twilight);
     }
 
     std::printf(
