@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "colour_target.h"
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/gl/context.h"
 
@@ -18,24 +19,9 @@ namespace {
 
 constexpr int kWidth = 320, kHeight = 180;
 
-struct Rgba8Target {
-    GLuint texture = 0, framebuffer = 0;
-    Rgba8Target() {
-        glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-        glTextureStorage2D(texture, 1, GL_RGBA8, kWidth, kHeight);
-        glCreateFramebuffers(1, &framebuffer);
-        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
-    }
-    ~Rgba8Target() {
-        glDeleteFramebuffers(1, &framebuffer);
-        glDeleteTextures(1, &texture);
-    }
-    std::vector<std::uint8_t> Read() const {
-        std::vector<std::uint8_t> rgba(4u * kWidth * kHeight);
-        glGetTextureImage(texture, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(rgba.size()),
-                          rgba.data());
-        return rgba;
-    }
+// The host's 8-bit target.
+struct Rgba8Target : zenith::test::ColourTarget {
+    Rgba8Target() : ColourTarget(GL_RGBA8, kWidth, kHeight) {}
 };
 
 // What a frame looks like on the screen: mean Rec.709 luma of the encoded values (0-255), the
@@ -94,8 +80,8 @@ class DisplaySkyTest : public ::testing::Test {
         sky.SetTime(geo::TimeFromIso8601(utc));
         sky.ResetCloudHistory();
         sky.Update();
-        sky.Render(target.framebuffer, {0, 0, kWidth, kHeight});
-        const Look look = LookOf(target.Read());
+        sky.Render(target.framebuffer(), {0, 0, kWidth, kHeight});
+        const Look look = LookOf(target.ReadBytes());
         const std::optional<double> ev = sky.exposure_ev100();
         std::printf("%s: mean %.1f / 255, white %.4f, saturation %.3f, EV100 %s (%s)\n", utc,
                     look.mean, look.white, look.saturation,
@@ -185,15 +171,15 @@ TEST_F(DisplaySkyTest, PrepareWarmsTheDisplayPassWithoutChangingTheFrame) {
     prepared->Prepare({kWidth, kHeight});
     EXPECT_FALSE(prepared->exposure_ev100().has_value());
     prepared->Update();
-    prepared->Render(target.framebuffer, {0, 0, kWidth, kHeight});
-    const std::vector<std::uint8_t> after_prepare = target.Read();
+    prepared->Render(target.framebuffer(), {0, 0, kWidth, kHeight});
+    const std::vector<std::uint8_t> after_prepare = target.ReadBytes();
     EXPECT_TRUE(prepared->exposure_ev100().has_value());
 
     const auto fresh = MakeSky(MeteredDisplay());
     fresh->SetTime(geo::TimeFromIso8601(kNoon));
     fresh->Update();
-    fresh->Render(target.framebuffer, {0, 0, kWidth, kHeight});
-    EXPECT_EQ(after_prepare, target.Read());
+    fresh->Render(target.framebuffer(), {0, 0, kWidth, kHeight});
+    EXPECT_EQ(after_prepare, target.ReadBytes());
     EXPECT_EQ(prepared->exposure_ev100(), fresh->exposure_ev100());
 }
 

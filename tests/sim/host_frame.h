@@ -1,5 +1,5 @@
-// A host's render target for the SkySystem GL tests: an RGBA32F colour texture and a 32-bit
-// float depth texture on the host's own framebuffer, as an external host attaches them. A GL
+// A host's render target for the SkySystem GL tests: an RGBA32F colour target and a 32-bit
+// float depth texture beside it, as an external host attaches them. A GL
 // context must be current (SkySystem::CreateHeadless makes one).
 #pragma once
 
@@ -8,25 +8,19 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "colour_target.h"
 #include "zenith/sim/sky_system.h"
 
 namespace zenith::sim::test {
 
 class HostFrame {
   public:
-    HostFrame(int width, int height) : width_(width), height_(height) {
-        glCreateTextures(GL_TEXTURE_2D, 1, &colour_);
-        glTextureStorage2D(colour_, 1, GL_RGBA32F, width, height);
+    HostFrame(int width, int height)
+        : width_(width), height_(height), colour_(GL_RGBA32F, width, height) {
         glCreateTextures(GL_TEXTURE_2D, 1, &depth_);
         glTextureStorage2D(depth_, 1, GL_DEPTH_COMPONENT32F, width, height);
-        glCreateFramebuffers(1, &framebuffer_);
-        glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, colour_, 0);
     }
-    ~HostFrame() {
-        glDeleteFramebuffers(1, &framebuffer_);
-        glDeleteTextures(1, &colour_);
-        glDeleteTextures(1, &depth_);
-    }
+    ~HostFrame() { glDeleteTextures(1, &depth_); }
     HostFrame(const HostFrame&) = delete;
     HostFrame& operator=(const HostFrame&) = delete;
 
@@ -38,19 +32,17 @@ class HostFrame {
         glTextureSubImage2D(depth_, 0, 0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_FLOAT,
                             depth.data());
         const float host_colour[4] = {colour, colour, colour, 1.0f};
-        glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, host_colour);
+        glClearNamedFramebufferfv(colour_.framebuffer(), GL_COLOR, 0, host_colour);
         sky.SetSceneDepth(depth_, near_m, far_m, reversed);
-        sky.Render(framebuffer_, {0, 0, width_, height_});
+        sky.Render(colour_.framebuffer(), {0, 0, width_, height_});
         sky.ClearSceneDepth();
-        std::vector<glm::vec4> pixels(static_cast<std::size_t>(width_ * height_));
-        glGetTextureImage(colour_, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
-                          pixels.data());
-        return pixels;
+        return colour_.ReadFloat();
     }
 
   private:
     int width_, height_;
-    GLuint colour_ = 0, depth_ = 0, framebuffer_ = 0;
+    zenith::test::ColourTarget colour_;
+    GLuint depth_ = 0;
 };
 
 }  // namespace zenith::sim::test

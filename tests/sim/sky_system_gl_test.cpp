@@ -10,6 +10,7 @@
 #include <glm/gtc/constants.hpp>
 #include <vector>
 
+#include "colour_target.h"
 #include "host_frame.h"
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
@@ -118,11 +119,8 @@ TEST_F(SkySystemTest, DrawsIntoTheHostFramebufferViewport) {
     const sky::LutImage offscreen = sky_->RenderOffscreen({32, 32});
 
     // A host framebuffer 64x64 filled with a marker; the sky goes into (16, 8, 32, 32).
-    GLuint texture = 0, framebuffer = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-    glTextureStorage2D(texture, 1, GL_RGBA32F, 64, 64);
-    glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    const zenith::test::ColourTarget target(GL_RGBA32F, 64, 64);
+    const GLuint framebuffer = target.framebuffer();
     const float marker[4] = {-1.0f, -1.0f, -1.0f, -1.0f};
     glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, marker);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
@@ -134,12 +132,8 @@ TEST_F(SkySystemTest, DrawsIntoTheHostFramebufferViewport) {
     EXPECT_EQ(static_cast<GLuint>(bound), framebuffer);
     EXPECT_EQ(viewport[0], 1);
     EXPECT_EQ(viewport[3], 4);
-    std::vector<glm::vec4> pixels(64 * 64);
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
-                      pixels.data());
+    const std::vector<glm::vec4> pixels = target.ReadFloat();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteFramebuffers(1, &framebuffer);
-    glDeleteTextures(1, &texture);
     for (int y = 0; y < 64; ++y) {
         for (int x = 0; x < 64; ++x) {
             const glm::vec4& p = pixels[static_cast<std::size_t>(y * 64 + x)];

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cloud_test_support.h"
+#include "colour_target.h"
 #include "gl_test_support.h"
 #include "reference/cloud_trace.h"
 #include "zenith/base/error.h"
@@ -144,29 +145,21 @@ std::vector<glm::vec4> RenderOverGeometry(AtmosphereRenderer& renderer, const Ca
     const double z_ndc = (kFar + kNear - 2.0 * kNear * kFar / eye_depth) / (kFar - kNear);
     const std::vector<float> depth(static_cast<std::size_t>(size.x * size.y),
                                    static_cast<float>(0.5 * (z_ndc + 1.0)));
-    GLuint texture = 0, depth_texture = 0, framebuffer = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-    glTextureStorage2D(texture, 1, GL_RGBA32F, size.x, size.y);
+    const zenith::test::ColourTarget target(GL_RGBA32F, size.x, size.y);
+    GLuint depth_texture = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture);
     glTextureStorage2D(depth_texture, 1, GL_DEPTH_COMPONENT32F, size.x, size.y);
     glTextureSubImage2D(depth_texture, 0, 0, 0, size.x, size.y, GL_DEPTH_COMPONENT, GL_FLOAT,
                         depth.data());
-    glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
     const float fill[4] = {colour, colour, colour, 1.0f};
-    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, fill);
-    options.target_framebuffer = framebuffer;
+    glClearNamedFramebufferfv(target.framebuffer(), GL_COLOR, 0, fill);
+    options.target_framebuffer = target.framebuffer();
     options.target_viewport = {0, 0, size.x, size.y};
     options.scene_depth = SceneDepth{depth_texture, kNear, kFar};
     renderer.UpdateFrameLuts(camera, lights, options.clouds);
     renderer.Render(camera, lights, options);
-    std::vector<glm::vec4> pixels(static_cast<std::size_t>(size.x * size.y));
-    glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * 16),
-                      pixels.data());
-    glDeleteFramebuffers(1, &framebuffer);
-    glDeleteTextures(1, &texture);
     glDeleteTextures(1, &depth_texture);
-    return pixels;
+    return target.ReadFloat();
 }
 
 // The composite lays the clouds, (L, T) as ReadClouds gives them, over what they hide: the

@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "colour_target.h"
 #include "gl_test_support.h"
 #include "reference/display_functions.h"
 #include "zenith/sky/display.h"
@@ -31,36 +32,18 @@ class DisplayPassTest : public gl::test::HeadlessGlTest {
         return texture;
     }
 
-    // A host target of `format` and its framebuffer.
-    struct Target {
-        GLuint texture = 0, framebuffer = 0;
-        int width = 0, height = 0;
-        Target(GLenum format, int w, int h) : width(w), height(h) {
-            glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-            glTextureStorage2D(texture, 1, format, w, h);
-            glCreateFramebuffers(1, &framebuffer);
-            glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    // The stored bytes of a host target, RGB of each pixel (no sRGB decoding:
+    // glGetTextureImage returns what is stored).
+    static std::vector<std::uint8_t> Rgb(const zenith::test::ColourTarget& target) {
+        const std::vector<std::uint8_t> rgba = target.ReadBytes();
+        std::vector<std::uint8_t> rgb;
+        rgb.reserve(rgba.size() / 4 * 3);
+        for (std::size_t i = 0; i < rgba.size(); i += 4) {
+            rgb.insert(rgb.end(), rgba.begin() + static_cast<std::ptrdiff_t>(i),
+                       rgba.begin() + static_cast<std::ptrdiff_t>(i + 3));
         }
-        ~Target() {
-            glDeleteFramebuffers(1, &framebuffer);
-            glDeleteTextures(1, &texture);
-        }
-        // The stored bytes, RGB of each pixel (no sRGB decoding: glGetTextureImage returns
-        // what is stored).
-        std::vector<std::uint8_t> Rgb() const {
-            std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) *
-                                           static_cast<std::size_t>(height) * 4u);
-            glGetTextureImage(texture, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                              static_cast<GLsizei>(rgba.size()), rgba.data());
-            std::vector<std::uint8_t> rgb;
-            rgb.reserve(rgba.size() / 4 * 3);
-            for (std::size_t i = 0; i < rgba.size(); i += 4) {
-                rgb.insert(rgb.end(), rgba.begin() + static_cast<std::ptrdiff_t>(i),
-                           rgba.begin() + static_cast<std::ptrdiff_t>(i + 3));
-            }
-            return rgb;
-        }
-    };
+        return rgb;
+    }
 
     static DisplaySettings Given(double ev100, bool night) {
         DisplaySettings s;
@@ -107,14 +90,14 @@ TEST_F(DisplayPassTest, MatchesTheCpuPngPathWithinOneLsb) {
     const GLuint input = Upload(image);
     DisplayPass pass;
     for (GLenum format : {GLenum{GL_RGBA8}, GLenum{GL_SRGB8_ALPHA8}}) {
-        const Target target(format, image.width, image.height);
+        const zenith::test::ColourTarget target(format, image.width, image.height);
         for (bool night : {false, true}) {
             for (double ev : {-6.0, 0.0, 6.0, 12.0, 15.0}) {
                 SCOPED_TRACE(testing::Message()
                              << "format " << format << " night " << night << " EV100 " << ev);
-                pass.Run(input, target.framebuffer, {0, 0, image.width, image.height},
+                pass.Run(input, target.framebuffer(), {0, 0, image.width, image.height},
                          Given(ev, night), 0.0);
-                const std::vector<std::uint8_t> gpu = target.Rgb();
+                const std::vector<std::uint8_t> gpu = Rgb(target);
                 const Srgb8Image cpu = ToneMapToSrgb8(image, ev, night);
                 ASSERT_EQ(gpu.size(), cpu.rgb.size());
                 int worst = 0;
@@ -161,12 +144,12 @@ TEST_F(DisplayPassTest, GivenEv100IsTheClosedForm) {
         image.at(i, 0) = glm::vec4(l, l, l, 1.0f);
     }
     const GLuint input = Upload(image);
-    const Target target(GL_RGBA8, 8, 1);
+    const zenith::test::ColourTarget target(GL_RGBA8, 8, 1);
     DisplayPass pass;
-    pass.Run(input, target.framebuffer, {0, 0, 8, 1}, Given(kEv, false), 0.0);
+    pass.Run(input, target.framebuffer(), {0, 0, 8, 1}, Given(kEv, false), 0.0);
     ASSERT_TRUE(pass.exposure_ev100().has_value());
     EXPECT_DOUBLE_EQ(*pass.exposure_ev100(), kEv);
-    const std::vector<std::uint8_t> rgb = target.Rgb();
+    const std::vector<std::uint8_t> rgb = Rgb(target);
     for (int i = 0; i < 8; ++i) {
         const double x = static_cast<double>(image.at(i, 0).r) / l_max;
         const double aces =
@@ -192,15 +175,15 @@ TEST_F(DisplayPassTest, MeterIsTheCpuMeter) {
         p = glm::vec4(l * 0.8f, l, l * 1.3f, 1.0f);
     }
     const GLuint input = Upload(image);
-    const Target target(GL_RGBA8, image.width, image.height);
+    const zenith::test::ColourTarget target(GL_RGBA8, image.width, image.height);
     DisplayPass pass;
     const double cpu = AutoExposureEV100(image);
-    pass.Run(input, target.framebuffer, {0, 0, image.width, image.height}, Metered(false), 0.0);
+    pass.Run(input, target.framebuffer(), {0, 0, image.width, image.height}, Metered(false), 0.0);
     const double gpu = *pass.exposure_ev100();
     std::printf("metered EV100: CPU %.4f, GPU %.4f\n", cpu, gpu);
     EXPECT_NEAR(gpu, cpu, 0.03);  // half a bin (0.025 EV) and float sums
 
-    pass.Run(input, target.framebuffer, {0, 0, image.width, image.height}, Metered(true), 0.0);
+    pass.Run(input, target.framebuffer(), {0, 0, image.width, image.height}, Metered(true), 0.0);
     const double log2_average = cpu - std::log2(100.0 / 12.5);
     const double night = cpu + ref::DisplayNightCompensationEV(std::exp2(log2_average));
     std::printf("with night compensation: CPU %.4f, GPU %.4f\n", night, *pass.exposure_ev100());
@@ -213,20 +196,20 @@ TEST_F(DisplayPassTest, AdaptationFollowsItsTimeConstant) {
     Image bright(64, 64, glm::vec4(1000.0f, 1000.0f, 1000.0f, 1.0f));
     Image dim(64, 64, glm::vec4(10.0f, 10.0f, 10.0f, 1.0f));
     const GLuint a = Upload(bright), b = Upload(dim);
-    const Target target(GL_RGBA8, 64, 64);
+    const zenith::test::ColourTarget target(GL_RGBA8, 64, 64);
     DisplayPass pass;
     const glm::ivec4 viewport{0, 0, 64, 64};
-    pass.Run(a, target.framebuffer, viewport, Metered(false, 2.0), 0.0);
+    pass.Run(a, target.framebuffer(), viewport, Metered(false, 2.0), 0.0);
     const double ev_a = *pass.exposure_ev100();
     EXPECT_NEAR(ev_a, std::log2(1000.0 * 100.0 / 12.5), 0.03);  // a first frame: no adaptation
-    pass.Run(b, target.framebuffer, viewport, Metered(false, 2.0), 0.5);
+    pass.Run(b, target.framebuffer(), viewport, Metered(false, 2.0), 0.5);
     const double ev_b = std::log2(10.0 * 100.0 / 12.5);
     const double target_b = *pass.metered_target_ev100();  // ev_b within half a bin
     EXPECT_NEAR(target_b, ev_b, 0.03);
     const double want = ev_a + (target_b - ev_a) * (1.0 - std::exp(-0.5 / 2.0));
     EXPECT_NEAR(*pass.exposure_ev100(), want, 1e-4);
     pass.ResetAdaptation();  // a cut: the next frame is its own
-    pass.Run(b, target.framebuffer, viewport, Metered(false, 2.0), 0.5);
+    pass.Run(b, target.framebuffer(), viewport, Metered(false, 2.0), 0.5);
     EXPECT_NEAR(*pass.exposure_ev100(), ev_b, 0.03);
     glDeleteTextures(1, &a);
     glDeleteTextures(1, &b);
