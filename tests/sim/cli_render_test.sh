@@ -21,7 +21,7 @@ check "unknown extension exits 2" test $rc -eq 2
 check "message names --out and the allowed extensions" grep -q "\-\-out.*\.exr.*\.png" <<<"$err"
 err=$("$zenith" render --pitch 100 --out "$work/p.png" 2>&1); rc=$?
 check "pitch 100 names --pitch, the value and its range" \
-    bash -c "test $rc -eq 2 && grep -q -- '--pitch: pitch_deg = 100 deg is out of range (expected \\[-90, 90\\] deg)' <<<'$err'"
+    exited_saying 2 '--pitch: pitch_deg = 100 deg is out of range (expected \[-90, 90\] deg)'
 err=$("$zenith" render --size 0x10 --out "$work/s.png" 2>&1)
 check "size 0x10 names --size" grep -q -- "--size" <<<"$err"
 err=$("$zenith" render --preset nowhere --out "$work/n.png" 2>&1)
@@ -42,10 +42,10 @@ check "--metar-file renders its first report" test -s "$work/fog.png"
 err=$("$zenith" render --size 64x36 --metar "EGLL 211200Z 9999" --weather broken \
     --out "$work/w.png" 2>&1); rc=$?
 check "--metar with --weather exits 2 naming --weather" \
-    bash -c "test $rc -eq 2 && grep -q -- '--weather' <<<'$err'"
+    exited_saying 2 --weather
 err=$("$zenith" render --size 64x36 --metar "12 nonsense" --out "$work/m.png" 2>&1); rc=$?
 check "a report without a station exits 2 naming the group" \
-    bash -c "test $rc -eq 2 && grep -q -- '12' <<<'$err'"
+    exited_saying 2 12
 check "no output for any failed run" bash -c "! ls '$work' | grep -qE '^(frame|p|s|n|e|w|m)\.|partial'"
 
 report

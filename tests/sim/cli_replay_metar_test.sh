@@ -10,12 +10,6 @@ source_dir=$(realpath "$2")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 source "$(dirname "$0")/check.sh"
-# The last run exited with $1 and its output ($err) has each of the other arguments.
-exited_saying() {
-    test "$rc" -eq "$1" || return 1
-    shift
-    for pattern in "$@"; do grep -q -- "$pattern" <<<"$err" || return 1; done
-}
 log=$source_dir/data/flights/glider_sisteron.igc
 metar=$source_dir/tests/sim/metar
 # 7 frames, 10 s apart, over the first minute: station ZZSW goes from its 12:00 report to its

@@ -106,13 +106,13 @@ check "and is reported with the video's path" grep -q "no/such/dir" <<<"$err"
 
 # Bad requests: the flag is named and no folder is created.
 err=$("$zenith" replay "$log" --size 0x0 --out "$work/zero" 2>&1); rc=$?
-check "--size 0x0 exits 2 naming --size" bash -c "test $rc -eq 2 && grep -q -- '--size' <<<'$err'"
+check "--size 0x0 exits 2 naming --size" exited_saying 2 --size
 check "and creates no folder" test ! -e "$work/zero"
 for bad in "--end inf" "--end 1e300" "--end 1e12" "--fps 0" "--fps nan" "--time-warp -1"; do
     # shellcheck disable=SC2086
     err=$(timeout 20 "$zenith" replay "$log" $bad --out "$work/bad" 2>&1); rc=$?
     check "$bad: refused at once (exit 2) naming ${bad%% *}" \
-        bash -c "test $rc -eq 2 && grep -q -- '${bad%% *}' <<<'$err'"
+        exited_saying 2 "${bad%% *}"
 done
 check "no folder for any refused run" test ! -e "$work/bad"
 
