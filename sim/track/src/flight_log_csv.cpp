@@ -154,11 +154,8 @@ FlightLog ParseCsv(std::string_view text, std::string source, const ReadOptions&
     bool have_header = false;
     std::optional<std::size_t> icao24_col, callsign_col;
     std::size_t rows = 0;  // of the chosen aircraft
-    while (!text.empty()) {
-        const std::string_view line = NextLine(text);
-        ++line_number;
-        const std::string_view trimmed = Trim(line);
-        if (trimmed.empty() || trimmed.front() == '#') continue;
+    std::string_view line, trimmed;
+    while (NextContentLine(text, line_number, line, trimmed)) {
         if (line.size() > kMaxLineBytes) {
             if (!have_header) {
                 throw FlightLogError(fmt::format("{}header of {} characters (at most {})",

@@ -134,11 +134,8 @@ MetarFile ParseMetarLines(std::string_view text, std::string source) {
     Collector out(std::move(source));
     std::size_t line_number = 0;
     std::optional<double> pending_time;
-    while (!text.empty()) {
-        const std::string_view line = NextLine(text);
-        ++line_number;
-        const std::string_view trimmed = Trim(line);
-        if (trimmed.empty() || trimmed.front() == '#') continue;
+    std::string_view line, trimmed;
+    while (NextContentLine(text, line_number, line, trimmed)) {
         if (line.size() > kMaxMetarLineBytes) {
             out.Skip(line_number, fmt::format("line of {} characters (at most {})", line.size(),
                                               kMaxMetarLineBytes));
@@ -169,11 +166,8 @@ MetarFile ParseMetarCsv(std::string_view text, std::string source) {
     std::optional<std::size_t> metar_col, valid_col, station_col, lat_col, lon_col;
     bool have_header = false;
     std::size_t line_number = 0;
-    while (!text.empty()) {
-        const std::string_view line = NextLine(text);
-        ++line_number;
-        const std::string_view trimmed = Trim(line);
-        if (trimmed.empty() || trimmed.front() == '#') continue;
+    std::string_view line, trimmed;
+    while (NextContentLine(text, line_number, line, trimmed)) {
         if (line.size() > kMaxMetarLineBytes) {
             const std::string reason =
                 fmt::format("line of {} characters (at most {})", line.size(), kMaxMetarLineBytes);
