@@ -16,6 +16,7 @@
 #include "zenith/geo/observer.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
+#include "zenith/sky/inspection.h"
 #include "zenith/weather/cloud_weather.h"
 #include "zenith/weather/metar.h"
 
@@ -37,8 +38,8 @@ void ValidateFrameRequest(const FrameRequest& r) {
     Require("heading_deg", r.heading_deg, "deg", Range::Closed(-1e6, 1e6));
     Require("pitch_deg", r.pitch_deg, "deg", Range::Closed(-90.0, 90.0));
     Require("roll_deg", r.roll_deg, "deg", Range::Closed(-180.0, 180.0));
-    Require("fov_deg", r.fov_deg, "deg", Range::Open(0.0, 180.0));
     ParseFrameSize(fmt::format("{}x{}", r.size.x, r.size.y));
+    sky::ValidateProjection(Radians(r.fov_deg), static_cast<double>(r.size.x) / r.size.y);
     const std::string extension = r.out.extension().string();
     if (extension != ".exr" && extension != ".png" && extension != ".EXR" && extension != ".PNG") {
         throw ArgumentError("out", fmt::format("out = {} has no image extension (expected a file "
@@ -85,49 +86,35 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     } else {
         weather = sky::clouds::LoadWeather(request.weather);
     }
-    const geo::Time time = geo::TimeFromIso8601(request.utc);
-    const geo::Observer observer(request.lat_deg, request.lon_deg, request.height_m);
-
     std::optional<geo::StarCatalog> catalog;
     try {
         catalog = geo::StarCatalog::Load(request.star_magnitude_limit);
     } catch (const geo::CatalogError& e) {
         notes.push_back(std::string("stars not drawn: ") + e.what());
     }
-    const geo::Ephemeris ephemeris(catalog ? &*catalog : nullptr);
-    geo::EphemerisOptions ephemeris_options;
-    ephemeris_options.star_min_elevation = sky::kMinStarElevation;
-    const geo::SkyEphemeris sky_ephemeris = ephemeris.Compute(time, observer, ephemeris_options);
-
-    const double aspect = static_cast<double>(request.size.x) / request.size.y;
-    const geo::Attitude attitude{Radians(request.heading_deg), Radians(request.pitch_deg),
-                                 Radians(request.roll_deg)};
-    sky::SkyState state = sky::MakeSkyState(sky_ephemeris, observer, atmosphere, attitude,
-                                            Radians(request.fov_deg), aspect);
+    sky::FrameSetup setup;
+    setup.time = geo::TimeFromIso8601(request.utc);
+    setup.observer = geo::Observer(request.lat_deg, request.lon_deg, request.height_m);
+    setup.attitude =
+        geo::Attitude::FromDegrees(request.heading_deg, request.pitch_deg, request.roll_deg);
+    setup.vertical_fov = Radians(request.fov_deg);
+    setup.aspect = static_cast<double>(request.size.x) / request.size.y;
+    sky::SkyFrame frame =
+        sky::BuildSkyFrame(geo::Ephemeris(catalog ? &*catalog : nullptr), setup, atmosphere);
+    frame.view.force_ray_march = request.force_ray_march;
 
     const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
     sky::AtmosphereRenderer renderer(atmosphere, request.lut_settings);
     renderer.SetWeather(weather, request.clouds);
-    sky::RenderOptions options;
-    options.size = request.size;
-    options.force_ray_march = request.force_ray_march;
-    options.moon = state.moon;
-    options.stars = std::move(state.stars);
-    renderer.UpdateFrameLuts(state.camera, state.lights, options.clouds);
+    renderer.Update(frame.scene, frame.view);
     const int passes = weather.layers.empty() ? 1 : request.cloud_passes;
-    for (int i = 0; i < passes; ++i) renderer.Render(state.camera, state.lights, options);
-    const sky::LutImage frame = renderer.ReadFrame();
+    for (int i = 0; i < passes; ++i) renderer.Render(sky::RenderTarget::Offscreen(request.size));
 
     FrameResult result;
-    result.image = sky::Image(request.size.x, request.size.y);
-    for (int y = 0; y < request.size.y; ++y) {  // GL rows run bottom-up; images top-down
-        for (int x = 0; x < request.size.x; ++x) {
-            result.image.pixels[result.image.Index(x, y)] = frame.at(x, request.size.y - 1 - y);
-        }
-    }
+    result.image = sky::ImageFromFrame(sky::Inspect(renderer).ReadFrame());
     result.ev100 = sky::ResolveEV100(request.exposure, result.image);
-    result.sun_elevation_deg = Degrees(state.sun_elevation);
-    result.stars_drawn = options.stars.size();
+    result.sun_elevation_deg = Degrees(frame.sun_elevation);
+    result.stars_drawn = frame.scene.stars.size();
     result.gl_description = context->description();
     sky::ImageWriteOptions write_options;
     write_options.exposure = sky::Exposure{false, result.ev100};

@@ -27,6 +27,7 @@
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/clouds/weather.h"
+#include "zenith/sky/sky_state.h"
 #include "zenith/track/flight_log.h"
 #include "zenith/track/trajectory.h"
 #include "zenith/version.h"
@@ -311,9 +312,9 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
     Require("fps", r.fps, "", Range::LeftOpen(0.0, 1000.0));
     Require("time_warp", r.time_warp, "", Range::LeftOpen(0.0, 1e6));
     Require("time_offset_s", r.time_offset_s, "s", Range::Closed(-1e10, 1e10));
-    Require("fov_deg", r.fov_deg, "deg", Range::Open(0.0, 180.0));
     Require("cloud_passes", r.cloud_passes, "", Range::Closed(1, 64));
     ParseFrameSize(fmt::format("{}x{}", r.size.x, r.size.y));
+    sky::ValidateProjection(Radians(r.fov_deg), static_cast<double>(r.size.x) / r.size.y);
     if (r.shard.count < 1 || r.shard.count > kMaxShards || r.shard.index < 0 ||
         r.shard.index >= r.shard.count) {
         ParseShard(fmt::format("{}/{}", r.shard.index, r.shard.count));
@@ -508,10 +509,7 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
             for (int pass = 1; pass < r.cloud_passes && sky->has_clouds(); ++pass) {
                 frame = sky->RenderOffscreen(r.size);
             }
-            sky::Image image(r.size.x, r.size.y);
-            for (int y = 0; y < r.size.y; ++y) {
-                for (int x = 0; x < r.size.x; ++x) image.at(x, y) = frame.at(x, r.size.y - 1 - y);
-            }
+            const sky::Image image = sky::ImageFromFrame(frame);
             if (r.write_exr) sky::WriteImage(exr, image, {});
             if (r.write_png) {
                 sky::ImageWriteOptions options;

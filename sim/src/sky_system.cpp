@@ -14,6 +14,7 @@
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/display.h"
 #include "zenith/sky/gl/context.h"
+#include "zenith/sky/inspection.h"
 #include "zenith/sky/lighting.h"
 #include "zenith/weather/cloud_weather.h"
 
@@ -77,14 +78,13 @@ struct SkySystem::Impl {
     // Stars' apparent places at whole multiples of star_refresh_s (geo::Ephemeris), so that a
     // frame depends only on its own time and place.
     std::optional<geo::Ephemeris> calculator;
-    geo::SkyEphemeris ephemeris;
-    sky::SkyState state;
+    sky::SkyFrame frame;  // the last Update's
     SkyLighting lighting;
     std::optional<sky::SceneDepth> scene_depth;
     // Clouds: the weather map's origin (lat, lon deg) and the simulation time its wind started.
     std::optional<glm::dvec2> weather_origin;
     std::optional<double> weather_epoch_jd;
-    sky::CloudView cloud_view;
+    bool reset_history = false;  // ResetCloudHistory: for the next Update
     // The display pass (settings.display.output == kDisplay), made when first needed, and the
     // time of its last Render (the adaptation's clock).
     std::unique_ptr<sky::DisplayPass> display;
@@ -98,16 +98,6 @@ struct SkySystem::Impl {
             display->set_preserve_gl_state(settings.preserve_gl_state);
         }
         return *display;
-    }
-
-    // The current sky state drawn with `options` (size and target set by the caller); a
-    // requested cut applies to this frame only.
-    void Draw(sky::RenderOptions& options) {
-        options.moon = state.moon;
-        options.stars = state.stars;
-        options.clouds = cloud_view;
-        renderer->Render(state.camera, state.lights, options);
-        cloud_view.reset_history = false;
     }
 
     void Notify(std::string message) {
@@ -133,7 +123,7 @@ struct SkySystem::Impl {
         calculator.emplace(catalog ? &*catalog : nullptr, s.star_refresh_s);
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
         renderer->set_preserve_gl_state(s.preserve_gl_state);
-        ground_irradiance = renderer->ReadGroundIrradiance();
+        ground_irradiance = sky::Inspect(*renderer).ReadGroundIrradiance();
         renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
         s.display.Validate();
         if (s.display.output == sky::DisplaySettings::Output::kDisplay) DisplayPassMade();
@@ -209,9 +199,7 @@ glm::dmat3 SkySystem::enu_from_view() const {
 }
 
 void SkySystem::SetProjection(double vertical_fov, double aspect) {
-    if (!(vertical_fov > 0.0 && vertical_fov < glm::pi<double>() && aspect > 0.0)) {
-        throw ArgumentError("SetProjection: vertical_fov in (0, pi) rad and aspect > 0");
-    }
+    sky::ValidateProjection(vertical_fov, aspect);
     impl_->vertical_fov = vertical_fov;
     impl_->aspect = aspect;
 }
@@ -227,7 +215,7 @@ void SkySystem::SetAtmosphere(const sky::Atmosphere& atmosphere) {
     d.renderer->SetAtmosphere(drawn);
     d.atmosphere = drawn;
     d.preset_atmosphere = atmosphere;
-    d.ground_irradiance = d.renderer->ReadGroundIrradiance();
+    d.ground_irradiance = sky::Inspect(*d.renderer).ReadGroundIrradiance();
     for (std::string& note : notes) d.Notify(std::move(note));
 }
 
@@ -269,7 +257,7 @@ const sky::Atmosphere& SkySystem::atmosphere() const { return impl_->atmosphere;
 const sky::clouds::Weather& SkySystem::weather() const { return impl_->renderer->weather(); }
 
 void SkySystem::ResetCloudHistory() {
-    impl_->cloud_view.reset_history = true;
+    impl_->reset_history = true;
     impl_->reset_adaptation = true;
 }
 
@@ -322,52 +310,61 @@ void SkySystem::ClearSceneDepth() { impl_->scene_depth.reset(); }
 
 void SkySystem::Update() {
     Impl& d = *impl_;
-    geo::EphemerisOptions options;
-    options.star_min_elevation = sky::kMinStarElevation;
-    const geo::Time& time = d.clock.time();
-    d.ephemeris = d.calculator->Compute(time, d.observer, options);
-    const geo::Attitude attitude = d.attitude.value_or(geo::Attitude{});
-    d.state = sky::MakeSkyState(d.ephemeris, d.observer, d.atmosphere, attitude, d.vertical_fov,
-                                d.aspect);
-    if (!d.attitude) d.state.camera.world_from_view = d.world_from_view;
+    sky::FrameSetup setup;
+    setup.time = d.clock.time();
+    setup.observer = d.observer;
+    if (d.attitude) {
+        setup.attitude = *d.attitude;
+    } else {
+        setup.enu_from_view = d.world_from_view;
+    }
+    setup.vertical_fov = d.vertical_fov;
+    setup.aspect = d.aspect;
+    d.frame = sky::BuildSkyFrame(*d.calculator, setup, d.atmosphere);
     if (!d.weather_origin) {
         d.weather_origin = glm::dvec2(d.observer.lat_deg(), d.observer.lon_deg());
     }
+    const geo::Time& time = setup.time;
     if (!d.weather_epoch_jd) d.weather_epoch_jd = time.jd_utc;
-    d.cloud_view.time = (time.jd_utc - *d.weather_epoch_jd) * geo::kSecondsPerDay;
-    d.cloud_view.weather_from_world =
+    sky::CloudView& clouds = d.frame.scene.clouds;
+    clouds.time = (time.jd_utc - *d.weather_epoch_jd) * geo::kSecondsPerDay;
+    clouds.weather_from_world =
         sky::WeatherFrame(d.observer, d.weather_origin->x, d.weather_origin->y);
-    d.renderer->UpdateFrameLuts(d.state.camera, d.state.lights, d.cloud_view);
+    clouds.reset_history = d.reset_history;
+    d.reset_history = false;  // the renderer applies it to this frame's first Render
+    d.renderer->Update(d.frame.scene, d.frame.view);
 
+    const sky::Lights& lights = d.frame.scene.lights;
+    const sky::MoonDisk& moon = d.frame.scene.moon;
     SkyLighting& l = d.lighting;
     const glm::dmat3 ecef_from_enu = d.observer.ecef_from_enu();
     l.ecef_from_enu = ecef_from_enu;
-    l.sun_direction_enu = d.state.lights.sun_direction;
-    l.moon_direction_enu = d.state.lights.moon_direction;
+    l.sun_direction_enu = lights.sun_direction;
+    l.moon_direction_enu = lights.moon_direction;
     l.sun_direction_ecef = ecef_from_enu * l.sun_direction_enu;
     l.moon_direction_ecef = ecef_from_enu * l.moon_direction_enu;
     const double height = d.observer.height_m();
-    l.sun_illuminance = d.state.lights.sun_illuminance *
+    l.sun_illuminance = lights.sun_illuminance *
                         sky::TransmittanceToLight(d.atmosphere, height, l.sun_direction_enu.z,
                                                   d.atmosphere.sun_angular_radius);
-    l.moon_illuminance = d.state.lights.moon_illuminance *
-                         sky::TransmittanceToLight(d.atmosphere, height, l.moon_direction_enu.z,
-                                                   d.state.moon.angular_radius);
+    l.moon_illuminance = lights.moon_illuminance * sky::TransmittanceToLight(d.atmosphere, height,
+                                                                             l.moon_direction_enu.z,
+                                                                             moon.angular_radius);
     // The clouds between the aircraft and each light that is up (a CPU march, 8-12 us each).
     const auto through_clouds = [&](const glm::dvec3& illuminance, const glm::dvec3& direction) {
         if (illuminance == glm::dvec3(0.0)) return 1.0;
-        return d.renderer->CloudTransmittance(d.state.camera.position, direction, d.cloud_view);
+        return d.renderer->CloudTransmittance(d.frame.view.camera.position, direction, clouds);
     };
     l.sun_cloud_transmittance = through_clouds(l.sun_illuminance, l.sun_direction_enu);
     l.moon_cloud_transmittance = through_clouds(l.moon_illuminance, l.moon_direction_enu);
     l.sun_illuminance *= l.sun_cloud_transmittance;
     l.moon_illuminance *= l.moon_cloud_transmittance;
-    l.sky_irradiance = d.state.lights.sun_illuminance *
+    l.sky_irradiance = lights.sun_illuminance *
                            sky::SampleGroundIrradiance(d.ground_irradiance, l.sun_direction_enu.z) +
-                       d.state.lights.moon_illuminance *
+                       lights.moon_illuminance *
                            sky::SampleGroundIrradiance(d.ground_irradiance, l.moon_direction_enu.z);
-    l.sun_elevation = d.ephemeris.sun.topocentric.horizontal.elevation;
-    l.moon_illuminated_fraction = d.ephemeris.moon_phase.illuminated_fraction;
+    l.sun_elevation = d.frame.ephemeris.sun.topocentric.horizontal.elevation;
+    l.moon_illuminated_fraction = d.frame.ephemeris.moon_phase.illuminated_fraction;
     l.phase = PhaseOf(l.sun_elevation);
 }
 
@@ -377,10 +374,8 @@ void SkySystem::Prepare(const glm::ivec2& size) {
                             std::to_string(size.y) + " must be positive");
     }
     Update();
-    sky::RenderOptions options;
-    options.size = size;
     Impl& d = *impl_;
-    d.Draw(options);
+    d.renderer->Render(sky::RenderTarget::Offscreen(size));
     if (d.settings.display.output == sky::DisplaySettings::Output::kDisplay) {
         // The display pass over that frame, metered (all three of its programs run; a given
         // exposure runs one), into a scratch RGBA8 target of the same size.
@@ -398,17 +393,15 @@ void SkySystem::Prepare(const glm::ivec2& size) {
         d.reset_adaptation = true;  // the next Render meters from its own frame
     }
     glFinish();  // the driver's compilation happens when the GPU runs the frame
-    d.cloud_view.reset_history = true;
+    d.reset_history = true;
 }
 
 void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
-    sky::RenderOptions options;
-    options.size = {viewport.z, viewport.w};
     Impl& d = *impl_;
     if (d.settings.display.output == sky::DisplaySettings::Output::kDisplay) {
         // The linear frame into the renderer's own RGBA32F target, then the display pass from it
         // into the host's framebuffer (the host's geometry, where a scene depth says so, kept).
-        d.Draw(options);
+        d.renderer->Render(sky::RenderTarget::Offscreen({viewport.z, viewport.w}));
         sky::DisplayPass& pass = d.DisplayPassMade();
         if (d.reset_adaptation) {
             pass.ResetAdaptation();
@@ -423,22 +416,17 @@ void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
         d.display_rendered = true;
         return;
     }
-    options.target_framebuffer = framebuffer;
-    options.target_viewport = viewport;
-    options.scene_depth = impl_->scene_depth;
-    impl_->Draw(options);
+    d.renderer->Render(sky::RenderTarget::Host(framebuffer, viewport, d.scene_depth));
 }
 
 sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
-    sky::RenderOptions options;
-    options.size = size;
-    impl_->Draw(options);
-    return impl_->renderer->ReadFrame();
+    impl_->renderer->Render(sky::RenderTarget::Offscreen(size));
+    return sky::Inspect(*impl_->renderer).ReadFrame();
 }
 
 const SkyLighting& SkySystem::lighting() const { return impl_->lighting; }
 const std::vector<std::string>& SkySystem::notices() const { return impl_->notices; }
-const geo::SkyEphemeris& SkySystem::ephemeris() const { return impl_->ephemeris; }
+const geo::SkyEphemeris& SkySystem::ephemeris() const { return impl_->frame.ephemeris; }
 unsigned SkySystem::aerial_perspective_texture() const {
     return impl_->renderer->aerial_perspective_texture();
 }

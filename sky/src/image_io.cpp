@@ -404,6 +404,14 @@ void CheckExrHeader(const std::filesystem::path& path, int max_side) {
     if (!has_window) FailRead(path, "header has no dataWindow");
 }
 
+Image ImageFromFrame(const LutImage& frame) {
+    Image image(frame.size.x, frame.size.y);
+    for (int y = 0; y < image.height; ++y) {  // GL rows run bottom-up; images top-down
+        for (int x = 0; x < image.width; ++x) image.at(x, y) = frame.at(x, image.height - 1 - y);
+    }
+    return image;
+}
+
 Image ReadExr(const std::filesystem::path& path, int max_side) {
     CheckExrHeader(path, max_side);
     try {

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "zenith/sky/gl/shader.h"
+#include "gl/shader.h"
 
 namespace zenith::sky {
 

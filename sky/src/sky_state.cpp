@@ -5,6 +5,8 @@
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 
+#include "zenith/base/error.h"
+#include "zenith/base/units.h"
 #include "zenith/geo/moon.h"
 #include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
@@ -45,16 +47,19 @@ double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double 
 SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
                       const Atmosphere& atmosphere, const geo::Attitude& attitude,
                       double vertical_fov, double aspect) {
-    SkyState s;
-    s.camera.position = glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + observer.height_m());
-    s.camera.world_from_view = geo::EnuFromView(attitude);
-    s.camera.vertical_fov = vertical_fov;
-    s.camera.aspect = aspect;
+    SkyState state;
+    Camera& camera = state.view.camera;
+    camera.position = glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + observer.height_m());
+    camera.world_from_view = geo::EnuFromView(attitude);
+    camera.vertical_fov = vertical_fov;
+    camera.aspect = aspect;
+    state.sun_elevation = e.sun.topocentric.horizontal.elevation;
+
+    SkyScene& s = state.scene;
 
     const double sun_distance_au = e.sun.topocentric.horizontal.distance / geo::kAstronomicalUnit;
     s.lights.sun_direction = e.sun.topocentric.horizontal.direction_enu;
     s.lights.sun_illuminance = atmosphere.solar_illuminance / (sun_distance_au * sun_distance_au);
-    s.sun_elevation = e.sun.topocentric.horizontal.elevation;
 
     s.moon.enabled = true;
     s.moon.direction = e.moon.topocentric.horizontal.direction_enu;
@@ -72,14 +77,39 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     }
     // Planets are drawn like stars (their disks, at most Venus's 66", are under a pixel at the
     // usual fields of view): their magnitude as illuminance, their colour from B-V.
+    const double min_elevation = MinStarElevation(atmosphere.bottom_radius, observer.height_m());
     for (const geo::PlanetPosition& planet : e.planets) {
-        if (planet.topocentric.horizontal.elevation < kMinStarElevation) continue;
+        if (planet.topocentric.horizontal.elevation < min_elevation) continue;
         const double b_minus_v = kPlanetBMinusV[static_cast<std::size_t>(planet.planet)];
         s.stars.push_back(
             {planet.topocentric.horizontal.direction_enu,
              geo::IlluminanceFromMagnitude(planet.magnitude_v) * StarColour(b_minus_v)});
     }
-    return s;
+    return state;
+}
+
+double MinStarElevation(double bottom_radius, double height_m) {
+    const double dip = std::acos(bottom_radius / (bottom_radius + std::max(height_m, 0.0)));
+    return -(dip + Radians(0.6));
+}
+
+void ValidateProjection(double vertical_fov, double aspect) {
+    Require("fov_deg", Degrees(vertical_fov), "deg", Range::Open(0.0, 180.0));
+    Require("aspect", aspect, "", Range::Open(0.0, 1e6));
+}
+
+SkyFrame BuildSkyFrame(const geo::Ephemeris& calculator, const FrameSetup& setup,
+                       const Atmosphere& atmosphere) {
+    setup.Validate();
+    SkyFrame frame;
+    geo::EphemerisOptions options;
+    options.star_min_elevation =
+        MinStarElevation(atmosphere.bottom_radius, setup.observer.height_m());
+    frame.ephemeris = calculator.Compute(setup.time, setup.observer, options);
+    static_cast<SkyState&>(frame) = MakeSkyState(frame.ephemeris, setup.observer, atmosphere,
+                                                 setup.attitude, setup.vertical_fov, setup.aspect);
+    if (setup.enu_from_view) frame.view.camera.world_from_view = *setup.enu_from_view;
+    return frame;
 }
 
 glm::dmat3 WeatherFrame(const geo::Observer& observer, double origin_lat_deg,

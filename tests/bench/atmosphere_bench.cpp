@@ -9,6 +9,7 @@
 #include "daytime_frame.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
+#include "zenith/sky/inspection.h"
 
 namespace {
 
@@ -33,7 +34,7 @@ void BM_StaticLutRebuild(benchmark::State& state) {
         f.renderer.SetAtmosphere(f.earth);
         glFinish();
     }
-    ReportPassTimes(state, f.renderer.LastPassTimes());
+    ReportPassTimes(state, Inspect(f.renderer).LastPassTimes());
 }
 BENCHMARK(BM_StaticLutRebuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -41,19 +42,18 @@ BENCHMARK(BM_StaticLutRebuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 void BM_FrameLuts(benchmark::State& state) {
     Fixture& f = Shared();
     for (auto _ : state) {
-        f.renderer.UpdateFrameLuts(f.camera, f.lights);
+        f.renderer.Update(f.scene, f.view);
         glFinish();
     }
-    ReportPassTimes(state, f.renderer.LastPassTimes());
+    ReportPassTimes(state, Inspect(f.renderer).LastPassTimes());
 }
 BENCHMARK(BM_FrameLuts)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_CompositeSkyView720p(benchmark::State& state) {
     Fixture& f = Shared();
-    f.renderer.UpdateFrameLuts(f.camera, f.lights);
-    f.options.force_ray_march = false;
+    f.renderer.Update(f.scene, f.view);
     for (auto _ : state) {
-        f.renderer.Render(f.camera, f.lights, f.options);
+        f.renderer.Render(f.target);
         glFinish();
     }
 }
@@ -61,26 +61,26 @@ BENCHMARK(BM_CompositeSkyView720p)->Unit(benchmark::kMillisecond)->UseRealTime()
 
 void BM_CompositeRayMarch720p(benchmark::State& state) {
     Fixture& f = Shared();
-    f.options.force_ray_march = true;
-    f.options.ray_march_steps = static_cast<int>(state.range(0));
+    SkyView marched = f.view;
+    marched.force_ray_march = true;
+    marched.ray_march_steps = static_cast<int>(state.range(0));
+    f.renderer.Update(f.scene, marched);
     for (auto _ : state) {
-        f.renderer.Render(f.camera, f.lights, f.options);
+        f.renderer.Render(f.target);
         glFinish();
     }
-    f.options.force_ray_march = false;
 }
 BENCHMARK(BM_CompositeRayMarch720p)->Arg(32)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The whole clear-sky frame: per-frame LUTs and the composite (the issue's <= 20 ms goal).
 void BM_FullFrame720p(benchmark::State& state) {
     Fixture& f = Shared();
-    f.options.force_ray_march = false;
     for (auto _ : state) {
-        f.renderer.UpdateFrameLuts(f.camera, f.lights);
-        f.renderer.Render(f.camera, f.lights, f.options);
+        f.renderer.Update(f.scene, f.view);
+        f.renderer.Render(f.target);
         glFinish();
     }
-    ReportPassTimes(state, f.renderer.LastPassTimes());
+    ReportPassTimes(state, Inspect(f.renderer).LastPassTimes());
 }
 BENCHMARK(BM_FullFrame720p)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -88,18 +88,17 @@ BENCHMARK(BM_FullFrame720p)->Unit(benchmark::kMillisecond)->UseRealTime();
 // symmetry and every texel is marched for both (by day the Moon is left out, MakeLightSet).
 void BM_FullFrame720pTwoLights(benchmark::State& state) {
     Fixture& f = Shared();
-    Lights dusk = f.lights;
-    dusk.sun_direction = glm::normalize(glm::dvec3(0.99, 0.0, -0.14));  // 8 deg below
-    dusk.moon_enabled = true;
-    dusk.moon_direction = glm::normalize(glm::dvec3(-0.5, 0.6, 0.6));
-    dusk.moon_illuminance = dusk.sun_illuminance * 2e-6;
-    f.options.force_ray_march = false;
+    SkyScene dusk = f.scene;
+    dusk.lights.sun_direction = glm::normalize(glm::dvec3(0.99, 0.0, -0.14));  // 8 deg below
+    dusk.lights.moon_enabled = true;
+    dusk.lights.moon_direction = glm::normalize(glm::dvec3(-0.5, 0.6, 0.6));
+    dusk.lights.moon_illuminance = dusk.lights.sun_illuminance * 2e-6;
     for (auto _ : state) {
-        f.renderer.UpdateFrameLuts(f.camera, dusk);
-        f.renderer.Render(f.camera, dusk, f.options);
+        f.renderer.Update(dusk, f.view);
+        f.renderer.Render(f.target);
         glFinish();
     }
-    ReportPassTimes(state, f.renderer.LastPassTimes());
+    ReportPassTimes(state, Inspect(f.renderer).LastPassTimes());
 }
 BENCHMARK(BM_FullFrame720pTwoLights)->Unit(benchmark::kMillisecond)->UseRealTime();
 

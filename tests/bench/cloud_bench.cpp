@@ -15,8 +15,10 @@
 #include <string>
 #include <vector>
 
+#include "draw_frame.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
+#include "zenith/sky/inspection.h"
 
 namespace {
 
@@ -62,15 +64,10 @@ CloudSettings Settings(int block) {
     return s;
 }
 
-RenderOptions Options() {
-    RenderOptions options;
-    options.size = {1280, 720};
-    return options;
-}
+using zenith::test::FrameOptions;  // 1280x720 with the Sun's disk
 
-void Frame(Fixture& f, const Camera& camera, const RenderOptions& options) {
-    f.renderer.UpdateFrameLuts(camera, f.lights, options.clouds);
-    f.renderer.Render(camera, f.lights, options);
+void Frame(Fixture& f, const Camera& camera, const FrameOptions& options) {
+    zenith::test::DrawFrames(f.renderer, camera, f.lights, options);
 }
 
 // args: view, block (0: no clouds, the baseline)
@@ -80,14 +77,14 @@ void BM_Frame720p(benchmark::State& state) {
     const int block = static_cast<int>(state.range(1));
     f.renderer.SetWeather(block == 0 ? clouds::Weather{} : f.weather, Settings(std::max(block, 1)));
     const Camera camera = f.CameraFor(view);
-    const RenderOptions options = Options();
+    const FrameOptions options;
     Frame(f, camera, options);  // first frame: noise upload, history
     glFinish();
     for (auto _ : state) {
         Frame(f, camera, options);
         glFinish();
     }
-    const PassTimes t = f.renderer.LastPassTimes();
+    const PassTimes t = Inspect(f.renderer).LastPassTimes();
     state.counters["sky_view_ms"] = t.sky_view;
     state.counters["composite_ms"] = t.render;
     state.counters["cloud_shadow_ms"] = t.cloud_shadow_map;
@@ -168,7 +165,7 @@ void BM_ConvergedVsReference720p(benchmark::State& state) {
     const View& view = kViews[state.range(0)];
     const int block = static_cast<int>(state.range(1));
     const Camera camera = f.CameraFor(view);
-    const RenderOptions options = Options();
+    const FrameOptions options;
     double mean_difference = 0.0, pixel_difference = 0.0;
     for (auto _ : state) {
         CloudSettings high = Settings(1);
@@ -178,10 +175,10 @@ void BM_ConvergedVsReference720p(benchmark::State& state) {
         high.shadow_first_step = 40.0;
         f.renderer.SetWeather(f.weather, high);
         for (int i = 0; i < 8; ++i) Frame(f, camera, options);
-        const LutImage reference = f.renderer.ReadClouds();
+        const LutImage reference = Inspect(f.renderer).ReadClouds();
         f.renderer.SetWeather(f.weather, Settings(block));
         for (int i = 0; i < 4 * block * block; ++i) Frame(f, camera, options);
-        const LutImage converged = f.renderer.ReadClouds();
+        const LutImage converged = Inspect(f.renderer).ReadClouds();
         mean_difference = MeanLuminance(converged) / MeanLuminance(reference) - 1.0;
         pixel_difference = PixelDifference(converged, reference);
     }
@@ -215,22 +212,22 @@ void BM_FlightVsTruth720p(benchmark::State& state) {
         return c;
     };
     constexpr int kFrames = 32;
-    const RenderOptions options = Options();
+    const FrameOptions options;
     double flying = 0.0, still = 0.0, start = 0.0;
     for (auto _ : state) {
         f.renderer.SetWeather(f.weather, Settings(1));
         for (int i = 0; i < 8; ++i) Frame(f, camera_at(kFrames - 1), options);
-        const LutImage truth = f.renderer.ReadClouds();
-        RenderOptions cut = options;
+        const LutImage truth = Inspect(f.renderer).ReadClouds();
+        FrameOptions cut = options;
         cut.clouds.reset_history = true;
         Frame(f, camera_at(0), cut);
-        const LutImage first = f.renderer.ReadClouds();
+        const LutImage first = Inspect(f.renderer).ReadClouds();
         f.renderer.SetWeather(f.weather, Settings(block));
         for (int i = 0; i < kFrames; ++i) Frame(f, camera_at(i), options);
-        const LutImage flown = f.renderer.ReadClouds();
+        const LutImage flown = Inspect(f.renderer).ReadClouds();
         f.renderer.SetWeather(f.weather, Settings(block));
         for (int i = 0; i < kFrames; ++i) Frame(f, camera_at(kFrames - 1), options);
-        const LutImage held = f.renderer.ReadClouds();
+        const LutImage held = Inspect(f.renderer).ReadClouds();
         flying = PixelDifference(flown, truth);
         still = PixelDifference(held, truth);
         start = PixelDifference(first, truth);
@@ -253,7 +250,7 @@ BENCHMARK(BM_FlightVsTruth720p)
 void BM_StepConvergenceCumulonimbus(benchmark::State& state) {
     Fixture& f = Shared();
     const Camera camera = f.CameraFor({"12km", 12000.0, -0.17});
-    RenderOptions options;
+    FrameOptions options;
     options.size = {160, 90};
     const clouds::Weather cumulonimbus = clouds::LoadWeather("cumulonimbus");
     std::vector<double> means;
@@ -265,7 +262,7 @@ void BM_StepConvergenceCumulonimbus(benchmark::State& state) {
             s.min_step = 120.0 * 64.0 / steps;
             f.renderer.SetWeather(cumulonimbus, s);
             for (int i = 0; i < 4; ++i) Frame(f, camera, options);
-            means.push_back(MeanLuminance(f.renderer.ReadClouds()));
+            means.push_back(MeanLuminance(Inspect(f.renderer).ReadClouds()));
         }
     }
     state.counters["steps64_vs_1024_pct"] = 100.0 * (means[0] / means[2] - 1.0);

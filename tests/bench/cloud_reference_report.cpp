@@ -119,9 +119,9 @@ void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
                      zenith::geo::Attitude::FromDegrees(0.0, -89.9, 0.0), 20.0 * kPi / 180.0, 1.0);
     CloudScene scene;
     scene.atmosphere = earth;
-    scene.atmosphere.solar_illuminance = state.lights.sun_illuminance;  // at today's distance
+    scene.atmosphere.solar_illuminance = state.scene.lights.sun_illuminance;  // at today's distance
     scene.clouds = &field;
-    scene.sun_direction = glm::normalize(state.lights.sun_direction);
+    scene.sun_direction = glm::normalize(state.scene.lights.sun_direction);
 
     const CloudField::Shell& shell = field.shells().front();
     const double r = earth.bottom_radius;
@@ -177,9 +177,9 @@ void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
 
     // The renderer's cloud pass for the same rays (its CPU twin; block = 1, jitter 0.5).
     const AtmosphereReference luts(earth);
-    Lights lights = state.lights;
+    Lights lights = state.scene.lights;
     const auto renderer = [&](const glm::dvec3& position, const glm::dvec3& view) {
-        Camera camera = state.camera;
+        Camera camera = state.view.camera;
         camera.position = position;
         const ref::CloudScene cloud_scene = ref::MakeCloudScene(
             earth, luts.transmittance(), luts.multiple_scattering(), luts.ground_irradiance(),

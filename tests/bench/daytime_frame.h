@@ -14,18 +14,18 @@ struct DaytimeFrame {
     std::unique_ptr<gl::HeadlessContext> context = gl::CreateHeadlessContextFromEnvironment();
     Atmosphere earth;
     AtmosphereRenderer renderer{earth};
-    Camera camera;
-    Lights lights;
-    RenderOptions options;
+    SkyScene scene;  // the Sun alone
+    SkyView view;
+    RenderTarget target = RenderTarget::Offscreen({1280, 720});
 
     DaytimeFrame() {
+        Camera& camera = view.camera;
         camera.position = glm::dvec3(0.0, 0.0, earth.bottom_radius + 1500.0);
         camera.world_from_view =
             glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(-1, 0, 0));
         camera.vertical_fov = 1.0471975511965976;
         camera.aspect = 16.0 / 9.0;
-        lights.sun_direction = glm::normalize(glm::dvec3(0.98, 0.0, 0.17));
-        options.size = {1280, 720};
+        scene.lights.sun_direction = glm::normalize(glm::dvec3(0.98, 0.0, 0.17));
     }
 };
 

@@ -1,5 +1,5 @@
 // The cost of the display pass (zenith/sky/display.h) at 1280x720 against the clear-sky frame
-// in the same run: the frame alone (UpdateFrameLuts + Render into the renderer's RGBA32F
+// in the same run: the frame alone (Update + Render into the renderer's RGBA32F
 // target), the frame followed by the pass into an RGBA8 target (a given EV100; metered with the
 // night adaptation), and the pass alone on an already rendered frame. glFinish ends each
 // iteration, so the times are the GPU's (llvmpipe's) as well as the CPU's.
@@ -19,17 +19,17 @@ using namespace zenith::sky;
 
 struct Fixture : bench::DaytimeFrame {
     DisplayPass display;
-    GLuint target = 0, framebuffer = 0;
+    GLuint colour = 0, framebuffer = 0;
 
     Fixture() {
-        glCreateTextures(GL_TEXTURE_2D, 1, &target);
-        glTextureStorage2D(target, 1, GL_RGBA8, 1280, 720);
+        glCreateTextures(GL_TEXTURE_2D, 1, &colour);
+        glTextureStorage2D(colour, 1, GL_RGBA8, 1280, 720);
         glCreateFramebuffers(1, &framebuffer);
-        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+        glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, colour, 0);
     }
     void Frame() {
-        renderer.UpdateFrameLuts(camera, lights);
-        renderer.Render(camera, lights, options);
+        renderer.Update(scene, view);
+        renderer.Render(target);
     }
     void Display(bool metered) {
         DisplaySettings settings;

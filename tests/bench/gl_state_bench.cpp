@@ -1,6 +1,6 @@
 // The cost of the GL state contract (sky/src/gl/state_guard.h): one guard that saves, sets and
 // restores (~150 glGet and ~130 set calls) against one that only sets, and a whole 1280x720
-// frame (UpdateFrameLuts + Render, two guards) with and without preserving the host's state.
+// frame (Update + Render, two guards) with and without preserving the host's state.
 #include <benchmark/benchmark.h>
 #include <glad/gl.h>
 
@@ -42,8 +42,8 @@ void Frame(benchmark::State& state, bool preserve) {
     Fixture& f = Shared();
     f.renderer.set_preserve_gl_state(preserve);
     for (auto _ : state) {
-        f.renderer.UpdateFrameLuts(f.camera, f.lights);
-        f.renderer.Render(f.camera, f.lights, f.options);
+        f.renderer.Update(f.scene, f.view);
+        f.renderer.Render(f.target);
         glFinish();
     }
     f.renderer.set_preserve_gl_state(true);

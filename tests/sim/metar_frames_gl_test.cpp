@@ -107,16 +107,17 @@ class MetarFramesTest : public ::testing::Test {
             const sky::SkyState state = sky::MakeSkyState(
                 sky_->ephemeris(), geo::Observer(kLat, kLon, kEyeHeight), sky_->atmosphere(),
                 {0.0, 0.0, 0.0}, kVerticalFov, static_cast<double>(kWidth) / kHeight);
-            const glm::dvec3 dir = state.camera.Direction(0.0, (kRow + 0.5) / kHeight * 2.0 - 1.0);
+            const glm::dvec3 dir =
+                state.view.camera.Direction(0.0, (kRow + 0.5) / kHeight * 2.0 - 1.0);
             for (double d : {0.2 * v, 0.5 * v, v, 2.0 * v, 10.0 * v, 1e6}) {
-                const glm::dvec4 ap =
-                    reference.InScattering(state.camera.position, dir, state.lights, d, 4000);
+                const glm::dvec4 ap = reference.InScattering(state.view.camera.position, dir,
+                                                             state.scene.lights, d, 4000);
                 std::printf("  reference d %9.1f L %.5g T %.4g\n", d,
                             Y(glm::vec4(glm::vec3(ap), 0.0f)), ap.w);
             }
             std::printf("  reference ray march %.5g\n",
-                        Y(glm::vec4(glm::vec3(reference.RayMarch(state.camera.position, dir,
-                                                                 state.lights, 4000)),
+                        Y(glm::vec4(glm::vec3(reference.RayMarch(state.view.camera.position, dir,
+                                                                 state.scene.lights, 4000)),
                                     0.0f)));
         }
         VisualRange r;

@@ -191,8 +191,9 @@ TEST_F(SkySystemTest, AerialPerspectiveOverTheHostsGeometry) {
             const double nx = 2.0 * (x + 0.5) / kSize - 1.0, ny = 2.0 * (y + 0.5) / kSize - 1.0;
             const double t = std::tan(0.5);
             const double distance = kEyeDepth * std::sqrt(nx * nx * t * t + ny * ny * t * t + 1.0);
-            const glm::dvec4 ap = reference.InScattering(
-                state.camera.position, state.camera.Direction(nx, ny), state.lights, distance, 400);
+            const glm::dvec4 ap = reference.InScattering(state.view.camera.position,
+                                                         state.view.camera.Direction(nx, ny),
+                                                         state.scene.lights, distance, 400);
             const double expected = ap.y + ap.w * kColour;
             worst = std::max(worst, std::abs(p.g - expected) / expected);
         }

@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <memory>
 
+#include "draw_frame.h"
 #include "gl_test_support.h"
 #include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/inspection.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 
 namespace zenith::sky {
@@ -57,9 +59,11 @@ TEST_F(AtmosphereGlTest, StaticLutsMatchTheCpuReference) {
     const Atmosphere earth;
     const AtmosphereRenderer gpu(earth);
     const reference::AtmosphereReference cpu(earth);
-    const Difference t = Compare(gpu.ReadTransmittance(), cpu.transmittance(), 1e-3);
-    const Difference ms = Compare(gpu.ReadMultipleScattering(), cpu.multiple_scattering(), 1e-4);
-    const Difference e = Compare(gpu.ReadGroundIrradiance(), cpu.ground_irradiance(), 1e-3);
+    const RendererInspection inspect(gpu);
+    const Difference t = Compare(inspect.ReadTransmittance(), cpu.transmittance(), 1e-3);
+    const Difference ms =
+        Compare(inspect.ReadMultipleScattering(), cpu.multiple_scattering(), 1e-4);
+    const Difference e = Compare(inspect.ReadGroundIrradiance(), cpu.ground_irradiance(), 1e-3);
     std::printf(
         "GPU vs CPU: transmittance max |d| %.2e; multiple scattering max rel %.2e; "
         "irradiance max rel %.2e\n",
@@ -78,11 +82,11 @@ TEST_F(AtmosphereGlTest, FrameLutsMatchTheCpuReference) {
     const Lights lights = MorningLights();
     for (double altitude : {2.0, 9000.0}) {
         const Camera camera = CameraAt(altitude);
-        gpu.UpdateFrameLuts(camera, lights);
+        gpu.Update(test::LightsOnly(lights), {camera});
         const Difference sky =
-            Compare(gpu.ReadSkyView(), cpu.SkyView(camera.position, lights), 1e-1);
-        const Difference ap =
-            Compare(gpu.ReadAerialPerspective(), cpu.AerialPerspective(camera, lights), 1e-1, 4);
+            Compare(Inspect(gpu).ReadSkyView(), cpu.SkyView(camera.position, lights), 1e-1);
+        const Difference ap = Compare(Inspect(gpu).ReadAerialPerspective(),
+                                      cpu.AerialPerspective(camera, lights), 1e-1, 4);
         std::printf(
             "GPU vs CPU at %.0f m: Sky-View max rel %.2e; aerial perspective max rel "
             "%.2e\n",
@@ -114,18 +118,14 @@ TEST_F(AtmosphereGlTest, FrameMatchesTheCpuSkyViewLookup) {
     const reference::AtmosphereReference cpu(earth);
     const Lights lights = MorningLights();
     const Camera camera = CameraAt(1500.0);
-    gpu.UpdateFrameLuts(camera, lights);
-    RenderOptions options;
-    options.size = {64, 36};
-    options.draw_sun_disk = false;
-    gpu.Render(camera, lights, options);
-    const LutImage frame = gpu.ReadFrame();
+    const glm::ivec2 size(64, 36);
+    const LutImage frame = test::DrawFrame(gpu, test::LightsOnly(lights, false), {camera}, size);
     const LutImage sky_view = cpu.SkyView(camera.position, lights);
     double worst = 0.0;
-    for (int y = 0; y < options.size.y; ++y) {
-        for (int x = 0; x < options.size.x; ++x) {
-            const glm::dvec3 direction = camera.Direction(2.0 * (x + 0.5) / options.size.x - 1.0,
-                                                          2.0 * (y + 0.5) / options.size.y - 1.0);
+    for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+            const glm::dvec3 direction =
+                camera.Direction(2.0 * (x + 0.5) / size.x - 1.0, 2.0 * (y + 0.5) / size.y - 1.0);
             const glm::dvec3 expected =
                 cpu.SampleSkyView(sky_view, camera.position, lights.sun_direction, direction);
             const double e = 0.2126 * expected.x + 0.7152 * expected.y + 0.0722 * expected.z;
@@ -149,16 +149,9 @@ TEST_F(AtmosphereGlTest, SwitchFromSkyViewToRayMarchingIsInvisible) {
         camera.world_from_view =
             glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(std::sin(-pitch), 0, std::cos(pitch)),
                        glm::dvec3(-std::cos(pitch), 0, std::sin(-pitch)));
-        gpu.UpdateFrameLuts(camera, lights);
-        RenderOptions options;
-        options.size = {160, 90};
-        options.draw_sun_disk = false;
-        gpu.Render(camera, lights, options);
-        const LutImage sky_view = gpu.ReadFrame();
-        options.force_ray_march = true;
-        options.ray_march_steps = 64;
-        gpu.Render(camera, lights, options);
-        const LutImage marched = gpu.ReadFrame();
+        const SkyScene scene = test::LightsOnly(lights, false);
+        const LutImage sky_view = test::DrawFrame(gpu, scene, {camera}, {160, 90});
+        const LutImage marched = test::DrawFrame(gpu, scene, {camera, true, 64}, {160, 90});
         const double rmse = RelativeRmse(sky_view, marched);
         std::printf("Sky-View vs per-pixel ray march at %.0f m: relative RMSE %.4f\n", altitude,
                     rmse);
@@ -199,24 +192,25 @@ TEST_F(AtmosphereGlTest, SunDiskAndStarsIntegrateToTheirIlluminance) {
     Lights lights;
     lights.sun_direction = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
     const double sun_y = Y(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
-    RenderOptions options;
-    options.size = {256, 256};
+    const glm::ivec2 size(256, 256);
     // Resolved disk: 2 deg field, the Sun 0.27 deg across 34 pixels in radius.
     Camera camera = SpaceCameraLookingAt(lights.sun_direction, 2.0 * 0.017453292519943295);
-    gpu.UpdateFrameLuts(camera, lights);
-    gpu.Render(camera, lights, options);
-    const double disk = FrameIlluminance(gpu.ReadFrame(), camera) / sun_y;
+    const double disk =
+        FrameIlluminance(test::DrawFrame(gpu, test::LightsOnly(lights), {camera}, size), camera) /
+        sun_y;
     // Below a pixel (90 deg field): splatted as a point.
     camera = SpaceCameraLookingAt(lights.sun_direction, 1.5707963267948966);
-    gpu.Render(camera, lights, options);
-    const double point = FrameIlluminance(gpu.ReadFrame(), camera) / sun_y;
+    const double point =
+        FrameIlluminance(test::DrawFrame(gpu, test::LightsOnly(lights), {camera}, size), camera) /
+        sun_y;
     // A star elsewhere in the field (the Sun turned off by pointing it away).
     Lights dark = lights;
     dark.sun_direction = camera.world_from_view[2];  // behind the camera
-    options.stars = {{glm::normalize(-camera.world_from_view[2] + 0.1 * camera.world_from_view[0]),
-                      glm::dvec3(2e-6)}};
-    gpu.Render(camera, dark, options);
-    const double star = FrameIlluminance(gpu.ReadFrame(), camera) / 2e-6;
+    SkyScene starry = test::LightsOnly(dark);
+    starry.stars = {{glm::normalize(-camera.world_from_view[2] + 0.1 * camera.world_from_view[0]),
+                     glm::dvec3(2e-6)}};
+    const double star =
+        FrameIlluminance(test::DrawFrame(gpu, starry, {camera}, size), camera) / 2e-6;
     std::printf("integrated / true illuminance: sun disk %.4f, sun point %.6f, star %.6f\n", disk,
                 point, star);
     EXPECT_NEAR(disk, 1.0, 0.01);  // pixelisation of the disk edge
@@ -238,12 +232,9 @@ TEST_F(AtmosphereGlTest, OffAxisSunDiskIsDrawnWhole) {
     Lights lights;
     lights.sun_direction = glm::normalize(-camera.world_from_view[2] * std::cos(off_axis) +
                                           diagonal * std::sin(off_axis));
-    RenderOptions options;
-    options.size = {512, 512};
-    gpu.UpdateFrameLuts(camera, lights);
-    gpu.Render(camera, lights, options);
+    const LutImage frame = test::DrawFrame(gpu, test::LightsOnly(lights), {camera}, {512, 512});
     const double sun_y = Y(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
-    const double ratio = FrameIlluminance(gpu.ReadFrame(), camera) / sun_y;
+    const double ratio = FrameIlluminance(frame, camera) / sun_y;
     std::printf("off-axis sun disk: integrated / true illuminance %.4f\n", ratio);
     EXPECT_NEAR(ratio, 1.0, 0.01);
 }
@@ -256,13 +247,9 @@ TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {
     const glm::dvec3 right = camera.world_from_view[0];
     Lights lights;
     lights.sun_direction = right;  // perpendicular to the line of sight: quarter phase
-    RenderOptions options;
-    options.size = {128, 128};
-    options.draw_sun_disk = false;
-    options.moon = {true, forward, 0.0045, 0.12};
-    gpu.UpdateFrameLuts(camera, lights);
-    gpu.Render(camera, lights, options);
-    const LutImage frame = gpu.ReadFrame();
+    SkyScene scene = test::LightsOnly(lights, false);
+    scene.moon = {true, forward, 0.0045, 0.12};
+    const LutImage frame = test::DrawFrame(gpu, scene, {camera}, {128, 128});
     double left_sum = 0.0, right_sum = 0.0;
     for (int y = 0; y < 128; ++y) {
         for (int x = 0; x < 128; ++x) (x < 64 ? left_sum : right_sum) += Y(frame.at(x, y));
@@ -282,14 +269,9 @@ TEST_F(AtmosphereGlTest, MobileSettingsRenderTheSameSky) {
     const Lights lights = MorningLights();
     for (double altitude : {2.0, 10000.0}) {
         const Camera camera = CameraAt(altitude);
-        RenderOptions options;
-        options.size = {160, 90};
-        options.draw_sun_disk = false;
-        pc.UpdateFrameLuts(camera, lights);
-        pc.Render(camera, lights, options);
-        mobile.UpdateFrameLuts(camera, lights);
-        mobile.Render(camera, lights, options);
-        const double rmse = RelativeRmse(mobile.ReadFrame(), pc.ReadFrame());
+        const SkyScene scene = test::LightsOnly(lights, false);
+        const double rmse = RelativeRmse(test::DrawFrame(mobile, scene, {camera}, {160, 90}),
+                                         test::DrawFrame(pc, scene, {camera}, {160, 90}));
         std::printf("mobile vs PC settings at %.0f m: relative RMSE %.4f\n", altitude, rmse);
         EXPECT_LT(rmse, 0.05) << altitude;
     }
@@ -298,7 +280,8 @@ TEST_F(AtmosphereGlTest, MobileSettingsRenderTheSameSky) {
 TEST_F(AtmosphereGlTest, LutMemoryIsAsDocumented) {
     const AtmosphereRenderer gpu(Atmosphere{});
     // RGBA32F: 16 bytes per texel; 256x64 + 32x32 + 64x1 + 200x100 + 32^3.
-    EXPECT_EQ(gpu.LutMemoryBytes(), 16u * (256 * 64 + 32 * 32 + 64 + 200 * 100 + 32 * 32 * 32));
+    EXPECT_EQ(Inspect(gpu).LutMemoryBytes(),
+              16u * (256 * 64 + 32 * 32 + 64 + 200 * 100 + 32 * 32 * 32));
 }
 
 }  // namespace

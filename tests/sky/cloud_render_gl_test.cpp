@@ -13,10 +13,12 @@
 
 #include "cloud_test_support.h"
 #include "colour_target.h"
+#include "draw_frame.h"
 #include "gl_test_support.h"
 #include "reference/cloud_trace.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/inspection.h"
 
 namespace zenith::sky {
 namespace {
@@ -71,18 +73,22 @@ Camera CameraAt(double altitude, double heading, double pitch, double fov = 1.0)
     return camera;
 }
 
-RenderOptions Options(glm::ivec2 size) {
-    RenderOptions options;
+using test::DrawFrames;
+using test::FrameOptions;
+using test::SceneOf;
+
+// The Sun's disk is left out unless a test asks for it.
+FrameOptions Options(glm::ivec2 size) {
+    FrameOptions options;
     options.size = size;
     options.draw_sun_disk = false;
     return options;
 }
 
 LutImage RenderClouds(AtmosphereRenderer& renderer, const Camera& camera, const Lights& lights,
-                      const RenderOptions& options, int frames = 1) {
-    renderer.UpdateFrameLuts(camera, lights, options.clouds);
-    for (int i = 0; i < frames; ++i) renderer.Render(camera, lights, options);
-    return renderer.ReadClouds();
+                      const FrameOptions& options, int frames = 1) {
+    DrawFrames(renderer, camera, lights, options, frames);
+    return Inspect(renderer).ReadClouds();
 }
 
 double MeanLuminance(const LutImage& image) {
@@ -111,34 +117,32 @@ TEST_F(CloudRenderGlTest, CoverageZeroIsExactlyTheClearSky) {
     const Atmosphere earth;
     const Camera camera = CameraAt(2500.0, 0.3, 0.1);
     const Lights lights = Afternoon();
-    RenderOptions options = Options({96, 54});
+    FrameOptions options = Options({96, 54});
     options.draw_sun_disk = true;
 
     AtmosphereRenderer clear(earth);
-    clear.UpdateFrameLuts(camera, lights);
-    clear.Render(camera, lights, options);
-    const LutImage sky = clear.ReadFrame();
+    DrawFrames(clear, camera, lights, options);
+    const LutImage sky = Inspect(clear).ReadFrame();
 
     clouds::Weather none = Cumulus(0.0);
     none.layers[0].map.kind = clouds::WeatherMapSource::Kind::kUniform;
     AtmosphereRenderer renderer(earth);
     renderer.SetWeather(none, Settings());
-    renderer.UpdateFrameLuts(camera, lights);
-    renderer.Render(camera, lights, options);
-    const LutImage frame = renderer.ReadFrame();
-    const LutImage layer = renderer.ReadClouds();
+    DrawFrames(renderer, camera, lights, options);
+    const LutImage frame = Inspect(renderer).ReadFrame();
+    const LutImage layer = Inspect(renderer).ReadClouds();
     ASSERT_EQ(frame.texels.size(), sky.texels.size());
     for (std::size_t i = 0; i < frame.texels.size(); ++i) {
         ASSERT_EQ(frame.texels[i], sky.texels[i]) << "pixel " << i;
         ASSERT_EQ(layer.texels[i], glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)) << "pixel " << i;
     }
-    for (const glm::vec4& t : renderer.ReadCloudShadowMap().texels) ASSERT_EQ(t.r, 1.0f);
+    for (const glm::vec4& t : Inspect(renderer).ReadCloudShadowMap().texels) ASSERT_EQ(t.r, 1.0f);
 }
 
 // The host's framebuffer after Render over geometry at `eye_depth` m everywhere, filled with
 // `colour` before: L + T colour per pixel.
 std::vector<glm::vec4> RenderOverGeometry(AtmosphereRenderer& renderer, const Camera& camera,
-                                          const Lights& lights, RenderOptions options,
+                                          const Lights& lights, FrameOptions options,
                                           double eye_depth, float colour) {
     constexpr double kNear = 1.0, kFar = 100000.0;
     const glm::ivec2 size = options.size;
@@ -153,11 +157,9 @@ std::vector<glm::vec4> RenderOverGeometry(AtmosphereRenderer& renderer, const Ca
                         depth.data());
     const float fill[4] = {colour, colour, colour, 1.0f};
     glClearNamedFramebufferfv(target.framebuffer(), GL_COLOR, 0, fill);
-    options.target_framebuffer = target.framebuffer();
-    options.target_viewport = {0, 0, size.x, size.y};
-    options.scene_depth = SceneDepth{depth_texture, kNear, kFar};
-    renderer.UpdateFrameLuts(camera, lights, options.clouds);
-    renderer.Render(camera, lights, options);
+    renderer.Update(SceneOf(lights, options), {camera});
+    renderer.Render(RenderTarget::Host(target.framebuffer(), {0, 0, size.x, size.y},
+                                       SceneDepth{depth_texture, kNear, kFar}));
     glDeleteTextures(1, &depth_texture);
     return target.ReadFloat();
 }
@@ -174,28 +176,26 @@ TEST_F(CloudRenderGlTest, CompositeHidesTheSunAndOnlyGeometryBehindTheClouds) {
     const Camera camera = CameraAt(500.0, 1.9, 0.74, 0.1);
     Lights lights;
     lights.sun_direction = -camera.world_from_view[2];
-    RenderOptions options = Options({96, 54});
+    FrameOptions options = Options({96, 54});
     options.clouds.reset_history = true;
 
     AtmosphereRenderer clear(earth);
     AtmosphereRenderer cloudy(earth);
     cloudy.SetWeather(Cumulus(0.6), Settings());
     const auto sun_disk = [&](AtmosphereRenderer& renderer) {
-        RenderOptions o = options;
+        FrameOptions o = options;
         o.draw_sun_disk = true;
-        renderer.UpdateFrameLuts(camera, lights, o.clouds);
-        renderer.Render(camera, lights, o);
-        LutImage with = renderer.ReadFrame();
+        DrawFrames(renderer, camera, lights, o);
+        LutImage with = Inspect(renderer).ReadFrame();
         o.draw_sun_disk = false;
-        renderer.UpdateFrameLuts(camera, lights, o.clouds);
-        renderer.Render(camera, lights, o);
-        const LutImage without = renderer.ReadFrame();
+        DrawFrames(renderer, camera, lights, o);
+        const LutImage without = Inspect(renderer).ReadFrame();
         for (std::size_t i = 0; i < with.texels.size(); ++i) with.texels[i] -= without.texels[i];
         return with;
     };
     const LutImage disk = sun_disk(clear);
     const LutImage disk_through_clouds = sun_disk(cloudy);
-    const LutImage clouds = cloudy.ReadClouds();
+    const LutImage clouds = Inspect(cloudy).ReadClouds();
     int disk_pixels = 0, hidden = 0;
     for (std::size_t i = 0; i < disk.texels.size(); ++i) {
         const double expected = clouds.texels[i].a * disk.texels[i].g;
@@ -256,16 +256,16 @@ TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbi
          {View{"ground, looking up", 300.0, 0.35}, View{"inside the layer", 2700.0, 0.0},
           View{"12 km, looking down", 12000.0, -0.45}, View{"orbit, 400 km", 400000.0, -1.2}}) {
         const Camera camera = CameraAt(v.altitude, 0.4, v.pitch);
-        RenderOptions options = Options(size);
+        FrameOptions options = Options(size);
         options.clouds.reset_history = true;
         const LutImage gpu = RenderClouds(renderer, camera, lights, options);
 
-        const ref::CloudScene scene =
-            ref::MakeCloudScene(earth, renderer.ReadTransmittance(),
-                                renderer.ReadMultipleScattering(), renderer.ReadGroundIrradiance(),
-                                weather, settings, noise, camera, lights, options.clouds);
+        const ref::CloudScene scene = ref::MakeCloudScene(
+            earth, Inspect(renderer).ReadTransmittance(),
+            Inspect(renderer).ReadMultipleScattering(), Inspect(renderer).ReadGroundIrradiance(),
+            weather, settings, noise, camera, lights, options.clouds);
         // What the clouds do to the light beneath them (sky_shade passes vs the CPU march).
-        const CloudShade shade = renderer.ReadCloudShade();
+        const CloudShade shade = Inspect(renderer).ReadCloudShade();
         EXPECT_DOUBLE_EQ(shade.base_altitude, weather.layers[0].base_altitude) << v.name;
         EXPECT_NEAR(shade.direct_transmittance, scene.lights.cloud_direct, 1e-3) << v.name;
         EXPECT_NEAR(shade.sky_transmittance, scene.lights.cloud_sky, 1e-3) << v.name;
@@ -313,7 +313,7 @@ TEST_F(CloudRenderGlTest, ReprojectionConvergesToAFullResolutionHighSampleRender
     const Lights lights = Afternoon();
     const clouds::Weather weather = Cumulus();
     const Camera camera = CameraAt(300.0, 0.4, 0.15);
-    const RenderOptions options = Options({96, 54});
+    const FrameOptions options = Options({96, 54});
 
     CloudSettings reference_settings = Settings(1);
     reference_settings.max_steps = 256;
@@ -347,7 +347,7 @@ TEST_F(CloudRenderGlTest, ReprojectionFollowsAFastCameraWithoutSmearing) {
     const Atmosphere earth;
     const Lights lights = Afternoon();
     const clouds::Weather weather = Cumulus();
-    const RenderOptions options = Options({96, 54});
+    const FrameOptions options = Options({96, 54});
     const auto camera_at = [](int frame) {
         Camera c = CameraAt(2000.0, 0.4 + 0.01 * frame, 0.05);
         c.position.y += 250.0 / 30.0 * frame;  // north
@@ -358,7 +358,7 @@ TEST_F(CloudRenderGlTest, ReprojectionFollowsAFastCameraWithoutSmearing) {
     AtmosphereRenderer reference(earth);
     reference.SetWeather(weather, Settings(1));
     const LutImage truth = RenderClouds(reference, camera_at(kFrames - 1), lights, options, 8);
-    RenderOptions cut = options;
+    FrameOptions cut = options;
     cut.clouds.reset_history = true;
     const LutImage start = RenderClouds(reference, camera_at(0), lights, cut, 1);
 
@@ -370,8 +370,8 @@ TEST_F(CloudRenderGlTest, ReprojectionFollowsAFastCameraWithoutSmearing) {
         RenderClouds(flying, camera_at(frame), lights, options, 1);
         RenderClouds(still, camera_at(kFrames - 1), lights, options, 1);
     }
-    const double error_flying = Difference(flying.ReadClouds(), truth).luminance;
-    const double error_still = Difference(still.ReadClouds(), truth).luminance;
+    const double error_flying = Difference(Inspect(flying).ReadClouds(), truth).luminance;
+    const double error_still = Difference(Inspect(still).ReadClouds(), truth).luminance;
     const double error_start = Difference(start, truth).luminance;
     std::printf(
         "after %d frames vs the converged full-resolution image: flying and turning "
@@ -398,16 +398,16 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
         renderer.SetWeather(weather, settings);
         const Camera camera = CameraAt(800.0, 2.0, -0.7, 1.2);  // under the base, looking down
         const glm::ivec2 size(128, 72);
-        RenderOptions options = Options(size);
+        FrameOptions options = Options(size);
         options.clouds.reset_history = true;
         const LutImage in_front = RenderClouds(renderer, camera, lights, options);
-        const LutImage frame = renderer.ReadFrame();
-        const ref::Texture2D shadow_map = ref::FromImage(renderer.ReadCloudShadowMap());
+        const LutImage frame = Inspect(renderer).ReadFrame();
+        const ref::Texture2D shadow_map = ref::FromImage(Inspect(renderer).ReadCloudShadowMap());
 
         const ref::CloudScene scene = ref::MakeCloudScene(
-            earth, renderer.ReadTransmittance(), renderer.ReadMultipleScattering(),
-            renderer.ReadGroundIrradiance(), weather, settings, clouds::test::CachedNoise(), camera,
-            lights, options.clouds);
+            earth, Inspect(renderer).ReadTransmittance(),
+            Inspect(renderer).ReadMultipleScattering(), Inspect(renderer).ReadGroundIrradiance(),
+            weather, settings, clouds::test::CachedNoise(), camera, lights, options.clouds);
         const ref::AtmosphereParameters& a = scene.atmosphere;
         const glm::ivec2 transmittance_size(scene.transmittance.width(),
                                             scene.transmittance.height());
@@ -457,7 +457,7 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
         ASSERT_GT(n_lit, 20);
         ASSERT_GT(n_shadowed, 20);
         const double relative = error / reference;
-        const CloudShade shade = renderer.ReadCloudShade();
+        const CloudShade shade = Inspect(renderer).ReadCloudShade();
         std::printf(
             "ground under scattered cumulus, block %d, %d pixels: GPU vs CPU reference %.2f "
             "%% (mean |difference| / mean); sunlit ground %.0f cd/m^2, in cloud shadow %.0f "
@@ -492,10 +492,10 @@ TEST_F(CloudRenderGlTest, CloudTransmittanceIsTheShadowMapsMarchFromAnyHeight) {
                  zenith::ArgumentError);
 
     const glm::dvec3 ground = glm::dvec3(0.0, 0.0, earth.bottom_radius);
-    const ref::CloudScene scene =
-        ref::MakeCloudScene(earth, renderer.ReadTransmittance(), renderer.ReadMultipleScattering(),
-                            renderer.ReadGroundIrradiance(), weather, settings,
-                            clouds::test::CachedNoise(), camera, lights, view);
+    const ref::CloudScene scene = ref::MakeCloudScene(
+        earth, Inspect(renderer).ReadTransmittance(), Inspect(renderer).ReadMultipleScattering(),
+        Inspect(renderer).ReadGroundIrradiance(), weather, settings, clouds::test::CachedNoise(),
+        camera, lights, view);
     const double shadow_map_texel =
         ref::CloudShadowMapTexel(scene, settings, camera.position / kKm, glm::dvec2(0.5));
     const double from_ground =
@@ -527,12 +527,12 @@ TEST_F(CloudRenderGlTest, ShadeHoldsBetweenItsUpdates) {
     AtmosphereRenderer renderer(earth);
     renderer.SetWeather(Cumulus(), Settings(4));
     const Camera camera = CameraAt(300.0, 0.4, 0.15);
-    const RenderOptions options = Options({48, 27});
+    const FrameOptions options = Options({48, 27});
     std::vector<CloudShade> shades;
     for (int frame = 0; frame < 6; ++frame) {
         RenderClouds(renderer, camera, lights, options);
-        shades.push_back(renderer.ReadCloudShade());
-        const bool updated = renderer.LastPassTimes().cloud_shade > 0.0;
+        shades.push_back(Inspect(renderer).ReadCloudShade());
+        const bool updated = Inspect(renderer).LastPassTimes().cloud_shade > 0.0;
         EXPECT_EQ(updated, frame % 4 == 0) << "frame " << frame;
     }
     EXPECT_LT(shades[0].direct_transmittance, 0.95);
@@ -555,13 +555,12 @@ TEST_F(CloudRenderGlTest, OvercastStratusFromAboveIsBrighterThanTheGround) {
     const double elevation = glm::radians(65.0);
     noon.sun_direction = glm::dvec3(0.0, std::cos(elevation), std::sin(elevation));
     const Camera camera = CameraAt(8000.0, 0.0, -glm::radians(90.0) + 1e-3, 0.35);
-    RenderOptions options = Options({32, 18});
+    FrameOptions options = Options({32, 18});
     const auto frame_luminance = [&](const clouds::Weather& weather) {
         renderer.SetWeather(weather, Settings());
         options.clouds.reset_history = true;
-        renderer.UpdateFrameLuts(camera, noon, options.clouds);
-        renderer.Render(camera, noon, options);
-        const LutImage frame = renderer.ReadFrame();
+        DrawFrames(renderer, camera, noon, options);
+        const LutImage frame = Inspect(renderer).ReadFrame();
         double sum = 0.0;
         for (const glm::vec4& t : frame.texels) sum += 0.2126 * t.r + 0.7152 * t.g + 0.0722 * t.b;
         return sum / static_cast<double>(frame.texels.size());
@@ -588,7 +587,7 @@ TEST_F(CloudRenderGlTest, OvercastShadowsTheGroundAndTheSettingsAreChecked) {
     const Camera camera = CameraAt(300.0, 0.0, 0.2);
     RenderClouds(renderer, camera, noon, Options({32, 18}));
     double mean = 0.0;
-    const LutImage shadow = renderer.ReadCloudShadowMap();
+    const LutImage shadow = Inspect(renderer).ReadCloudShadowMap();
     for (const glm::vec4& t : shadow.texels) mean += t.r;
     mean /= static_cast<double>(shadow.texels.size());
     std::printf("overcast cumulonimbus at noon: mean sun transmittance to the ground %.3g\n", mean);

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "cloud_test_support.h"
+#include "gl/shader.h"
 #include "gl/shader_library.h"
 #include "reference/cloud_functions.h"
 #include "zenith/sky/gl/context.h"
-#include "zenith/sky/gl/shader.h"
 
 namespace zenith::sky {
 namespace {

@@ -12,10 +12,10 @@
 #include <string_view>
 #include <vector>
 
+#include "gl/shader.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/loader.h"
-#include "zenith/sky/gl/shader.h"
 
 namespace zenith::sky::gl {
 namespace {

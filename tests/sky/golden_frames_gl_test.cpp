@@ -18,6 +18,7 @@
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/image_io.h"
+#include "zenith/sky/inspection.h"
 #include "zenith/sky/sky_state.h"
 
 namespace zenith::sky {
@@ -120,27 +121,22 @@ Image Render(const Scene& scene, AtmosphereRenderer& renderer, const geo::StarCa
         scene.height_m == kInsideTheLayer
             ? 0.5 * (weather.layers[0].base_altitude + weather.layers[0].top_altitude)
             : scene.height_m;
-    const geo::Observer observer(46.45, 6.6, height);
-    const geo::Time time = geo::TimeFromIso8601(scene.utc);
-    const geo::SkyEphemeris e = geo::Ephemeris(catalog).Compute(time, observer);
-    const double heading =
-        scene.toward_sun ? e.sun.topocentric.horizontal.azimuth + glm::radians(scene.sun_offset_deg)
-                         : 0.0;
-    SkyState state = MakeSkyState(e, observer, renderer.atmosphere(),
-                                  {heading, glm::radians(scene.pitch_deg), 0.0}, glm::radians(90.0),
-                                  double(kSize.x) / kSize.y);
-    renderer.UpdateFrameLuts(state.camera, state.lights);
-    RenderOptions options;
-    options.size = kSize;
-    options.moon = state.moon;
-    options.stars = state.stars;
-    renderer.Render(state.camera, state.lights, options);
-    const LutImage frame = renderer.ReadFrame();
-    Image image(kSize.x, kSize.y);
-    for (int y = 0; y < kSize.y; ++y) {
-        for (int x = 0; x < kSize.x; ++x) image.at(x, y) = frame.at(x, kSize.y - 1 - y);
+    FrameSetup setup;
+    setup.time = geo::TimeFromIso8601(scene.utc);
+    setup.observer = geo::Observer(46.45, 6.6, height);
+    const geo::Ephemeris calculator(catalog);
+    if (scene.toward_sun) {
+        const geo::SkyEphemeris e = calculator.Compute(setup.time, setup.observer);
+        setup.attitude.heading_rad =
+            e.sun.topocentric.horizontal.azimuth + glm::radians(scene.sun_offset_deg);
     }
-    return image;
+    setup.attitude.pitch_rad = glm::radians(scene.pitch_deg);
+    setup.vertical_fov = glm::radians(90.0);
+    setup.aspect = double(kSize.x) / kSize.y;
+    const SkyFrame frame = BuildSkyFrame(calculator, setup, renderer.atmosphere());
+    renderer.Update(frame.scene, frame.view);
+    renderer.Render(RenderTarget::Offscreen(kSize));
+    return ImageFromFrame(Inspect(renderer).ReadFrame());
 }
 
 TEST_P(GoldenFrames, MatchesTheReviewedFrame) {

@@ -4,8 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/constants.hpp>
+#include <optional>
+#include <string>
 
+#include "zenith/base/error.h"
 #include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
 #include "zenith/geo/sun.h"
@@ -35,22 +39,22 @@ TEST(SkyStateFromEphemeris, PlacesCameraAndScalesLights) {
     const Atmosphere earth;
     const SkyState state = MakeSkyState(e, observer, earth, {}, 1.0, 1.5);
     // The ground under the camera is at its ellipsoidal height; up is the ENU z axis.
-    EXPECT_NEAR(glm::length(state.camera.position) - earth.bottom_radius, 3000.0, 1e-6);
-    ExpectNear(glm::normalize(state.camera.position), {0, 0, 1}, 1e-15);
-    ExpectNear(state.lights.sun_direction, e.sun.topocentric.horizontal.direction_enu, 1e-15);
+    EXPECT_NEAR(glm::length(state.view.camera.position) - earth.bottom_radius, 3000.0, 1e-6);
+    ExpectNear(glm::normalize(state.view.camera.position), {0, 0, 1}, 1e-15);
+    ExpectNear(state.scene.lights.sun_direction, e.sun.topocentric.horizontal.direction_enu, 1e-15);
     // January: the Earth is near perihelion, the Sun 3 % brighter than at 1 au.
     const double au = e.sun.topocentric.horizontal.distance / geo::kAstronomicalUnit;
-    EXPECT_NEAR(state.lights.sun_illuminance.y, earth.solar_illuminance.y / (au * au), 1e-6);
-    EXPECT_GT(state.lights.sun_illuminance.y / earth.solar_illuminance.y, 1.03);
+    EXPECT_NEAR(state.scene.lights.sun_illuminance.y, earth.solar_illuminance.y / (au * au), 1e-6);
+    EXPECT_GT(state.scene.lights.sun_illuminance.y / earth.solar_illuminance.y, 1.03);
     // Full Moon: a Lambertian sphere of albedo 0.12 gives ~0.2 lux at the top of the
     // atmosphere; the real Moon gives ~0.3 (opposition surge, not modelled).
-    EXPECT_GT(state.lights.moon_illuminance.y, 0.15);
-    EXPECT_LT(state.lights.moon_illuminance.y, 0.35);
+    EXPECT_GT(state.scene.lights.moon_illuminance.y, 0.15);
+    EXPECT_LT(state.scene.lights.moon_illuminance.y, 0.35);
 }
 
 // Venus at its greatest brilliancy (2020-04-28, V = -4.7), an hour after sunset over the Alps:
 // drawn as the brightest point of the sky, where the ephemeris puts it; planets under
-// kMinStarElevation are not drawn.
+// MinStarElevation are not drawn.
 TEST(SkyStateFromEphemeris, PlanetsAreDrawnLikeStars) {
     const geo::Time t = geo::TimeFromIso8601("2020-04-28T19:45:00Z");
     const geo::Observer observer(45.0, 7.0, 500.0);
@@ -59,21 +63,90 @@ TEST(SkyStateFromEphemeris, PlanetsAreDrawnLikeStars) {
     const SkyState state = MakeSkyState(e, observer, Atmosphere{}, {}, 1.0, 1.5);
     std::size_t planets_up = 0;
     for (const geo::PlanetPosition& p : e.planets) {
-        planets_up += p.topocentric.horizontal.elevation >= kMinStarElevation ? 1 : 0;
+        planets_up +=
+            p.topocentric.horizontal.elevation >= MinStarElevation(6360e3, 500.0) ? 1u : 0u;
     }
-    ASSERT_EQ(state.stars.size(), e.stars.size() + planets_up);
+    ASSERT_EQ(state.scene.stars.size(), e.stars.size() + planets_up);
     const geo::PlanetPosition& venus = e.planets[1];
     ASSERT_EQ(venus.planet, geo::Planet::kVenus);
     EXPECT_LT(venus.magnitude_v, -4.5);
     EXPECT_GT(venus.topocentric.horizontal.elevation, 0.2);
     const auto brightest = std::max_element(
-        state.stars.begin(), state.stars.end(),
+        state.scene.stars.begin(), state.scene.stars.end(),
         [](const StarPoint& a, const StarPoint& b) { return a.illuminance.y < b.illuminance.y; });
     ExpectNear(brightest->direction, venus.topocentric.horizontal.direction_enu, 1e-15);
     // Its luminous part: the magnitude's illuminance, within its colour's green weight.
     const double expected = geo::IlluminanceFromMagnitude(venus.magnitude_v);
     EXPECT_NEAR(brightest->illuminance.y / expected, 1.0, 0.1);
     EXPECT_GT(brightest->illuminance.y, 10.0 * geo::IlluminanceFromMagnitude(-1.46));  // Sirius
+}
+
+// From altitude the horizon dips: from 100 km the limb is 10.1 deg below the horizontal plane
+// (acos(R / (R + h))), and the stars between the plane and the limb are in the sky.
+TEST(SkyFrame, StarsDownToTheLimbAreDrawnFromAltitude) {
+    EXPECT_NEAR(MinStarElevation(6360e3, 0.0), -glm::radians(0.6), 1e-15);
+    EXPECT_NEAR(MinStarElevation(6360e3, 100e3), -(std::acos(6360.0 / 6460.0) + glm::radians(0.6)),
+                1e-12);
+    EXPECT_NEAR(glm::degrees(std::acos(6360.0 / 6460.0)), 10.1, 0.05);
+
+    std::optional<geo::StarCatalog> catalog;
+    try {
+        catalog = geo::StarCatalog::Load(6.5);
+    } catch (const geo::CatalogError& e) {
+        GTEST_SKIP() << "star catalogue not installed: " << e.what();
+    }
+    FrameSetup setup;
+    setup.time = geo::TimeFromIso8601("2024-06-21T23:30:00Z");
+    setup.observer = geo::Observer(46.45, 6.6, 100e3);
+    const SkyFrame frame = BuildSkyFrame(geo::Ephemeris(&*catalog), setup, Atmosphere{});
+    const double lowest = MinStarElevation(Atmosphere{}.bottom_radius, 100e3);
+    int below_the_plane = 0;
+    for (const geo::StarState& star : frame.ephemeris.stars) {
+        EXPECT_GE(star.horizontal.elevation, lowest);
+        below_the_plane += star.horizontal.elevation < 0.0 ? 1 : 0;
+    }
+    // A band 10 deg high around the whole horizon holds ~9 % of the ~9,000 stars to 6.5 mag.
+    std::printf("stars between the horizontal plane and the limb from 100 km: %d\n",
+                below_the_plane);
+    EXPECT_GT(below_the_plane, 300);
+}
+
+TEST(SkyFrame, BuildsTheSameFrameAsMakeSkyStateAndChecksTheProjection) {
+    FrameSetup setup;
+    setup.time = geo::TimeFromIso8601("2024-06-21T19:00:00Z");
+    setup.observer = geo::Observer(47.45, 8.56, 10000.0);
+    setup.attitude = geo::Attitude::FromDegrees(300.0, 5.0, -2.0);
+    setup.vertical_fov = glm::radians(50.0);
+    setup.aspect = 1.5;
+    const Atmosphere earth;
+    const SkyFrame frame = BuildSkyFrame(geo::Ephemeris(), setup, earth);
+    const SkyState state = MakeSkyState(frame.ephemeris, setup.observer, earth, setup.attitude,
+                                        setup.vertical_fov, setup.aspect);
+    EXPECT_EQ(frame.view.camera.world_from_view, state.view.camera.world_from_view);
+    EXPECT_EQ(frame.view.camera.position, state.view.camera.position);
+    EXPECT_EQ(frame.scene.lights.sun_direction, state.scene.lights.sun_direction);
+    EXPECT_EQ(frame.scene.stars.size(), state.scene.stars.size());
+    EXPECT_EQ(frame.sun_elevation, state.sun_elevation);
+
+    // A view matrix given instead of the attitude is taken as it is.
+    const glm::dmat3 looking_up(glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, -1));
+    setup.enu_from_view = looking_up;
+    EXPECT_EQ(BuildSkyFrame(geo::Ephemeris(), setup, earth).view.camera.world_from_view,
+              looking_up);
+
+    for (const double fov_deg : {0.0, 180.0, -10.0, std::nan("")}) {
+        setup.vertical_fov = glm::radians(fov_deg);
+        try {
+            BuildSkyFrame(geo::Ephemeris(), setup, earth);
+            ADD_FAILURE() << fov_deg << " deg was accepted";
+        } catch (const ArgumentError& e) {
+            EXPECT_EQ(e.field(), "fov_deg");
+            EXPECT_NE(std::string(e.what()).find("(0, 180) deg"), std::string::npos) << e.what();
+        }
+    }
+    setup.vertical_fov = 1.0;
+    setup.aspect = 0.0;
+    EXPECT_THROW(BuildSkyFrame(geo::Ephemeris(), setup, earth), ArgumentError);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
+#include "zenith/sky/inspection.h"
 #include "zenith/sky/reference/path_tracer.h"
 #include "zenith/sky/sky_state.h"
 
@@ -125,33 +126,29 @@ Luts ComputeLuts(const Scene& scene) {
         throw ArgumentError(fmt::format("--quality = '{}' is not a quality (expected pc or mobile)",
                                         scene.quality));
     }
-    if (!(scene.fov_deg > 0.0 && scene.fov_deg < 180.0)) {
-        throw ArgumentError(fmt::format(
-            "--fov = {} deg is out of range (expected 0 < vertical field of view < 180)",
-            scene.fov_deg));
-    }
-    const geo::Time time = geo::TimeFromIso8601(scene.utc);
-    const geo::Observer observer(scene.lat_deg, scene.lon_deg, scene.height_m);
-    const geo::SkyEphemeris ephemeris = geo::Ephemeris().Compute(time, observer);
-    const geo::Attitude attitude{scene.heading_deg * kDeg, scene.pitch_deg * kDeg,
-                                 scene.roll_deg * kDeg};
-    const sky::SkyState state = sky::MakeSkyState(ephemeris, observer, luts.atmosphere, attitude,
-                                                  scene.fov_deg * kDeg, scene.aspect);
-    luts.camera = state.camera;
-    luts.lights = state.lights;
-    luts.camera_altitude = glm::length(state.camera.position) - luts.atmosphere.bottom_radius;
-    luts.sun_elevation_deg = state.sun_elevation / kDeg;
+    sky::FrameSetup setup;
+    setup.time = geo::TimeFromIso8601(scene.utc);
+    setup.observer = geo::Observer(scene.lat_deg, scene.lon_deg, scene.height_m);
+    setup.attitude = geo::Attitude::FromDegrees(scene.heading_deg, scene.pitch_deg, scene.roll_deg);
+    setup.vertical_fov = scene.fov_deg * kDeg;
+    setup.aspect = scene.aspect;
+    const sky::SkyFrame frame = sky::BuildSkyFrame(geo::Ephemeris(), setup, luts.atmosphere);
+    luts.camera = frame.view.camera;
+    luts.lights = frame.scene.lights;
+    luts.camera_altitude = glm::length(luts.camera.position) - luts.atmosphere.bottom_radius;
+    luts.sun_elevation_deg = frame.sun_elevation / kDeg;
 
     auto context = sky::gl::CreateHeadlessContextFromEnvironment();
     luts.gl_description = context->description();
     {
         sky::AtmosphereRenderer renderer(luts.atmosphere, luts.settings);
-        renderer.UpdateFrameLuts(luts.camera, luts.lights);
-        luts.transmittance = renderer.ReadTransmittance();
-        luts.multiple_scattering = renderer.ReadMultipleScattering();
-        luts.irradiance = renderer.ReadGroundIrradiance();
-        luts.sky_view = renderer.ReadSkyView();
-        luts.aerial_perspective = renderer.ReadAerialPerspective();
+        renderer.Update(frame.scene, frame.view);
+        const sky::RendererInspection inspect(renderer);
+        luts.transmittance = inspect.ReadTransmittance();
+        luts.multiple_scattering = inspect.ReadMultipleScattering();
+        luts.irradiance = inspect.ReadGroundIrradiance();
+        luts.sky_view = inspect.ReadSkyView();
+        luts.aerial_perspective = inspect.ReadAerialPerspective();
     }  // GL objects are freed while the context is still current
     context->ReleaseCurrent();
     return luts;

@@ -224,6 +224,11 @@ int main(int argc, char** argv) {
     } catch (const vis::DisplayError& e) {
         fmt::print(stderr, "zenith-plot: no display: {}\n", e.what());
         return 3;
+    } catch (const ArgumentError& e) {
+        // The library names its fields (the frame builder's "fov_deg"); say which option it was.
+        fmt::print(stderr, "zenith-plot: error: {}{}\n", e.field() == "fov_deg" ? "--fov: " : "",
+                   e.what());
+        return 2;
     } catch (const std::exception& e) {
         fmt::print(stderr, "zenith-plot: error: {}\n", e.what());
         return 2;

@@ -338,10 +338,10 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
 }
 
 void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
-                         const RenderOptions& options) {
-    if (options.size != size_) Resize(options.size);
-    const bool history_valid = previous_.has_value() && !options.clouds.reset_history;
-    UploadUniforms(atmosphere, camera, lights, options.clouds, history_valid);
+                         glm::ivec2 size, const CloudView& view) {
+    if (size != size_) Resize(size);
+    const bool history_valid = previous_.has_value() && !view.reset_history;
+    UploadUniforms(atmosphere, camera, lights, view, history_valid);
     BindTextures();
 
     gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_, glm::ivec4(0, 0, trace_size_),
@@ -363,7 +363,7 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
                        queries_[kGroundShadowQuery]);
     query_used_[kGroundShadowQuery] = true;
 
-    previous_ = Previous{camera, options.clouds.weather_from_world};
+    previous_ = Previous{camera, view.weather_from_world};
     ++frame_index_;
 }
 

@@ -14,9 +14,9 @@
 #include <string_view>
 #include <vector>
 
+#include "gl/shader.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/atmosphere_renderer.h"
-#include "zenith/sky/gl/shader.h"
 
 namespace zenith::sky {
 
@@ -50,8 +50,9 @@ class CloudPasses {
                  const CloudView& view, GLuint light_buffer);
     // Then, before the sky pass, traces the clouds and reconstructs them at full resolution,
     // with their shadow on the ground the atmosphere draws.
+    // `size` is the frame's; `view` the one Prepare was given this frame.
     void Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
-                const RenderOptions& options);
+                glm::ivec2 size, const CloudView& view);
     // Binds what the sky pass reads to composite the last Render's clouds.
     void BindForComposite() const;
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "bindings.h"
-#include "zenith/sky/gl/shader.h"
+#include "gl/shader.h"
 
 namespace zenith::sky::gl {
 

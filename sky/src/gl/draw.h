@@ -6,7 +6,7 @@
 #include <glm/glm.hpp>
 #include <optional>
 
-#include "zenith/sky/gl/shader.h"
+#include "gl/shader.h"
 
 namespace zenith::sky::gl {
 

@@ -1,4 +1,4 @@
-#include "zenith/sky/gl/shader.h"
+#include "gl/shader.h"
 
 #include <glad/gl.h>
 

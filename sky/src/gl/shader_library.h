@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "zenith/sky/gl/shader.h"
+#include "gl/shader.h"
 
 namespace zenith::sky::gl {
 

@@ -121,7 +121,7 @@ void ShadeLightsUnderClouds(const CloudScene& scene, const CloudSettings& settin
 
 // The scene the renderer draws for this camera: LUTs as read back from the GPU (so the CPU
 // samples what the GPU samples), the noise and weather maps as uploaded, and the atmosphere's
-// lights shaded by the clouds as UpdateFrameLuts shades them.
+// lights shaded by the clouds as AtmosphereRenderer::Update shades them.
 CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmittance,
                           const LutImage& multiple_scattering, const LutImage& irradiance,
                           const clouds::Weather& weather, const CloudSettings& settings,

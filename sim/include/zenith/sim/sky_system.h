@@ -277,7 +277,7 @@ class SkySystem {
     // in-scattered luminance, a mean transmittance) and the transmittance LUT.
     unsigned aerial_perspective_texture() const;
     unsigned transmittance_texture() const;
-    // The clouds' shadow on the ground around the aircraft (sky::AtmosphereRenderer::
+    // The clouds' shadow on the ground around the aircraft (sky::RendererInspection::
     // ReadCloudShadowMap has the layout); 0 without clouds.
     unsigned cloud_shadow_texture() const;
 

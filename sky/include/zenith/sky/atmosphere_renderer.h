@@ -6,37 +6,15 @@
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <memory>
-#include <optional>
-#include <vector>
 
 #include "zenith/base/error.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/clouds/noise.h"
 #include "zenith/sky/clouds/weather.h"
+#include "zenith/sky/frame.h"
 #include "zenith/sky/lut.h"
 
 namespace zenith::sky {
-
-// The host's depth buffer, to draw aerial perspective over its geometry: a single-sample 2-D
-// depth texture (window depth 0..1) of the viewport's size, from a perspective projection with
-// these near and far planes (metres). Pixels nearer than the far plane get in-scattering and
-// transmittance blended over the host's colour (framebuffer = L + T * colour); the others get
-// the sky. Conventions, with eye depth z:
-//   standard (reversed = false): OpenGL's projection and depth range, glClipControl(...,
-//     GL_NEGATIVE_ONE_TO_ONE); the depth cleared to 1, 0 at near and 1 at far:
-//     d = f (z - n) / (z (f - n)); an infinite far plane (far_m = infinity) gives d = 1 - n / z.
-//   reversed (reversed = true): reversed-Z, glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), a
-//     projection that maps near to 1 and far to 0, depth cleared to 0 and GL_GREATER:
-//     d = n (f - z) / (z (f - n)); with an infinite far plane d = n / z.
-// A zero-to-one projection that is not reversed (near to 0, far to 1) gives the standard d. A
-// multisampled depth texture is refused (SkySystem::SetSceneDepth): resolve it first
-// (glBlitFramebuffer of the depth into a single-sample texture).
-struct SceneDepth {
-    unsigned texture = 0;
-    double near_m = 0.5;
-    double far_m = 100000.0;  // may be infinity
-    bool reversed = false;    // reversed-Z: 1 at near, 0 at far (see above)
-};
 
 // The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
 // units; the defaults are what `zenith render --weather` uses.
@@ -96,64 +74,6 @@ struct CloudSettings {
     void Validate() const;
 };
 
-// What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found by
-// UpdateFrameLuts with the shadow map (every shadow_map_interval frames): the air and the ground
-// below base_altitude get each light's direct part times direct_transmittance and the sky's part
-// times sky_transmittance, and the clouds' own light as a source of luminance `luminance` over
-// the upper hemisphere.
-struct CloudShade {
-    double base_altitude = 0.0;         // m above the ground; 0: no clouds
-    double direct_transmittance = 1.0;  // toward the Sun (Moon at night), mean over the shadow map
-    double sky_transmittance = 1.0;     // mean over the upper hemisphere, from the ground
-    glm::dvec3 luminance{0.0};          // cd/m^2, the clouds' mean over the upper hemisphere
-};
-
-// Per frame: where the weather is.
-struct CloudView {
-    double time = 0.0;  // s since the weather's epoch: how far the wind has carried the layers
-    // Rotation from the renderer's planet-centred frame to the weather's (+z through the
-    // weather map's origin; x east and y north there). Identity puts the map's origin under the
-    // camera; a host that moves keeps it fixed on the planet (WeatherFrame in sky_state.h) so
-    // the clouds stay where they are as it flies.
-    glm::dmat3 weather_from_world{1.0};
-    // A cut: do not reproject earlier frames, and start the jitter sequence over (the frame is
-    // then the same whatever was drawn before it).
-    bool reset_history = false;
-};
-
-struct RenderOptions {
-    glm::ivec2 size{1280, 720};
-    // Inside the atmosphere the sky comes from the Sky-View LUT; above it (or always, if
-    // force_ray_march) each pixel is ray marched with ray_march_steps steps.
-    bool force_ray_march = false;
-    int ray_march_steps = 32;
-    bool draw_sun_disk = true;  // drawn as a point (energy-conserving) when below a pixel
-    MoonDisk moon;
-    std::vector<StarPoint> stars;  // splatted into the pixel holding each, as E / pixel solid angle
-    // Draw into this framebuffer object of the host (0 = the default framebuffer) over the
-    // viewport (x, y, width, height) instead of the renderer's own RGBA32F frame; `size` must be
-    // the viewport's size. The host's framebuffer binding and viewport are restored afterwards.
-    std::optional<unsigned> target_framebuffer;
-    glm::ivec4 target_viewport{0, 0, 0, 0};
-    std::optional<SceneDepth> scene_depth;  // with a host framebuffer only
-    CloudView clouds;                       // used when the renderer has weather (SetWeather)
-};
-
-// GPU time of each pass in milliseconds, measured with GL timer queries.
-struct PassTimes {
-    double transmittance = 0.0;
-    double multiple_scattering = 0.0;
-    double irradiance = 0.0;
-    double sky_view = 0.0;
-    double aerial_perspective = 0.0;
-    double render = 0.0;            // the composite: sky, disks and, with weather, the clouds
-    double cloud_shadow_map = 0.0;  // 0 without weather
-    double cloud_shade = 0.0;       // the clouds' effect on the light beneath them
-    double cloud_trace = 0.0;
-    double cloud_reconstruct = 0.0;
-    double cloud_ground_shadow = 0.0;  // per trace cell, which the composite interpolates
-};
-
 class AtmosphereRenderer {
   public:
     explicit AtmosphereRenderer(const Atmosphere& atmosphere, const LutSettings& settings = {});
@@ -181,31 +101,17 @@ class AtmosphereRenderer {
     const clouds::Weather& weather() const;
     const CloudSettings& cloud_settings() const;
 
-    // The per-frame LUTs (Sky-View, aerial perspective) for this camera and these lights; with
-    // weather, first the clouds' shadow map and their shading of the air and the ground beneath
-    // them (Frostbite 2016 Eq. 22), for the clouds placed by `clouds`.
-    void UpdateFrameLuts(const Camera& camera, const Lights& lights, const CloudView& clouds = {});
-    // Renders the frame into the renderer's RGBA32F colour texture (after UpdateFrameLuts for
-    // the same camera, lights and CloudView).
-    void Render(const Camera& camera, const Lights& lights, const RenderOptions& options);
+    // The front door, every frame: Update makes the per-frame LUTs (Sky-View, aerial
+    // perspective) for this scene and view (with weather, first the clouds' shadow map and their
+    // shading of the air and the ground beneath them, Frostbite 2016 Eq. 22) and keeps both;
+    // Render draws them into `target`. Render may run more than once after an Update: each run
+    // traces the clouds again with the jitter moved, and the reprojection averages them (a still
+    // frame's passes). Render throws std::logic_error before the first Update, and
+    // zenith::ArgumentError for a viewport outside 1..16384 pixels a side or a scene depth
+    // without a host framebuffer.
+    void Update(const SkyScene& scene, const SkyView& view);
+    void Render(const RenderTarget& target);
 
-    // Read back for tests, tools and offscreen output (synchronous).
-    LutImage ReadTransmittance() const;
-    LutImage ReadMultipleScattering() const;
-    LutImage ReadGroundIrradiance() const;
-    LutImage ReadSkyView() const;
-    LutImage ReadAerialPerspective() const;
-    LutImage ReadFrame() const;  // row 0 = bottom of the image (GL convention)
-    // The last frame's clouds: rgb luminance in front of the sky (aerial perspective applied),
-    // a their transmittance, so frame = rgb + a * sky. Frame-sized; throws without weather.
-    LutImage ReadClouds() const;
-    // Transmittance toward the Sun (the Moon at night) through every layer at the ground,
-    // shadow_map_size^2 texels over shadow_map_extent around the camera's ground point: texel
-    // (i, j) at east/north offsets ((i + 0.5) / size - 0.5) extent, in the renderer's frame.
-    // Throws without weather.
-    LutImage ReadCloudShadowMap() const;
-    // This frame's CloudShade (the clear-sky values without weather).
-    CloudShade ReadCloudShade() const;
     // The clouds' transmittance from `position` (m, the renderer's frame) toward `direction`
     // through every layer, the wind having blown for view.time: the shadow map's density march,
     // `steps` samples per layer, on the CPU over the same functions and textures as the GPU (no
@@ -219,12 +125,8 @@ class AtmosphereRenderer {
     unsigned frame_texture() const;
     unsigned cloud_shadow_texture() const;  // 0 without weather
 
-    // Bytes of GPU memory held by the LUTs (not the frame).
-    std::size_t LutMemoryBytes() const;
-    // Times of the most recent run of each pass (waits for the GPU).
-    PassTimes LastPassTimes() const;
-
   private:
+    friend class RendererInspection;  // read-backs and timers: zenith/sky/inspection.h
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "zenith/base/error.h"
+#include "zenith/sky/lut.h"
 
 namespace zenith::sky {
 
@@ -47,6 +48,10 @@ struct Image {
     glm::vec4& at(int x, int y) { return pixels[Index(x, y)]; }
     const glm::vec4& at(int x, int y) const { return pixels[Index(x, y)]; }
 };
+
+// A frame read back from GL (row 0 at the bottom, RendererInspection::ReadFrame,
+// SkySystem::RenderOffscreen) as an Image (row 0 at the top).
+Image ImageFromFrame(const LutImage& frame);
 
 // 8-bit sRGB-encoded RGB, 3 bytes per pixel, row 0 at the top: what a PNG holds.
 struct Srgb8Image {

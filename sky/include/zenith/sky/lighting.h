@@ -16,7 +16,7 @@ glm::dvec3 TransmittanceToLight(const Atmosphere& atmosphere, double altitude, d
                                 double angular_radius, int steps = 64);
 
 // Sky irradiance on a horizontal surface on the ground, per unit light illuminance, from the
-// renderer's ground-irradiance LUT (AtmosphereRenderer::ReadGroundIrradiance), at light zenith
+// renderer's ground-irradiance LUT (RendererInspection::ReadGroundIrradiance), at light zenith
 // cosine mu.
 glm::dvec3 SampleGroundIrradiance(const LutImage& irradiance, double mu);
 

@@ -1,5 +1,7 @@
-// From where things are (geo) to what the renderer draws: camera, lights, Moon disk and stars in
-// the atmosphere's planet-centred frame.
+// From where things are (geo) to what the renderer draws: the scene (lights, Moon disk, stars)
+// and the view (camera) in the atmosphere's planet-centred frame. BuildSkyFrame is the one
+// frame builder: SkySystem, `zenith render` (sim::RenderFrame), zenith-plot and the golden frames
+// all make their frames with it.
 //
 // How the spherical planet meets the WGS84 ellipsoid: the frame's axes are the observer's local
 // east/north/up (up = the ellipsoid normal, as geo/ reports elevations), the sphere's centre lies
@@ -12,20 +14,20 @@
 #pragma once
 
 #include <glm/glm.hpp>
-#include <vector>
+#include <optional>
 
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/frames.h"
+#include "zenith/geo/observer.h"
+#include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
-#include "zenith/sky/lut.h"
+#include "zenith/sky/frame.h"
 
 namespace zenith::sky {
 
 struct SkyState {
-    Camera camera;
-    Lights lights;
-    MoonDisk moon;
-    std::vector<StarPoint> stars;
+    SkyScene scene;  // its CloudView is the identity: the weather map's origin under the camera
+    SkyView view;
     double sun_elevation = 0.0;  // rad, geometric, for exposure and day/night decisions
 };
 
@@ -40,15 +42,43 @@ double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double 
 glm::dmat3 WeatherFrame(const geo::Observer& observer, double origin_lat_deg,
                         double origin_lon_deg);
 
-// Stars and planets lower than this are not drawn (the planet hides them; refraction lifts them
-// by at most 0.6 deg).
-inline constexpr double kMinStarElevation = -0.1;  // rad
+// Stars and planets lower than this are not drawn from `height_m` above a sphere of
+// `bottom_radius` (m): the planet hides them, below the horizon's dip acos(R / (R + h)) with
+// 0.6 deg to spare (refraction lifts them by at most that).
+double MinStarElevation(double bottom_radius, double height_m);
 
 // Builds the renderer's view of the sky from an ephemeris computed for `observer`; its stars
-// are the ephemeris's stars, then the planets above kMinStarElevation. Sun and Moon
+// are the ephemeris's stars, then the planets above MinStarElevation. Sun and Moon
 // illuminances scale with their distances (solar_illuminance is for 1 au).
 SkyState MakeSkyState(const geo::SkyEphemeris& ephemeris, const geo::Observer& observer,
                       const Atmosphere& atmosphere, const geo::Attitude& attitude,
                       double vertical_fov, double aspect);
+
+// Throws zenith::ArgumentError for a vertical field of view (rad) outside (0, 180) deg (field
+// "fov_deg", the message in degrees) or an aspect (width / height) that is not positive and
+// finite (field "aspect"). What every front end checks a projection with.
+void ValidateProjection(double vertical_fov, double aspect);
+
+// When, where and how one frame is seen.
+struct FrameSetup {
+    geo::Time time;
+    geo::Observer observer{0.0, 0.0, 0.0};
+    geo::Attitude attitude;  // of the camera: aerospace 3-2-1 Euler angles from local NED
+    // The camera's columns right, up, backward in the observer's ENU frame, instead of attitude.
+    std::optional<glm::dmat3> enu_from_view;
+    double vertical_fov = 1.0471975511965976;  // rad (60 deg)
+    double aspect = 16.0 / 9.0;                // the viewport's width / height
+
+    void Validate() const { ValidateProjection(vertical_fov, aspect); }
+};
+
+struct SkyFrame : SkyState {
+    geo::SkyEphemeris ephemeris;  // at setup.time for setup.observer, stars above the dip
+};
+
+// The one frame builder: the ephemeris (from `calculator`, which holds the star catalogue and
+// caches their places), then MakeSkyState. Validates the setup first.
+SkyFrame BuildSkyFrame(const geo::Ephemeris& calculator, const FrameSetup& setup,
+                       const Atmosphere& atmosphere);
 
 }  // namespace zenith::sky

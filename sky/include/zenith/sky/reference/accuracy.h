@@ -64,7 +64,7 @@ struct AccuracyOptions {
     std::int64_t samples = 256;  // paths per pixel of the reference
     std::uint64_t seed = 1;
     int threads = 2;  // for the path tracer; results do not depend on it
-    // render.frag's RenderOptions::ray_march_steps default, for views from space.
+    // render.frag's SkyView::ray_march_steps default, for views from space.
     int ray_march_steps = 32;
     LutSettings lut_settings = LutSettings::Pc();
 };

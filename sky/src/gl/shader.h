@@ -10,7 +10,7 @@
 
 namespace zenith::sky::gl {
 
-// GLuint / GLenum without pulling the GL header into the public API.
+// GLuint / GLenum without pulling the GL header in.
 using GlName = unsigned int;
 using GlEnum = unsigned int;
 

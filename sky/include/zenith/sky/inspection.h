@@ -1,0 +1,76 @@
+// Read-backs, GPU timers and memory figures of an AtmosphereRenderer: for tests, tools and
+// offscreen output, kept off the renderer's front door (Update / Render). Every read waits for
+// the GPU (glGetTextureImage, query results), so a host's frame loop does not call these.
+#pragma once
+
+#include <cstddef>
+#include <glm/glm.hpp>
+
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/lut.h"
+
+namespace zenith::sky {
+
+// What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found by
+// Update with the shadow map (every shadow_map_interval frames): the air and the ground
+// below base_altitude get each light's direct part times direct_transmittance and the sky's part
+// times sky_transmittance, and the clouds' own light as a source of luminance `luminance` over
+// the upper hemisphere.
+struct CloudShade {
+    double base_altitude = 0.0;         // m above the ground; 0: no clouds
+    double direct_transmittance = 1.0;  // toward the Sun (Moon at night), mean over the shadow map
+    double sky_transmittance = 1.0;     // mean over the upper hemisphere, from the ground
+    glm::dvec3 luminance{0.0};          // cd/m^2, the clouds' mean over the upper hemisphere
+};
+
+// GPU time of each pass in milliseconds, measured with GL timer queries.
+struct PassTimes {
+    double transmittance = 0.0;
+    double multiple_scattering = 0.0;
+    double irradiance = 0.0;
+    double sky_view = 0.0;
+    double aerial_perspective = 0.0;
+    double render = 0.0;            // the composite: sky, disks and, with weather, the clouds
+    double cloud_shadow_map = 0.0;  // 0 without weather
+    double cloud_shade = 0.0;       // the clouds' effect on the light beneath them
+    double cloud_trace = 0.0;
+    double cloud_reconstruct = 0.0;
+    double cloud_ground_shadow = 0.0;  // per trace cell, which the composite interpolates
+};
+
+// A view of one renderer (which must outlive it); cheap to make, e.g. Inspect(renderer).
+class RendererInspection {
+  public:
+    explicit RendererInspection(const AtmosphereRenderer& renderer) : renderer_(renderer) {}
+
+    LutImage ReadTransmittance() const;
+    LutImage ReadMultipleScattering() const;
+    LutImage ReadGroundIrradiance() const;
+    LutImage ReadSkyView() const;
+    LutImage ReadAerialPerspective() const;
+    LutImage ReadFrame() const;  // the renderer's own frame; row 0 = bottom (GL convention)
+    // The last frame's clouds: rgb luminance in front of the sky (aerial perspective applied),
+    // a their transmittance, so frame = rgb + a * sky. Frame-sized; throws without weather.
+    LutImage ReadClouds() const;
+    // Transmittance toward the Sun (the Moon at night) through every layer at the ground,
+    // shadow_map_size^2 texels over shadow_map_extent around the camera's ground point: texel
+    // (i, j) at east/north offsets ((i + 0.5) / size - 0.5) extent, in the renderer's frame.
+    // Throws without weather.
+    LutImage ReadCloudShadowMap() const;
+    // This frame's CloudShade (the clear-sky values without weather).
+    CloudShade ReadCloudShade() const;
+
+    // Bytes of GPU memory held by the LUTs (not the frame).
+    std::size_t LutMemoryBytes() const;
+    // Times of the most recent run of each pass (waits for the GPU).
+    PassTimes LastPassTimes() const;
+
+  private:
+    const AtmosphereRenderer& renderer_;
+};
+
+inline RendererInspection Inspect(const AtmosphereRenderer& renderer) {
+    return RendererInspection(renderer);
+}
+
+}  // namespace zenith::sky

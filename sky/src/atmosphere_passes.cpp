@@ -1,0 +1,441 @@
+#include "atmosphere_passes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "bindings.h"
+#include "clouds/cloud_passes.h"
+#include "gl/display_uniforms.h"
+#include "gl/draw.h"
+#include "gl/shader_library.h"
+#include "gl/textures.h"
+#include "reference/atmosphere_functions.h"
+#include "reference/lut_texture.h"
+#include "renderer_programs.h"
+#include "shader_parameters.h"
+#include "zenith/sky/gl/error.h"
+
+namespace zenith::sky {
+namespace {
+
+using Pass = AtmospherePasses::Pass;
+using enum AtmospherePasses::Pass;
+constexpr double kKm = 1000.0;
+
+constexpr std::array<std::string_view, kPassCount> kPassFiles = {
+    "atmosphere/transmittance.comp",
+    "atmosphere/multiple_scattering.comp",
+    "atmosphere/irradiance.comp",
+    "atmosphere/sky_view.comp",
+    "atmosphere/aerial_perspective.comp",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+    "atmosphere/render.frag",
+};
+
+GLuint Groups(int n, int local) { return static_cast<GLuint>((n + local - 1) / local); }
+
+// The composite `pass` (kRenderPass...), with or without the clouds laid over it.
+gl::Program CompositeProgram(Pass pass, bool clouds) {
+    const auto define = [](std::string_view name, bool value) {
+        return "#define " + std::string(name) + (value ? " 1\n" : " 0\n");
+    };
+    const std::string defines =
+        define("ZENITH_RAY_MARCH",
+               pass == kRenderRayMarchPass || pass == kRenderRayMarchDepthPass) +
+        define("ZENITH_SCENE_DEPTH", pass == kRenderDepthPass || pass == kRenderRayMarchDepthPass ||
+                                         pass == kDiskDepthPass) +
+        define("ZENITH_DISKS", pass == kDiskPass || pass == kDiskDepthPass) +
+        define("ZENITH_CLOUDS", clouds);
+    return gl::FullscreenProgram(kPassFiles[pass], defines,
+                                 clouds ? CloudShaderParts() : std::span<const std::string_view>{});
+}
+
+std::array<gl::Program, kPassCount> BuildPrograms() {
+    return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
+            gl::ComputeProgram(kPassFiles[2]), gl::ComputeProgram(kPassFiles[3]),
+            gl::ComputeProgram(kPassFiles[4]),
+            // Six programs from one source: llvmpipe runs both sides of a branch under a mask,
+            // so a per-frame choice made in the shader cost every pixel the 32-step ray march
+            // (or the disks); chosen here it costs nothing.
+            CompositeProgram(kRenderPass, false), CompositeProgram(kRenderRayMarchPass, false),
+            CompositeProgram(kRenderDepthPass, false),
+            CompositeProgram(kRenderRayMarchDepthPass, false), CompositeProgram(kDiskPass, false),
+            CompositeProgram(kDiskDepthPass, false)};
+}
+
+// The six composites again, laying the clouds over the sky and the disks.
+std::vector<gl::Program> CloudComposites() {
+    std::vector<gl::Program> programs;
+    for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
+        programs.push_back(CompositeProgram(static_cast<Pass>(pass), true));
+    }
+    return programs;
+}
+
+// The binding point of each of the uniform buffers, in the order of AtmospherePasses::buffers_.
+constexpr std::array<GLuint, 4> kBufferBindings = {kAtmosphereBlockBinding, kLightBlockBinding,
+                                                   kSettingsBlockBinding, kFrameBlockBinding};
+
+// Adds each point source to the pixel its direction falls in, as luminance T E / (pixel solid
+// angle), so the image integrates to the source's illuminance seen through the atmosphere
+// (transmittance T to space, 0 below the horizon) whatever the resolution.
+void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm::ivec2 size,
+                 const ref::AtmosphereParameters& atmosphere,
+                 const ref::TransmittanceTexture& transmittance, std::vector<glm::vec4>& image) {
+    const glm::dvec3 camera_km = camera.position / kKm;
+    const double altitude_km = glm::length(camera_km) - atmosphere.bottom_radius;
+    const glm::ivec2 transmittance_size(transmittance.width(), transmittance.height());
+    const glm::dmat3 view_from_world = glm::transpose(camera.world_from_view);
+    const double tan_y = std::tan(0.5 * camera.vertical_fov);
+    const double tan_x = tan_y * camera.aspect;
+    // Tangent-plane size of one pixel; a pixel at tangent-plane (x, y) subtends
+    // dx dy / (1 + x^2 + y^2)^(3/2) steradians.
+    const double dx = 2.0 * tan_x / size.x, dy = 2.0 * tan_y / size.y;
+    for (const StarPoint& point : points) {
+        const glm::dvec3 v = view_from_world * point.direction;
+        if (!(v.z < 0.0)) continue;  // behind the camera
+        const double x = v.x / -v.z, y = v.y / -v.z;
+        const double px = (x / tan_x + 1.0) * 0.5 * size.x, py = (y / tan_y + 1.0) * 0.5 * size.y;
+        if (!(px >= 0.0 && py >= 0.0 && px < size.x && py < size.y)) continue;
+        const glm::dvec3 t = ref::TransmittanceToSpace(
+            atmosphere, transmittance, transmittance_size, camera_km, altitude_km, point.direction);
+        if (t == glm::dvec3(0.0)) continue;
+        const int ix = static_cast<int>(px), iy = static_cast<int>(py);
+        // The solid angle of the whole pixel (taken at its centre), the measure a reader of the
+        // image integrates with, so luminance x solid angle returns exactly E.
+        const double cx = ((ix + 0.5) / size.x * 2.0 - 1.0) * tan_x;
+        const double cy = ((iy + 0.5) / size.y * 2.0 - 1.0) * tan_y;
+        const double solid_angle = dx * dy / std::pow(1.0 + cx * cx + cy * cy, 1.5);
+        glm::vec4& texel = image[static_cast<std::size_t>(iy) * static_cast<std::size_t>(size.x) +
+                                 static_cast<std::size_t>(ix)];
+        texel += glm::vec4(glm::vec3(t * point.illuminance / solid_angle), 0.0f);
+    }
+}
+
+// The pixel box (x, y, width, height) that holds a disk of angular radius `radius` around
+// `direction`, with a pixel to spare; nullopt when none of it is in view. In the tangent plane a
+// disk at angle theta off the axis reaches at most tan(theta + radius) - tan(theta) from its
+// centre (the radial stretch exceeds the tangential one).
+std::optional<glm::ivec4> DiskBox(const glm::dvec3& direction, double radius, const Camera& camera,
+                                  glm::ivec2 size) {
+    const glm::dvec3 v = glm::transpose(camera.world_from_view) * glm::normalize(direction);
+    const double theta = std::acos(std::clamp(-v.z, -1.0, 1.0));
+    if (theta - radius >= 0.5 * ref::kPi) return std::nullopt;  // behind the camera
+    const glm::ivec4 whole(0, 0, size.x, size.y);
+    if (theta + radius >= 1.5) return whole;  // near the image plane: the box is unbounded
+    const double tan_y = std::tan(0.5 * camera.vertical_fov);
+    const double tan_x = tan_y * camera.aspect;
+    const double x = v.x / -v.z, y = v.y / -v.z;
+    const double reach = std::tan(theta + radius) - std::tan(theta);
+    const double px = (x / tan_x + 1.0) * 0.5 * size.x, py = (y / tan_y + 1.0) * 0.5 * size.y;
+    const double rx = reach / tan_x * 0.5 * size.x + 1.0, ry = reach / tan_y * 0.5 * size.y + 1.0;
+    const int x0 = static_cast<int>(std::max(0.0, std::floor(px - rx)));
+    const int y0 = static_cast<int>(std::max(0.0, std::floor(py - ry)));
+    const int x1 = static_cast<int>(std::min<double>(size.x, std::ceil(px + rx)));
+    const int y1 = static_cast<int>(std::min<double>(size.y, std::ceil(py + ry)));
+    if (x1 <= x0 || y1 <= y0) return std::nullopt;
+    return glm::ivec4(x0, y0, x1 - x0, y1 - y0);
+}
+
+bool Overlap(const glm::ivec4& a, const glm::ivec4& b) {
+    return a.x < b.x + b.z && b.x < a.x + a.z && a.y < b.y + b.w && b.y < a.y + a.w;
+}
+
+glm::ivec4 Union(const glm::ivec4& a, const glm::ivec4& b) {
+    const glm::ivec2 lo = glm::min(glm::ivec2(a), glm::ivec2(b));
+    const glm::ivec2 hi =
+        glm::max(glm::ivec2(a) + glm::ivec2(a.z, a.w), glm::ivec2(b) + glm::ivec2(b.z, b.w));
+    return {lo, hi - lo};
+}
+}  // namespace
+
+std::vector<gl::Program> BuildRendererPrograms() {
+    std::vector<gl::Program> programs;
+    for (gl::Program& p : BuildPrograms()) programs.push_back(std::move(p));
+    for (gl::Program& p : CloudComposites()) programs.push_back(std::move(p));
+    for (gl::Program& p : CloudPasses::BuildPrograms()) programs.push_back(std::move(p));
+    for (gl::Program& p : gl::BuildDisplayPrograms()) programs.push_back(std::move(p));
+    return programs;
+}
+
+AtmospherePasses::AtmospherePasses(const Atmosphere& atmosphere, const LutSettings& s)
+    : atmosphere_(atmosphere), settings_(s), programs_(BuildPrograms()) {
+    glCreateBuffers(static_cast<GLsizei>(buffers_.size()), buffers_.data());
+    glNamedBufferStorage(buffers_[0], sizeof(gl::AtmosphereUniforms), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(buffers_[1], sizeof(gl::LightUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(buffers_[2], sizeof(gl::SettingsUniforms), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(buffers_[3], sizeof(gl::FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    transmittance_ = gl::CreateTexture2D(s.transmittance_size);
+    multiple_scattering_ = gl::CreateTexture2D(s.multiple_scattering_size);
+    irradiance_ = gl::CreateTexture2D(s.irradiance_size);
+    sky_view_ = gl::CreateTexture2D(s.sky_view_size, GL_RGBA32F, GL_REPEAT);  // azimuth wraps
+    aerial_perspective_ = gl::CreateTexture3D(s.aerial_perspective_size);
+    glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries_.size()), queries_.data());
+    glCreateFramebuffers(1, &framebuffer_);
+    glCreateVertexArrays(1, &vertex_array_);  // core profile draws need one, even empty
+
+    gl::SettingsUniforms u{};
+    u.transmittance_size = s.transmittance_size;
+    u.multiple_scattering_size = s.multiple_scattering_size;
+    u.irradiance_size = s.irradiance_size;
+    u.sky_view_size = s.sky_view_size;
+    u.aerial_perspective_size = glm::ivec4(s.aerial_perspective_size, 0);
+    u.transmittance_steps = s.transmittance_steps;
+    u.multiple_scattering_directions_sqrt = s.multiple_scattering_directions_sqrt;
+    u.multiple_scattering_steps = s.multiple_scattering_steps;
+    u.irradiance_directions_sqrt = s.irradiance_directions_sqrt;
+    u.irradiance_steps = s.irradiance_steps;
+    u.sky_view_steps = s.sky_view_steps;
+    u.aerial_perspective_steps = s.aerial_perspective_steps;
+    u.aerial_perspective_range_km = static_cast<float>(s.aerial_perspective_range / kKm);
+    glNamedBufferSubData(buffers_[2], 0, sizeof(u), &u);
+    BuildStaticLuts();
+}
+
+AtmospherePasses::~AtmospherePasses() {
+    glDeleteVertexArrays(1, &vertex_array_);
+    glDeleteFramebuffers(1, &framebuffer_);
+    glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
+    for (GLuint t : {transmittance_, multiple_scattering_, irradiance_, sky_view_,
+                     aerial_perspective_, frame_, stars_}) {
+        if (t != 0) glDeleteTextures(1, &t);
+    }
+    glDeleteBuffers(static_cast<GLsizei>(buffers_.size()), buffers_.data());
+}
+
+void AtmospherePasses::SetAtmosphere(const Atmosphere& atmosphere) {
+    atmosphere_ = atmosphere;
+    BuildStaticLuts();
+}
+
+void AtmospherePasses::BuildCloudComposites() {
+    if (cloud_composites_.empty()) cloud_composites_ = CloudComposites();
+}
+
+void AtmospherePasses::BindInputs() const {
+    for (std::size_t i = 0; i < buffers_.size(); ++i) {
+        glBindBufferBase(GL_UNIFORM_BUFFER, kBufferBindings[i], buffers_[i]);
+    }
+    glBindTextureUnit(kTransmittanceUnit, transmittance_);
+    glBindTextureUnit(kMultipleScatteringUnit, multiple_scattering_);
+    glBindTextureUnit(kIrradianceUnit, irradiance_);
+    glBindTextureUnit(kSkyViewUnit, sky_view_);
+    glBindTextureUnit(kStarUnit, stars_ != 0 ? stars_ : transmittance_);  // unused when no stars
+    glBindTextureUnit(kAerialPerspectiveUnit, aerial_perspective_);
+}
+
+// Runs one compute pass writing `output` (bound as kOutputImageUnit), timed by a query.
+void AtmospherePasses::Dispatch(Pass pass, GLuint output, bool layered, GLuint gx, GLuint gy,
+                                GLuint gz) {
+    BindInputs();
+    programs_[pass].Use();
+    glBindImageTexture(kOutputImageUnit, output, 0, layered ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY,
+                       GL_RGBA32F);
+    glBeginQuery(GL_TIME_ELAPSED, queries_[pass]);
+    glDispatchCompute(gx, gy, gz);
+    glEndQuery(GL_TIME_ELAPSED);
+    query_used_[pass] = true;
+    // Later passes sample what this one wrote; reads back use glGetTextureImage.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
+// The composite: a full-screen triangle into `target` (our frame's FBO or the host's), timed by
+// query `query`. The sky pass replaces the sky (blending premultiplied over the host's geometry
+// when there is scene depth); a disk pass adds the Sun and the Moon inside `scissor` (viewport
+// pixels). With `clouds`, their last trace goes over what it draws.
+void AtmospherePasses::Draw(Pass pass, std::size_t query, GLuint target, glm::ivec4 viewport,
+                            const CloudPasses* clouds, GLuint scene_depth,
+                            std::optional<glm::ivec4> scissor) {
+    BindInputs();
+    if (clouds != nullptr) clouds->BindForComposite();
+    if (scene_depth != 0) glBindTextureUnit(kSceneDepthUnit, scene_depth);
+    // Over the host's geometry the sky pass is premultiplied: (L, T) over geometry and (sky, 0)
+    // elsewhere.
+    const gl::Blend blend = pass == kDiskPass || pass == kDiskDepthPass ? gl::Blend::kAdd
+                            : scene_depth != 0                          ? gl::Blend::kPremultiplied
+                                                                        : gl::Blend::kReplace;
+    const gl::Program& program =
+        clouds != nullptr ? cloud_composites_[pass - kRenderPass] : programs_[pass];
+    gl::DrawFullscreen(program, vertex_array_, target, viewport, blend, queries_[query], scissor);
+    query_used_[query] = true;
+}
+
+void AtmospherePasses::BuildStaticLuts() {
+    const auto a = MakeShaderParameters<gl::AtmosphereUniforms>(atmosphere_);
+    glNamedBufferSubData(buffers_[0], 0, sizeof(a), &a);
+    const LutSettings& s = settings_;
+    Dispatch(kTransmittancePass, transmittance_, false,
+             Groups(s.transmittance_size.x, kLutGroupSize),
+             Groups(s.transmittance_size.y, kLutGroupSize), 1);
+    Dispatch(kMultipleScatteringPass, multiple_scattering_, false,
+             Groups(s.multiple_scattering_size.x, kLutGroupSize),
+             Groups(s.multiple_scattering_size.y, kLutGroupSize), 1);
+    Dispatch(kIrradiancePass, irradiance_, false, Groups(s.irradiance_size.x, kIrradianceGroupSize),
+             static_cast<GLuint>(s.irradiance_size.y), 1);
+    transmittance_cpu_ =
+        ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
+}
+
+void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
+    const Camera& camera = view.camera;
+    const auto lights = MakeLightSet<gl::LightUniforms>(scene.lights, camera.position);
+    glNamedBufferSubData(buffers_[1], 0, sizeof(lights), &lights);
+    light_count_ = lights.count;
+
+    gl::FrameUniforms& u = frame_uniforms_;
+    u = {};
+    u.camera_km = glm::vec3(camera.position / kKm);
+    u.tan_half_fov = static_cast<float>(std::tan(0.5 * camera.vertical_fov));
+    for (int i = 0; i < 3; ++i) u.world_from_view[i] = glm::vec4(camera.world_from_view[i], 0.0);
+    u.aspect = static_cast<float>(camera.aspect);
+    u.ray_march_steps = view.ray_march_steps;
+    u.moon_enabled = scene.moon.enabled ? 1 : 0;
+    u.moon_direction = glm::vec3(glm::normalize(scene.moon.direction));
+    u.moon_angular_radius = static_cast<float>(scene.moon.angular_radius);
+    u.moon_albedo = static_cast<float>(scene.moon.albedo);
+    // Per-frame constants, from the shared functions compiled as C++ (double).
+    const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere_);
+    const glm::dvec3 up = glm::normalize(camera.position);
+    u.sky_view_up = glm::vec3(up);
+    u.sky_view_x = glm::vec3(ref::SkyViewFrameX(up, glm::normalize(scene.lights.sun_direction)));
+    u.horizon_zenith = static_cast<float>(ref::HorizonZenithAngle(
+        a, (glm::length(camera.position) - atmosphere_.bottom_radius) / kKm));
+    u.cos_sun_radius = static_cast<float>(std::cos(atmosphere_.sun_angular_radius));
+    u.cos_moon_radius = static_cast<float>(std::cos(scene.moon.angular_radius));
+    u.camera_altitude_km =
+        static_cast<float>((glm::length(camera.position) - atmosphere_.bottom_radius) / kKm);
+    glNamedBufferSubData(buffers_[3], 0, sizeof(u), &u);
+}
+
+void AtmospherePasses::UpdateFrameLuts() {
+    const LutSettings& s = settings_;
+    // With one light, each invocation marches a texel of the first half of the azimuths and
+    // writes its mirror image too (sky_view.comp).
+    const int columns = light_count_ == 1 ? (s.sky_view_size.x + 1) / 2 : s.sky_view_size.x;
+    Dispatch(kSkyViewPass, sky_view_, false, Groups(columns, kLutGroupSize),
+             Groups(s.sky_view_size.y, kLutGroupSize), 1);
+    Dispatch(kAerialPerspectivePass, aerial_perspective_, true,
+             Groups(s.aerial_perspective_size.x, kLutGroupSize),
+             Groups(s.aerial_perspective_size.y, kLutGroupSize), 1);
+}
+
+void AtmospherePasses::ResizeFrame(glm::ivec2 size) {
+    if (size == frame_size_) return;
+    for (GLuint* t : {&frame_, &stars_}) {
+        if (*t != 0) glDeleteTextures(1, t);
+    }
+    frame_ = gl::CreateTexture2D(size);
+    stars_ = gl::CreateTexture2D(size);
+    frame_size_ = size;
+    glNamedFramebufferTexture(framebuffer_, GL_COLOR_ATTACHMENT0, frame_, 0);
+    if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+        throw gl::GlError("the RGBA32F frame of " + std::to_string(size.x) + "x" +
+                          std::to_string(size.y) +
+                          " is not a complete framebuffer on this GL implementation");
+    }
+}
+
+bool AtmospherePasses::SunDiskResolved(const SkyView& view, glm::ivec2 size) const {
+    // A sun disk narrower than a pixel would fall between pixel centres: it becomes a point.
+    return atmosphere_.sun_angular_radius > view.camera.vertical_fov / size.y;
+}
+
+void AtmospherePasses::SetTarget(const SkyScene& scene, const SkyView& view,
+                                 const RenderTarget& target) {
+    const glm::ivec2 size = target.size();
+    ResizeFrame(size);  // the stars' texture, and the frame when it is the target
+    const bool sun_disk_resolved = SunDiskResolved(view, size);
+    std::vector<StarPoint> points = scene.stars;
+    if (scene.draw_sun_disk && !sun_disk_resolved) {
+        points.push_back({scene.lights.sun_direction, scene.lights.sun_illuminance});
+    }
+    if (!points.empty()) {
+        star_pixels_.assign(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y),
+                            glm::vec4(0.0f));
+        SplatPoints(points, view.camera, size,
+                    MakeShaderParameters<ref::AtmosphereParameters>(atmosphere_),
+                    transmittance_cpu_, star_pixels_);
+        glTextureSubImage2D(stars_, 0, 0, 0, size.x, size.y, GL_RGBA, GL_FLOAT,
+                            star_pixels_.data());
+    }
+    // SetFrame's constants, with what the target fixes.
+    gl::FrameUniforms u = frame_uniforms_;
+    u.output_size = size;
+    u.draw_sun_disk = scene.draw_sun_disk && sun_disk_resolved ? 1 : 0;
+    u.stars_enabled = points.empty() ? 0 : 1;
+    if (target.framebuffer) {
+        u.viewport_x = target.viewport.x;
+        u.viewport_y = target.viewport.y;
+    }
+    if (target.scene_depth) {
+        // Eye depth n / (offset + slope d); n / f -> 0 for an infinite far plane.
+        const SceneDepth& s = *target.scene_depth;
+        const double near_over_far = std::isinf(s.far_m) ? 0.0 : s.near_m / s.far_m;
+        u.scene_near_m = static_cast<float>(s.near_m);
+        u.scene_depth_offset = static_cast<float>(s.reversed ? near_over_far : 1.0);
+        u.scene_depth_slope =
+            static_cast<float>(s.reversed ? 1.0 - near_over_far : near_over_far - 1.0);
+        u.scene_depth_reversed = s.reversed ? 1 : 0;
+    }
+    glNamedBufferSubData(buffers_[3], 0, sizeof(u), &u);
+}
+
+void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
+                                 const RenderTarget& target, const CloudPasses* clouds) {
+    const Camera& camera = view.camera;
+    const glm::ivec2 size = target.size();
+    const bool inside = glm::length(camera.position) < atmosphere_.top_radius;
+    const bool ray_march = !inside || view.force_ray_march;
+    const Pass pass = target.scene_depth ? (ray_march ? kRenderRayMarchDepthPass : kRenderDepthPass)
+                                         : (ray_march ? kRenderRayMarchPass : kRenderPass);
+    const GLuint framebuffer = target.framebuffer ? *target.framebuffer : framebuffer_;
+    const glm::ivec4 viewport =
+        target.framebuffer ? target.viewport : glm::ivec4(0, 0, size.x, size.y);
+    const GLuint depth = target.scene_depth ? target.scene_depth->texture : 0;
+    // LastPassTimes reports this frame's composite draws only.
+    std::fill(query_used_.begin() + kRenderPass, query_used_.end(), false);
+    Draw(pass, pass, framebuffer, viewport, clouds, depth);
+
+    // The Sun and the Moon, each over its own box (one box when they overlap, so an eclipse is
+    // not added twice).
+    std::vector<glm::ivec4> boxes;
+    const auto add_disk = [&](const glm::dvec3& direction, double radius) {
+        std::optional<glm::ivec4> box = DiskBox(direction, radius, camera, size);
+        if (!box) return;
+        for (glm::ivec4& other : boxes) {
+            if (Overlap(other, *box)) {
+                other = Union(other, *box);
+                return;
+            }
+        }
+        boxes.push_back(*box);
+    };
+    if (scene.draw_sun_disk && SunDiskResolved(view, size)) {
+        add_disk(scene.lights.sun_direction, atmosphere_.sun_angular_radius);
+    }
+    if (scene.moon.enabled) add_disk(scene.moon.direction, scene.moon.angular_radius);
+    const Pass disk_pass = target.scene_depth ? kDiskDepthPass : kDiskPass;
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, framebuffer, viewport, clouds, depth,
+             boxes[i]);
+    }
+}
+
+double AtmospherePasses::QueryMilliseconds(std::size_t query) const {
+    if (!query_used_[query]) return 0.0;
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(queries_[query], GL_QUERY_RESULT, &ns);
+    return static_cast<double>(ns) * 1e-6;
+}
+
+}  // namespace zenith::sky
