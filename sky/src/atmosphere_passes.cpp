@@ -91,7 +91,6 @@ void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm
                  const ref::TransmittanceTexture& transmittance, std::vector<glm::vec4>& image) {
     const glm::dvec3 camera_km = camera.position / kKm;
     const double altitude_km = glm::length(camera_km) - atmosphere.bottom_radius;
-    const glm::ivec2 transmittance_size(transmittance.width(), transmittance.height());
     const glm::dmat3 view_from_world = glm::transpose(camera.world_from_view);
     const double tan_y = std::tan(0.5 * camera.vertical_fov);
     const double tan_x = tan_y * camera.aspect;
@@ -104,8 +103,8 @@ void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm
         const double x = v.x / -v.z, y = v.y / -v.z;
         const double px = (x / tan_x + 1.0) * 0.5 * size.x, py = (y / tan_y + 1.0) * 0.5 * size.y;
         if (!(px >= 0.0 && py >= 0.0 && px < size.x && py < size.y)) continue;
-        const glm::dvec3 t = ref::TransmittanceToSpace(
-            atmosphere, transmittance, transmittance_size, camera_km, altitude_km, point.direction);
+        const glm::dvec3 t = ref::TransmittanceToSpace(atmosphere, transmittance, camera_km,
+                                                       altitude_km, point.direction);
         if (t == glm::dvec3(0.0)) continue;
         const int ix = static_cast<int>(px), iy = static_cast<int>(py);
         // The solid angle of the whole pixel (taken at its centre), the measure a reader of the

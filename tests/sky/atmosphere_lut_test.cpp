@@ -289,9 +289,8 @@ TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
     const ref::vec3 origin(0.0, 0.0, a.bottom_radius + 1.0);
     for (double mu : {0.3, -0.01, -0.02, -0.6}) {  // up; above, beyond and below the horizon
         const ref::vec3 direction(std::sqrt(1.0 - mu * mu), 0.0, mu);
-        const ref::ScatteringResult r =
-            ref::IntegrateScatteredLuminance(a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights,
-                                             origin, 1.0, direction, 0.0, 1e9, 40, true);
+        const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
+            a, zero, zero, zero, lights, origin, 1.0, direction, 0.0, 1e9, 40, true);
         const double r0 = a.bottom_radius + 1.0;
         const bool ground = mu < -std::sqrt(1.0 - a.bottom_radius * a.bottom_radius / (r0 * r0));
         for (int c = 0; c < 3; ++c) {
@@ -304,9 +303,8 @@ TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
     }
     // Without clouds (cloud_base 0) nothing changes: the same march, the lights at full.
     lights.cloud_base = 0.0;
-    const ref::ScatteringResult clear =
-        ref::IntegrateScatteredLuminance(a, zero, {8, 8}, zero, {8, 8}, zero, {8, 8}, lights,
-                                         origin, 1.0, ref::vec3(0.0, 0.6, 0.8), 0.0, 1e9, 40, true);
+    const ref::ScatteringResult clear = ref::IntegrateScatteredLuminance(
+        a, zero, zero, zero, lights, origin, 1.0, ref::vec3(0.0, 0.6, 0.8), 0.0, 1e9, 40, true);
     EXPECT_EQ(clear.luminance, ref::vec3(0.0));  // zero LUTs: no light but the clouds'
 }
 

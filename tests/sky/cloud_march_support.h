@@ -57,9 +57,9 @@ double CloudLuminance(const Sunlight& sun, const CloudLayerParameters& layer,
     double sum = 0.0;
     for (int j = 0; j < jitters; ++j) {
         CloudMarchState state = CloudMarchStart();
-        MarchCloudLayer(sun.atmosphere, sun.transmittance, {1, 1}, sun.irradiance, {1, 1}, layer,
-                        weather, shape, detail, scattering, march, sun.lights, 1, camera, view,
-                        interval, (j + 0.5) / jitters, state);
+        MarchCloudLayer(sun.atmosphere, sun.transmittance, sun.irradiance, layer, weather, shape,
+                        detail, scattering, march, sun.lights, 1, camera, view, interval,
+                        (j + 0.5) / jitters, state);
         sum += state.luminance.x;
     }
     return sum / jitters;

@@ -131,9 +131,8 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
         CloudMarchParameters m = march;
         m.max_steps = steps;
         CloudMarchState state = CloudMarchStart();
-        MarchCloudLayer(atmosphere, transmittance, {1, 1}, irradiance, {1, 1}, layer, weather,
-                        shape, detail, scattering, m, lights, 1, camera, view, interval, 0.5,
-                        state);
+        MarchCloudLayer(atmosphere, transmittance, irradiance, layer, weather, shape, detail,
+                        scattering, m, lights, 1, camera, view, interval, 0.5, state);
         return state.luminance.x;
     };
     const double reference = luminance(1000);
@@ -147,8 +146,8 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
     CloudMarchState state = CloudMarchStart();
     CloudMarchParameters m = march;
     m.max_steps = 7;
-    MarchCloudLayer(atmosphere, transmittance, {1, 1}, irradiance, {1, 1}, layer, weather, shape,
-                    detail, scattering, m, lights, 1, camera, view, interval, 0.5, state);
+    MarchCloudLayer(atmosphere, transmittance, irradiance, layer, weather, shape, detail,
+                    scattering, m, lights, 1, camera, view, interval, 0.5, state);
     EXPECT_NEAR(state.luminance.x, (1.0 - state.transmittance) / (4.0 * kPi), 1e-12);
     EXPECT_GT(state.transmittance, 0.05);
     EXPECT_LT(state.transmittance, 0.5);

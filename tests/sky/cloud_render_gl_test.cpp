@@ -409,8 +409,6 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
             Inspect(renderer).ReadMultipleScattering(), Inspect(renderer).ReadGroundIrradiance(),
             weather, settings, clouds::test::CachedNoise(), camera, lights, options.clouds);
         const ref::AtmosphereParameters& a = scene.atmosphere;
-        const glm::ivec2 transmittance_size(scene.transmittance.width(),
-                                            scene.transmittance.height());
         const glm::dvec3 camera_km = camera.position / kKm;
         const double altitude = 0.8;
         const double r = glm::length(camera_km);
@@ -424,9 +422,7 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
                                                         a.bottom_radius);
                 if (t < 0.0 || in_front.at(x, y).a < 1.0f) continue;  // sky, or clouds in front
                 const ref::ScatteringResult march = ref::IntegrateScatteredLuminance(
-                    a, scene.transmittance, transmittance_size, scene.multiple_scattering,
-                    {scene.multiple_scattering.width(), scene.multiple_scattering.height()},
-                    scene.irradiance, {scene.irradiance.width(), scene.irradiance.height()},
+                    a, scene.transmittance, scene.multiple_scattering, scene.irradiance,
                     scene.lights, camera_km, altitude, view, 0.0, 1e9, 200, true);
                 const glm::dvec3 ground = camera_km + view * t;
                 const glm::dvec2 uv = ref::CloudShadowMapUv(
@@ -438,8 +434,7 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
                     glm::dot(glm::normalize(ground), scene.lights.light[0].direction);
                 const glm::dvec3 direct =
                     scene.lights.light[0].illuminance * std::max(mu_s, 0.0) *
-                    ref::GetTransmittanceToSun(a, scene.transmittance, transmittance_size,
-                                               a.bottom_radius, mu_s) *
+                    ref::GetTransmittanceToSun(a, scene.transmittance, a.bottom_radius, mu_s) *
                     a.ground_albedo / ref::kPi * march.transmittance;
                 const glm::dvec3 expected =
                     march.luminance + weight * (shadow - scene.lights.cloud_direct) * direct;

@@ -216,20 +216,17 @@ glm::dvec3 SampleTransmittance(const Luts& luts, double altitude, double mu) {
     const double r = p.bottom_radius + altitude / kKm;
     if (ref::RayIntersectsGround(p, r, mu)) return glm::dvec3(kNaN);
     const ref::Texture2D texture = ref::FromImage(luts.transmittance);
-    return ref::GetTransmittanceToTopAtmosphereBoundary(p, texture,
-                                                        glm::ivec2(luts.transmittance.size), r, mu);
+    return ref::GetTransmittanceToTopAtmosphereBoundary(p, texture, r, mu);
 }
 
 glm::dvec3 SampleMultipleScattering(const Luts& luts, double altitude, double mu_s) {
     const ref::AtmosphereParameters p = Parameters(luts);
     return ref::GetMultipleScattering(p, ref::FromImage(luts.multiple_scattering),
-                                      glm::ivec2(luts.multiple_scattering.size),
                                       p.bottom_radius + altitude / kKm, mu_s);
 }
 
 glm::dvec3 SampleIrradiance(const Luts& luts, double mu_s) {
-    return ref::GetGroundSkyIrradiance(ref::FromImage(luts.irradiance),
-                                       glm::ivec2(luts.irradiance.size), mu_s);
+    return ref::GetGroundSkyIrradiance(ref::FromImage(luts.irradiance), mu_s);
 }
 
 glm::dvec3 SampleSkyView(const Luts& luts, double view_zenith, double azimuth) {
@@ -260,8 +257,7 @@ Curve TransmittanceVersusZenith(const Luts& luts, double altitude,
         const double mu = std::cos(angle * kDeg);
         if (ref::RayIntersectsGround(p, r, mu)) continue;
         curve.x.push_back(angle);
-        curve.rgb.push_back(ref::GetTransmittanceToTopAtmosphereBoundary(
-            p, texture, glm::ivec2(luts.transmittance.size), r, mu));
+        curve.rgb.push_back(ref::GetTransmittanceToTopAtmosphereBoundary(p, texture, r, mu));
     }
     return curve;
 }
@@ -277,8 +273,7 @@ Curve TransmittanceVersusAltitude(const Luts& luts, double zenith_deg,
         const double r = p.bottom_radius + altitude / kKm;
         if (ref::RayIntersectsGround(p, r, mu)) continue;
         curve.x.push_back(altitude / kKm);
-        curve.rgb.push_back(ref::GetTransmittanceToTopAtmosphereBoundary(
-            p, texture, glm::ivec2(luts.transmittance.size), r, mu));
+        curve.rgb.push_back(ref::GetTransmittanceToTopAtmosphereBoundary(p, texture, r, mu));
     }
     return curve;
 }
@@ -360,9 +355,9 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
                     const double mu = std::cos((s.x0 + i * s.dx) * kDeg);
                     if (ref::RayIntersectsGround(p, r, mu)) continue;  // NaN: ray hits ground
                     set(i, j,
-                        ChannelValue(ref::GetTransmittanceToTopAtmosphereBoundary(
-                                         p, texture, glm::ivec2(luts.transmittance.size), r, mu),
-                                     channel));
+                        ChannelValue(
+                            ref::GetTransmittanceToTopAtmosphereBoundary(p, texture, r, mu),
+                            channel));
                 }
             }
             break;
@@ -380,10 +375,7 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
                 for (int i = 0; i < s.width; ++i) {
                     const double mu_s = std::cos((s.x0 + i * s.dx) * kDeg);
                     set(i, j,
-                        ChannelValue(
-                            ref::GetMultipleScattering(
-                                p, texture, glm::ivec2(luts.multiple_scattering.size), r, mu_s),
-                            channel));
+                        ChannelValue(ref::GetMultipleScattering(p, texture, r, mu_s), channel));
                 }
             }
             break;

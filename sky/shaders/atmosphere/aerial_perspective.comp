@@ -11,9 +11,8 @@ void main() {
     accumulated.transmittance = vec3(1.0);
     for (int slice = 0; slice < aerial_perspective_size.z; ++slice) {
         vec4 value = AdvanceAerialPerspective(
-            atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
-            multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera_km,
-            camera_altitude_km, direction, slice, aerial_perspective_size.z,
+            atmosphere, transmittance_texture, multiple_scattering_texture, irradiance_texture,
+            lights, camera_km, camera_altitude_km, direction, slice, aerial_perspective_size.z,
             aerial_perspective_range_km, aerial_perspective_steps, accumulated);
         imageStore(output_image, ivec3(cell, slice), value);
     }

@@ -245,29 +245,30 @@ vec3 ComputeTransmittanceTexel(IN(AtmosphereParameters) atmosphere, vec2 uv, ive
 
 vec3 GetTransmittanceToTopAtmosphereBoundary(IN(AtmosphereParameters) atmosphere,
                                              IN(TransmittanceTexture) transmittance_texture,
-                                             ivec2 size, Number r, Number mu) {
-    vec2 uv = GetTransmittanceTextureUvFromRMu(atmosphere, r, mu, size);
+                                             Number r, Number mu) {
+    vec2 uv =
+        GetTransmittanceTextureUvFromRMu(atmosphere, r, mu, TextureSize(transmittance_texture));
     return vec3(SampleTexture2D(transmittance_texture, uv));
 }
 
 // Transmittance toward the sun, including the fraction of the solar disk above the planet's
 // horizon (B17 "GetTransmittanceToSun"): this is what makes the Earth's shadow soft.
 vec3 GetTransmittanceToSun(IN(AtmosphereParameters) atmosphere,
-                           IN(TransmittanceTexture) transmittance_texture, ivec2 size, Number r,
+                           IN(TransmittanceTexture) transmittance_texture, Number r,
                            Number mu_s) {
     Number sin_theta_h = atmosphere.bottom_radius / r;
     Number cos_theta_h = -sqrt(max(1.0 - sin_theta_h * sin_theta_h, 0.0));
     Number visible = smoothstep(-sin_theta_h * atmosphere.sun_angular_radius,
                                 sin_theta_h * atmosphere.sun_angular_radius, mu_s - cos_theta_h);
-    return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture, size, r,
-                                                   mu_s) * visible;
+    return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture, r, mu_s) *
+           visible;
 }
 
 // Transmittance from a camera (km, planet-centred; `camera_altitude` exact) to space along
 // `direction`, 0 when the ground is in the way: what the atmosphere does to the light of the Sun,
 // the Moon and the stars on their way in. From space, the chord's transmittance (1 if it misses).
 vec3 TransmittanceToSpace(IN(AtmosphereParameters) atmosphere,
-                          IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                          IN(TransmittanceTexture) transmittance_texture,
                           vec3 camera, Number camera_altitude, vec3 direction) {
     Number r = length(camera);
     Number mu = dot(camera, direction) / r;
@@ -276,14 +277,13 @@ vec3 TransmittanceToSpace(IN(AtmosphereParameters) atmosphere,
     }
     Number shell = atmosphere.top_radius - atmosphere.bottom_radius;
     if (camera_altitude <= shell) {
-        return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
-                                                       transmittance_size, r, mu);
+        return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture, r, mu);
     }
     Number t_top = RaySphereDistance(r, mu, camera_altitude - shell, atmosphere.top_radius);
     if (t_top < 0.0) return vec3(1.0);
     vec3 entry = camera + direction * t_top;
     return GetTransmittanceToTopAtmosphereBoundary(atmosphere, transmittance_texture,
-                                                   transmittance_size, atmosphere.top_radius,
+                                                   atmosphere.top_radius,
                                                    dot(entry, direction) / length(entry));
 }
 
@@ -291,9 +291,8 @@ vec3 TransmittanceToSpace(IN(AtmosphereParameters) atmosphere,
 // `distance` km along `direction`, a ray that meets it: T(r_g, -mu_g) / T(r, -mu), both rays
 // leaving the atmosphere upward (B17 "GetTransmittance"); from space, from where the ray enters.
 vec3 TransmittanceToGround(IN(AtmosphereParameters) atmosphere,
-                           IN(TransmittanceTexture) transmittance_texture,
-                           ivec2 transmittance_size, vec3 camera, Number camera_altitude,
-                           vec3 direction, Number distance) {
+                           IN(TransmittanceTexture) transmittance_texture, vec3 camera,
+                           Number camera_altitude, vec3 direction, Number distance) {
     Number r = length(camera);
     Number mu = dot(camera, direction) / r;
     Number shell = atmosphere.top_radius - atmosphere.bottom_radius;
@@ -305,10 +304,9 @@ vec3 TransmittanceToGround(IN(AtmosphereParameters) atmosphere,
     }
     Number mu_ground = ClampCosine((r * mu + distance) / atmosphere.bottom_radius);
     vec3 from_ground = GetTransmittanceToTopAtmosphereBoundary(
-        atmosphere, transmittance_texture, transmittance_size, atmosphere.bottom_radius,
-        -mu_ground);
+        atmosphere, transmittance_texture, atmosphere.bottom_radius, -mu_ground);
     vec3 from_camera = GetTransmittanceToTopAtmosphereBoundary(
-        atmosphere, transmittance_texture, transmittance_size, r, -mu);
+        atmosphere, transmittance_texture, r, -mu);
     return min(from_ground / max(from_camera, vec3(1e-30)), vec3(1.0));
 }
 
@@ -337,9 +335,10 @@ vec2 GetMultipleScatteringTextureUv(IN(AtmosphereParameters) atmosphere, Number 
 }
 
 vec3 GetMultipleScattering(IN(AtmosphereParameters) atmosphere,
-                           IN(MultipleScatteringTexture) multiple_scattering_texture, ivec2 size,
-                           Number r, Number mu_s) {
-    vec2 uv = GetMultipleScatteringTextureUv(atmosphere, r, mu_s, size);
+                           IN(MultipleScatteringTexture) multiple_scattering_texture, Number r,
+                           Number mu_s) {
+    vec2 uv = GetMultipleScatteringTextureUv(atmosphere, r, mu_s,
+                                             TextureSize(multiple_scattering_texture));
     return vec3(SampleTexture2D(multiple_scattering_texture, uv));
 }
 
@@ -359,9 +358,8 @@ vec3 UniformSphereDirection(int i, int n) {
 // directions with `steps` ray-marching steps each, using the transmittance LUT for the sun, then
 // Psi_ms = L_2nd_order / (1 - f_ms).
 vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
-                                    IN(TransmittanceTexture) transmittance_texture,
-                                    ivec2 transmittance_size, vec2 uv, ivec2 size,
-                                    int sqrt_directions, int steps) {
+                                    IN(TransmittanceTexture) transmittance_texture, vec2 uv,
+                                    ivec2 size, int sqrt_directions, int steps) {
     Number x_mu_s = GetUnitRangeFromTextureCoord(uv.x, size.x);
     Number x_h = GetUnitRangeFromTextureCoord(uv.y, size.y);
     Number mu_s = MuSFromMultipleScatteringU(x_mu_s);
@@ -392,8 +390,7 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
             MediumSample s = SampleMedium(atmosphere, r_p - atmosphere.bottom_radius);
             vec3 step_transmittance = exp(-s.extinction * dt);
             Number mu_s_p = dot(p, sun_direction) / r_p;
-            vec3 sun = GetTransmittanceToSun(atmosphere, transmittance_texture,
-                                             transmittance_size, r_p, mu_s_p);
+            vec3 sun = GetTransmittanceToSun(atmosphere, transmittance_texture, r_p, mu_s_p);
             // Energy-conserving integration over the step (Hillaire 2015): the integral of
             // exp(-sigma_t t) over [0, dt] times the in-scattering source.
             vec3 integral = StepIntegral(s.extinction, dt);
@@ -412,8 +409,7 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
             vec3 n_ground = normalize(p);
             Number mu_s_ground = dot(n_ground, sun_direction);
             vec3 sun = GetTransmittanceToSun(atmosphere, transmittance_texture,
-                                             transmittance_size, atmosphere.bottom_radius,
-                                             mu_s_ground);
+                                             atmosphere.bottom_radius, mu_s_ground);
             l += throughput * sun * max(mu_s_ground, 0.0) * atmosphere.ground_albedo / kPi;
         }
         // Eq. 5 and 7 with p_u = 1 / (4 pi) and a solid angle of 4 pi / n per direction.
@@ -428,8 +424,10 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
 // cosine (u = 0.5 + 0.5 mu_s): lets the ground be lit by the sky as well as by the sun, which H20
 // leaves to the engine. Filled by integrating the scattered luminance over the upper hemisphere.
 
-vec3 GetGroundSkyIrradiance(IN(IrradianceTexture) irradiance_texture, ivec2 size, Number mu_s) {
-    vec2 uv = vec2(GetTextureCoordFromUnitRange(clamp(0.5 + 0.5 * mu_s, 0.0, 1.0), size.x), 0.5);
+vec3 GetGroundSkyIrradiance(IN(IrradianceTexture) irradiance_texture, Number mu_s) {
+    vec2 uv = vec2(GetTextureCoordFromUnitRange(clamp(0.5 + 0.5 * mu_s, 0.0, 1.0),
+                                                TextureSize(irradiance_texture).x),
+                   0.5);
     return vec3(SampleTexture2D(irradiance_texture, uv));
 }
 
@@ -480,18 +478,16 @@ struct ScatteringResult {
 // its single scattering scaled by `direct` and its multiple scattering by `sky` (the clouds'
 // shading, 1 without clouds).
 vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
-                       IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                       IN(TransmittanceTexture) transmittance_texture,
                        IN(MultipleScatteringTexture) multiple_scattering_texture,
-                       ivec2 multiple_scattering_size, IN(MediumSample) s, vec3 p, Number r_p,
-                       vec3 view_direction, vec3 light_direction, Number direct, Number sky) {
+                       IN(MediumSample) s, vec3 p, Number r_p, vec3 view_direction,
+                       vec3 light_direction, Number direct, Number sky) {
     Number mu_l = dot(p, light_direction) / r_p;
     Number nu = dot(view_direction, light_direction);
-    vec3 transmittance = GetTransmittanceToSun(atmosphere, transmittance_texture,
-                                               transmittance_size, r_p, mu_l);
+    vec3 transmittance = GetTransmittanceToSun(atmosphere, transmittance_texture, r_p, mu_l);
     vec3 phase_scattering = s.rayleigh_scattering * RayleighPhase(nu) +
                             s.mie_scattering * CornetteShanksPhase(atmosphere.mie_g, nu);
-    vec3 psi_ms = GetMultipleScattering(atmosphere, multiple_scattering_texture,
-                                        multiple_scattering_size, r_p, mu_l);
+    vec3 psi_ms = GetMultipleScattering(atmosphere, multiple_scattering_texture, r_p, mu_l);
     return transmittance * phase_scattering * direct + psi_ms * s.scattering * sky;
 }
 
@@ -502,10 +498,10 @@ vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
 // include_ground = false while that LUT is being built).
 ScatteringResult IntegrateScatteredLuminance(
     IN(AtmosphereParameters) atmosphere, IN(TransmittanceTexture) transmittance_texture,
-    ivec2 transmittance_size, IN(MultipleScatteringTexture) multiple_scattering_texture,
-    ivec2 multiple_scattering_size, IN(IrradianceTexture) irradiance_texture,
-    ivec2 irradiance_size, IN(LightSet) lights, vec3 origin, Number origin_altitude,
-    vec3 direction, Number t_begin, Number t_limit, int steps, bool include_ground) {
+    IN(MultipleScatteringTexture) multiple_scattering_texture,
+    IN(IrradianceTexture) irradiance_texture, IN(LightSet) lights, vec3 origin,
+    Number origin_altitude, vec3 direction, Number t_begin, Number t_limit, int steps,
+    bool include_ground) {
     ScatteringResult result;
     result.luminance = vec3(0.0);
     result.transmittance = vec3(1.0);
@@ -582,8 +578,8 @@ ScatteringResult IntegrateScatteredLuminance(
         vec3 source = s.scattering * lights.cloud_luminance * (0.5 * under);
         for (int l = 0; l < lights.count; ++l) {
             source += lights.light[l].illuminance *
-                      LightInScattering(atmosphere, transmittance_texture, transmittance_size,
-                                        multiple_scattering_texture, multiple_scattering_size, s,
+                      LightInScattering(atmosphere, transmittance_texture,
+                                        multiple_scattering_texture, s,
                                         p, r_p, direction, lights.light[l].direction, direct,
                                         sky);
         }
@@ -606,10 +602,9 @@ ScatteringResult IntegrateScatteredLuminance(
             Number mu_l = dot(n_ground, lights.light[l].direction);
             ground += lights.light[l].illuminance *
                       (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
-                                                              transmittance_size,
                                                               atmosphere.bottom_radius, mu_l) *
                            direct +
-                       GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) * sky);
+                       GetGroundSkyIrradiance(irradiance_texture, mu_l) * sky);
         }
         result.luminance += result.transmittance * ground * atmosphere.ground_albedo / kPi;
     }
@@ -693,11 +688,10 @@ void SkyViewAnglesOfDirection(vec3 up, vec3 frame_x, vec3 direction, OUT(Number)
 // One Sky-View texel: the luminance seen from `camera` (km, planet-centred, inside the
 // atmosphere) in the texel's direction, ground included (the planet is part of the distant view).
 vec3 ComputeSkyViewTexel(IN(AtmosphereParameters) atmosphere,
-                         IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
+                         IN(TransmittanceTexture) transmittance_texture,
                          IN(MultipleScatteringTexture) multiple_scattering_texture,
-                         ivec2 multiple_scattering_size, IN(IrradianceTexture) irradiance_texture,
-                         ivec2 irradiance_size, IN(LightSet) lights, vec3 camera,
-                         Number camera_altitude, vec2 uv, ivec2 size, int steps) {
+                         IN(IrradianceTexture) irradiance_texture, IN(LightSet) lights,
+                         vec3 camera, Number camera_altitude, vec2 uv, ivec2 size, int steps) {
     vec3 up = normalize(camera);
     vec3 frame_x = SkyViewFrameX(up, lights.light[0].direction);
     Number view_zenith;
@@ -705,28 +699,27 @@ vec3 ComputeSkyViewTexel(IN(AtmosphereParameters) atmosphere,
     GetViewFromSkyViewTextureUv(atmosphere, camera_altitude, uv, size, view_zenith, azimuth);
     vec3 direction = SkyViewDirection(up, frame_x, view_zenith, azimuth);
     ScatteringResult result = IntegrateScatteredLuminance(
-        atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
-        multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
-        camera_altitude, direction, 0.0, 1e9, steps, true);
+        atmosphere, transmittance_texture, multiple_scattering_texture, irradiance_texture,
+        lights, camera, camera_altitude, direction, 0.0, 1e9, steps, true);
     return result.luminance;
 }
 
 // The Sky-View lookup with the frame (up, frame_x) and the horizon's zenith angle already known:
 // they are the same for every pixel of a frame, so the composite gets them from the host.
-vec3 SampleSkyViewInFrame(IN(SkyViewTexture) sky_view_texture, ivec2 size, vec3 up,
-                          vec3 frame_x, Number horizon, vec3 direction) {
+vec3 SampleSkyViewInFrame(IN(SkyViewTexture) sky_view_texture, vec3 up, vec3 frame_x,
+                          Number horizon, vec3 direction) {
     Number view_zenith;
     Number azimuth;
     SkyViewAnglesOfDirection(up, frame_x, direction, view_zenith, azimuth);
-    vec2 uv = GetSkyViewTextureUvForHorizon(horizon, view_zenith, azimuth, size);
+    vec2 uv = GetSkyViewTextureUvForHorizon(horizon, view_zenith, azimuth,
+                                            TextureSize(sky_view_texture));
     return vec3(SampleTexture2D(sky_view_texture, uv));
 }
 
 vec3 SampleSkyView(IN(AtmosphereParameters) atmosphere, IN(SkyViewTexture) sky_view_texture,
-                   ivec2 size, vec3 camera, Number camera_altitude, vec3 sun_direction,
-                   vec3 direction) {
+                   vec3 camera, Number camera_altitude, vec3 sun_direction, vec3 direction) {
     vec3 up = normalize(camera);
-    return SampleSkyViewInFrame(sky_view_texture, size, up, SkyViewFrameX(up, sun_direction),
+    return SampleSkyViewInFrame(sky_view_texture, up, SkyViewFrameX(up, sun_direction),
                                 HorizonZenithAngle(atmosphere, camera_altitude), direction);
 }
 
@@ -735,9 +728,7 @@ vec3 SampleSkyView(IN(AtmosphereParameters) atmosphere, IN(SkyViewTexture) sky_v
 // luminance times cos(theta), for a unit sun, from a point on the ground.
 vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
                                   IN(TransmittanceTexture) transmittance_texture,
-                                  ivec2 transmittance_size,
                                   IN(MultipleScatteringTexture) multiple_scattering_texture,
-                                  ivec2 multiple_scattering_size,
                                   IN(IrradianceTexture) unused_irradiance_texture,
                                   ivec2 irradiance_size, Number u, int sqrt_directions,
                                   int steps) {
@@ -766,9 +757,8 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
         Number sin_theta = SafeSqrt(1.0 - cos_theta * cos_theta);
         vec3 direction = vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
         ScatteringResult sky = IntegrateScatteredLuminance(
-            atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
-            multiple_scattering_size, unused_irradiance_texture, irradiance_size, unit_sun, origin,
-            0.0, direction, 0.0, 1e9, steps, false);
+            atmosphere, transmittance_texture, multiple_scattering_texture,
+            unused_irradiance_texture, unit_sun, origin, 0.0, direction, 0.0, 1e9, steps, false);
         irradiance += sky.luminance * cos_theta;
     }
     return irradiance * (2.0 * kPi / Number(n));  // solid angle 2 pi / n per stratum
@@ -829,19 +819,16 @@ int AerialPerspectiveStepsPerSlice(int slices, int full_steps) {
 // froxel value. Start a column with luminance 0 and transmittance 1.
 vec4 AdvanceAerialPerspective(IN(AtmosphereParameters) atmosphere,
                               IN(TransmittanceTexture) transmittance_texture,
-                              ivec2 transmittance_size,
                               IN(MultipleScatteringTexture) multiple_scattering_texture,
-                              ivec2 multiple_scattering_size,
-                              IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                              IN(IrradianceTexture) irradiance_texture,
                               IN(LightSet) lights, vec3 camera, Number camera_altitude,
                               vec3 direction, int slice, int slices, Number range, int full_steps,
                               INOUT(ScatteringResult) accumulated) {
     Number begin = max(Number(slice) - 0.5, 0.0) / Number(slices) * range;
     Number end = (Number(slice) + 0.5) / Number(slices) * range;
     ScatteringResult segment = IntegrateScatteredLuminance(
-        atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
-        multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
-        camera_altitude, direction, begin, end,
+        atmosphere, transmittance_texture, multiple_scattering_texture, irradiance_texture,
+        lights, camera, camera_altitude, direction, begin, end,
         AerialPerspectiveStepsPerSlice(slices, full_steps), false);
     accumulated.luminance += accumulated.transmittance * segment.luminance;
     accumulated.transmittance *= segment.transmittance;

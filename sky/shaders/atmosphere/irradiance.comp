@@ -6,9 +6,9 @@ void main() {
     if (any(greaterThanEqual(texel, irradiance_size))) return;
     float u = (float(texel.x) + 0.5) / float(irradiance_size.x);
     // The irradiance sampler is bound but unused while this LUT is built (sky rays only).
-    vec3 e = ComputeGroundIrradianceTexel(atmosphere, transmittance_texture, transmittance_size,
-                                          multiple_scattering_texture, multiple_scattering_size,
-                                          irradiance_texture, irradiance_size, u,
+    vec3 e = ComputeGroundIrradianceTexel(atmosphere, transmittance_texture,
+                                          multiple_scattering_texture, irradiance_texture,
+                                          irradiance_size, u,
                                           irradiance_directions_sqrt, irradiance_steps);
     imageStore(output_image, texel, vec4(e, 1.0));
 }

@@ -63,8 +63,7 @@ void main() {
                   SunLimbDarkening(angle / atmosphere.sun_angular_radius);
     }
     if (moon_enabled != 0) beyond += MoonLuminance(direction);
-    out_luminance = vec4(beyond * TransmittanceToSpace(atmosphere, transmittance_texture,
-                                                       transmittance_size, camera_km,
+    out_luminance = vec4(beyond * TransmittanceToSpace(atmosphere, transmittance_texture, camera_km,
                                                        camera_altitude_km, direction),
                          0.0);
   #if ZENITH_CLOUDS
@@ -73,13 +72,12 @@ void main() {
 #else
   #if ZENITH_RAY_MARCH
     vec3 luminance = IntegrateScatteredLuminance(
-                         atmosphere, transmittance_texture, transmittance_size,
-                         multiple_scattering_texture, multiple_scattering_size,
-                         irradiance_texture, irradiance_size, lights, camera_km,
+                         atmosphere, transmittance_texture, multiple_scattering_texture,
+                         irradiance_texture, lights, camera_km,
                          camera_altitude_km, direction, 0.0, 1e9, ray_march_steps,
                          true).luminance;
   #else
-    vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_size, sky_view_up,
+    vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_up,
                                           sky_view_x, horizon_zenith, direction);
   #endif
     // Stars (and a Sun narrower than a pixel): luminance already attenuated on the CPU by the

@@ -10,9 +10,8 @@ void main() {
     int columns = mirrored ? (sky_view_size.x + 1) / 2 : sky_view_size.x;
     if (texel.x >= columns || texel.y >= sky_view_size.y) return;
     vec2 uv = (vec2(texel) + 0.5) / vec2(sky_view_size);
-    vec3 l = ComputeSkyViewTexel(atmosphere, transmittance_texture, transmittance_size,
-                                 multiple_scattering_texture, multiple_scattering_size,
-                                 irradiance_texture, irradiance_size, lights, camera_km,
+    vec3 l = ComputeSkyViewTexel(atmosphere, transmittance_texture, multiple_scattering_texture,
+                                 irradiance_texture, lights, camera_km,
                                  camera_altitude_km, uv, sky_view_size, sky_view_steps);
     imageStore(output_image, texel, vec4(l, 1.0));
     if (mirrored) {

@@ -74,10 +74,10 @@ CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, fl
         int i = order[k];
         vec2 interval = CloudLayerInterval(cloud_layers[i], r, mu, altitude,
                                            cloud_march.max_distance);
-        MarchCloudLayer(atmosphere, transmittance_texture, transmittance_size, irradiance_texture,
-                        irradiance_size, cloud_layers[i], weather_maps[i], shape_noise,
-                        detail_noise, cloud_scattering, cloud_march, cloud_lights,
-                        cloud_light_count, origin, direction, interval, jitter, state);
+        MarchCloudLayer(atmosphere, transmittance_texture, irradiance_texture, cloud_layers[i],
+                        weather_maps[i], shape_noise, detail_noise, cloud_scattering, cloud_march,
+                        cloud_lights, cloud_light_count, origin, direction, interval, jitter,
+                        state);
     }
     return state;
 }
@@ -90,9 +90,9 @@ vec4 TraceClouds(vec3 view, float jitter, out float depth) {
     CloudMarchState state = MarchCloudLayers(to_weather * camera_km, camera_altitude_km,
                                              to_weather * view, jitter, cloud_layer_order);
     depth = CloudMeanDepth(state);
-    return CloudApplyAerialPerspective(atmosphere, transmittance_texture, transmittance_size,
-                                       multiple_scattering_texture, multiple_scattering_size,
-                                       irradiance_texture, irradiance_size, lights, camera_km,
+    return CloudApplyAerialPerspective(atmosphere, transmittance_texture,
+                                       multiple_scattering_texture,
+                                       irradiance_texture, lights, camera_km,
                                        camera_altitude_km, view, state,
                                        cloud_aerial_perspective_steps);
 }
@@ -116,10 +116,10 @@ vec3 GroundShadowCorrection(vec3 view) {
     for (int l = 0; l < lights.count; ++l) {
         float mu_l = dot(n, lights.light[l].direction);
         direct += lights.light[l].illuminance * max(mu_l, 0.0) *
-                  GetTransmittanceToSun(atmosphere, transmittance_texture, transmittance_size,
+                  GetTransmittanceToSun(atmosphere, transmittance_texture,
                                         atmosphere.bottom_radius, mu_l);
     }
     return weight * (shadow - lights.cloud_direct) * direct * atmosphere.ground_albedo / kPi *
-           TransmittanceToGround(atmosphere, transmittance_texture, transmittance_size, camera_km,
+           TransmittanceToGround(atmosphere, transmittance_texture, camera_km,
                                  camera_altitude_km, view, t);
 }

@@ -181,8 +181,8 @@ vec3 CloudOutwardNormal(IN(CloudLayerParameters) layer, IN(WeatherTexture) weath
 // isotropic radiance on the horizontal slab's top (CloudSkyScattering), scaled by ambient_scale
 // (F16 §5.5.1).
 vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
-                       IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
-                       IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                       IN(TransmittanceTexture) transmittance_texture,
+                       IN(IrradianceTexture) irradiance_texture,
                        IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
                        IN(CloudNoiseTexture) shape_noise, IN(CloudNoiseTexture) detail_noise,
                        IN(CloudScatteringParameters) scattering, IN(CloudMarchParameters) march,
@@ -202,7 +202,7 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         vec3 direction = lights.light[l].direction;
         Number mu_l = dot(p, direction) / r;
         vec3 atmosphere_transmittance =
-            GetTransmittanceToSun(atmosphere, transmittance_texture, transmittance_size, r, mu_l);
+            GetTransmittanceToSun(atmosphere, transmittance_texture, r, mu_l);
         Number optical_depth = CloudShadowOpticalDepth(
             layer, weather_map, shape_noise, detail_noise, march, p, direction, refinement);
         // The slab faces the light: the normal or its opposite, whichever the light enters.
@@ -222,7 +222,7 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         // The depth below the cloud's top as the sun's slab has it.
         Number depth_above = optical_depth * max(mu_l, 0.05);
         ambient += lights.light[l].illuminance *
-                   GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) / kPi *
+                   GetGroundSkyIrradiance(irradiance_texture, mu_l) / kPi *
                    CloudSkyScattering(scattering, depth_above, depth_above + depth_below, mu_view);
     }
     Number sigma_s = scattering.albedo * s.density * march.extinction;
@@ -237,8 +237,8 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
 // min_transmittance and counts the rest as opaque (the light behind, at most that share, is
 // dropped: otherwise a Sun of 10^8 cd/m^2 would shine through a thunderstorm at 1 %).
 void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
-                     IN(TransmittanceTexture) transmittance_texture, ivec2 transmittance_size,
-                     IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                     IN(TransmittanceTexture) transmittance_texture,
+                     IN(IrradianceTexture) irradiance_texture,
                      IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
                      IN(CloudNoiseTexture) shape_noise, IN(CloudNoiseTexture) detail_noise,
                      IN(CloudScatteringParameters) scattering, IN(CloudMarchParameters) march,
@@ -288,10 +288,10 @@ void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
         }
         Number extinction = s.density * march.extinction;
         for (int lit = 0; lit < (s.density > 0.0 ? 1 : 0); ++lit) {
-            vec3 source = CloudSampleSource(atmosphere, transmittance_texture, transmittance_size,
-                                            irradiance_texture, irradiance_size, layer, weather_map,
-                                            shape_noise, detail_noise, scattering, march, lights,
-                                            light_count, s, origin + view * t, view, refinement);
+            vec3 source = CloudSampleSource(atmosphere, transmittance_texture, irradiance_texture,
+                                            layer, weather_map, shape_noise, detail_noise,
+                                            scattering, march, lights, light_count, s,
+                                            origin + view * t, view, refinement);
             state.depth_weight += state.transmittance;
             state.weighted_depth += state.transmittance * t;
             CloudIntegrateStep(source, extinction, dt, state.luminance, state.transmittance);
@@ -310,18 +310,15 @@ void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
 // atmosphere's frame.
 vec4 CloudApplyAerialPerspective(IN(AtmosphereParameters) atmosphere,
                                  IN(TransmittanceTexture) transmittance_texture,
-                                 ivec2 transmittance_size,
                                  IN(MultipleScatteringTexture) multiple_scattering_texture,
-                                 ivec2 multiple_scattering_size,
-                                 IN(IrradianceTexture) irradiance_texture, ivec2 irradiance_size,
+                                 IN(IrradianceTexture) irradiance_texture,
                                  IN(LightSet) lights, vec3 camera, Number camera_altitude,
                                  vec3 view, IN(CloudMarchState) state, int steps) {
     Number depth = CloudMeanDepth(state);
     if (!(depth > 0.0)) return vec4(state.luminance, state.transmittance);
     ScatteringResult segment = IntegrateScatteredLuminance(
-        atmosphere, transmittance_texture, transmittance_size, multiple_scattering_texture,
-        multiple_scattering_size, irradiance_texture, irradiance_size, lights, camera,
-        camera_altitude, view, 0.0, depth, steps, false);
+        atmosphere, transmittance_texture, multiple_scattering_texture, irradiance_texture,
+        lights, camera, camera_altitude, view, 0.0, depth, steps, false);
     return vec4(
         segment.transmittance * state.luminance + (1.0 - state.transmittance) * segment.luminance,
         state.transmittance);

@@ -59,8 +59,7 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
     for (int y = 0; y < ms.height(); ++y) {
         for (int x = 0; x < ms.width(); ++x) {
             const ref::vec3 value = ref::ComputeMultipleScatteringTexel(
-                d.atmosphere, d.transmittance, settings.transmittance_size,
-                TexelCentre(x, y, settings.multiple_scattering_size),
+                d.atmosphere, d.transmittance, TexelCentre(x, y, settings.multiple_scattering_size),
                 settings.multiple_scattering_size, settings.multiple_scattering_directions_sqrt,
                 settings.multiple_scattering_steps);
             ms.at(x, y) = ref::vec4(value, 1.0);
@@ -74,10 +73,9 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
     for (int y = 0; y < irradiance.height(); ++y) {
         for (int x = 0; x < irradiance.width(); ++x) {
             const ref::vec3 value = ref::ComputeGroundIrradianceTexel(
-                d.atmosphere, d.transmittance, settings.transmittance_size, d.multiple_scattering,
-                settings.multiple_scattering_size, unused, settings.irradiance_size,
-                TexelCentre(x, y, settings.irradiance_size).x, settings.irradiance_directions_sqrt,
-                settings.irradiance_steps);
+                d.atmosphere, d.transmittance, d.multiple_scattering, unused,
+                settings.irradiance_size, TexelCentre(x, y, settings.irradiance_size).x,
+                settings.irradiance_directions_sqrt, settings.irradiance_steps);
             irradiance.at(x, y) = ref::vec4(value, 1.0);
         }
     }
@@ -103,9 +101,8 @@ LutImage AtmosphereReference::SkyView(const glm::dvec3& camera, const Lights& li
     for (int y = 0; y < size.y; ++y) {
         for (int x = 0; x < size.x; ++x) {
             const ref::vec3 value = ref::ComputeSkyViewTexel(
-                d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
-                d.settings.multiple_scattering_size, d.irradiance, d.settings.irradiance_size,
-                light_set, camera / kKm, d.AltitudeKm(camera), TexelCentre(x, y, size), size,
+                d.atmosphere, d.transmittance, d.multiple_scattering, d.irradiance, light_set,
+                camera / kKm, d.AltitudeKm(camera), TexelCentre(x, y, size), size,
                 d.settings.sky_view_steps);
             image.at(x, y) = glm::vec4(glm::vec3(value), 1.0f);
         }
@@ -126,11 +123,9 @@ LutImage AtmosphereReference::AerialPerspective(const Camera& camera, const Ligh
             ref::ScatteringResult accumulated{ref::vec3(0.0), ref::vec3(1.0)};
             for (int z = 0; z < size.z; ++z) {
                 const ref::vec4 value = ref::AdvanceAerialPerspective(
-                    d.atmosphere, d.transmittance, d.settings.transmittance_size,
-                    d.multiple_scattering, d.settings.multiple_scattering_size, d.irradiance,
-                    d.settings.irradiance_size, light_set, camera.position / kKm,
-                    d.AltitudeKm(camera.position), direction, z, size.z, range_km,
-                    d.settings.aerial_perspective_steps, accumulated);
+                    d.atmosphere, d.transmittance, d.multiple_scattering, d.irradiance, light_set,
+                    camera.position / kKm, d.AltitudeKm(camera.position), direction, z, size.z,
+                    range_km, d.settings.aerial_perspective_steps, accumulated);
                 image.at(x, y, z) = glm::vec4(value);
             }
         }
@@ -139,8 +134,8 @@ LutImage AtmosphereReference::AerialPerspective(const Camera& camera, const Ligh
 }
 
 glm::dvec3 AtmosphereReference::TransmittanceFromLut(double r, double mu) const {
-    return ref::GetTransmittanceToTopAtmosphereBoundary(
-        impl_->atmosphere, impl_->transmittance, impl_->settings.transmittance_size, r / kKm, mu);
+    return ref::GetTransmittanceToTopAtmosphereBoundary(impl_->atmosphere, impl_->transmittance,
+                                                        r / kKm, mu);
 }
 
 glm::dvec3 AtmosphereReference::TransmittanceIntegrated(double r, double mu, int steps) const {
@@ -152,8 +147,7 @@ glm::dvec4 AtmosphereReference::InScattering(const glm::dvec3& origin, const glm
                                              int steps) const {
     const Impl& d = *impl_;
     const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
-        d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
-        d.settings.multiple_scattering_size, d.irradiance, d.settings.irradiance_size,
+        d.atmosphere, d.transmittance, d.multiple_scattering, d.irradiance,
         d.ToLightSet(lights, origin), origin / kKm, d.AltitudeKm(origin), direction, 0.0,
         distance / kKm, steps, false);
     return {r.luminance, (r.transmittance.x + r.transmittance.y + r.transmittance.z) / 3.0};
@@ -162,11 +156,10 @@ glm::dvec4 AtmosphereReference::InScattering(const glm::dvec3& origin, const glm
 glm::dvec3 AtmosphereReference::RayMarch(const glm::dvec3& origin, const glm::dvec3& direction,
                                          const Lights& lights, int steps) const {
     const Impl& d = *impl_;
-    return ref::IntegrateScatteredLuminance(
-               d.atmosphere, d.transmittance, d.settings.transmittance_size, d.multiple_scattering,
-               d.settings.multiple_scattering_size, d.irradiance, d.settings.irradiance_size,
-               d.ToLightSet(lights, origin), origin / kKm, d.AltitudeKm(origin), direction, 0.0,
-               1e9, steps, true)
+    return ref::IntegrateScatteredLuminance(d.atmosphere, d.transmittance, d.multiple_scattering,
+                                            d.irradiance, d.ToLightSet(lights, origin),
+                                            origin / kKm, d.AltitudeKm(origin), direction, 0.0, 1e9,
+                                            steps, true)
         .luminance;
 }
 
@@ -174,8 +167,8 @@ glm::dvec3 AtmosphereReference::SampleSkyView(const LutImage& sky_view, const gl
                                               const glm::dvec3& sun_direction,
                                               const glm::dvec3& direction) const {
     const Texture2D texture = FromImage(sky_view, true);
-    return ref::SampleSkyView(impl_->atmosphere, texture, impl_->settings.sky_view_size,
-                              camera / kKm, impl_->AltitudeKm(camera), sun_direction, direction);
+    return ref::SampleSkyView(impl_->atmosphere, texture, camera / kKm, impl_->AltitudeKm(camera),
+                              sun_direction, direction);
 }
 
 }  // namespace zenith::sky::reference

@@ -37,17 +37,14 @@ CloudMarchState MarchCloudLayers(const CloudScene& scene, vec3 origin, Number al
     const Number r = length(origin);
     const Number mu = dot(origin, direction) / r;
     CloudMarchState state = CloudMarchStart();
-    const ivec2 transmittance_size(scene.transmittance.width(), scene.transmittance.height());
-    const ivec2 irradiance_size(scene.irradiance.width(), scene.irradiance.height());
     for (int i : order) {
         const auto layer = static_cast<std::size_t>(i);
         const vec2 interval =
             CloudLayerInterval(scene.layers[layer], r, mu, altitude, scene.march.max_distance);
-        MarchCloudLayer(scene.atmosphere, scene.transmittance, transmittance_size, scene.irradiance,
-                        irradiance_size, scene.layers[layer], scene.weather_maps[layer],
-                        scene.shape, scene.detail, scene.scattering, scene.march,
-                        scene.cloud_lights, scene.cloud_lights.count, origin, direction, interval,
-                        jitter, state);
+        MarchCloudLayer(scene.atmosphere, scene.transmittance, scene.irradiance,
+                        scene.layers[layer], scene.weather_maps[layer], scene.shape, scene.detail,
+                        scene.scattering, scene.march, scene.cloud_lights, scene.cloud_lights.count,
+                        origin, direction, interval, jitter, state);
     }
     return state;
 }
@@ -62,11 +59,8 @@ vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 vie
                          scene.weather_from_frame * view, jitter, scene.order);
     if (depth != nullptr) *depth = CloudMeanDepth(state);
     return CloudApplyAerialPerspective(
-        scene.atmosphere, scene.transmittance,
-        ivec2(scene.transmittance.width(), scene.transmittance.height()), scene.multiple_scattering,
-        ivec2(scene.multiple_scattering.width(), scene.multiple_scattering.height()),
-        scene.irradiance, ivec2(scene.irradiance.width(), scene.irradiance.height()), scene.lights,
-        camera, altitude, view, state, scene.aerial_perspective_steps);
+        scene.atmosphere, scene.transmittance, scene.multiple_scattering, scene.irradiance,
+        scene.lights, camera, altitude, view, state, scene.aerial_perspective_steps);
 }
 
 // A texel of clouds/shadow_map.comp: the transmittance toward the main cloud light from the

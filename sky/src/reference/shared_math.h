@@ -143,6 +143,8 @@ using AerialPerspectiveTexture = Texture3D;
 
 inline vec4 SampleTexture2D(const Texture2D& t, vec2 uv) { return t.Sample(uv); }
 inline vec4 SampleTexture3D(const Texture3D& t, vec3 uvw) { return t.Sample(uvw); }
+inline ivec2 TextureSize(const Texture2D& t) { return ivec2(t.width(), t.height()); }
+inline ivec3 TextureSize(const Texture3D& t) { return t.size(); }
 
 }  // namespace zenith::sky::ref
 
