@@ -3,12 +3,7 @@
 # under glad's own names.
 # Arguments: -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DNM=... -DGLAD_PYTHON=...
 #            -DGLAD_EXECUTABLE=... -DGLAD_EXTENSIONS=... [-DCONSUMER_FLAGS=...]
-file(REMOVE_RECURSE ${WORK_DIR})
-execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
-                RESULT_VARIABLE rc OUTPUT_QUIET)
-if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "cmake --install failed (${rc})")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/../support/install_into_prefix.cmake)
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -G Ninja
                         -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
                         -DHOST_GLAD_PYTHON=${GLAD_PYTHON} -DHOST_GLAD_EXECUTABLE=${GLAD_EXECUTABLE}

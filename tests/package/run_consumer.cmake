@@ -1,11 +1,6 @@
 # Installs the build tree into a scratch prefix, then configures, builds and runs the consumer.
 # Arguments: -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... [-DCONSUMER_FLAGS=...]
-file(REMOVE_RECURSE ${WORK_DIR})
-execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix
-                RESULT_VARIABLE rc OUTPUT_QUIET)
-if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "cmake --install failed (${rc})")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/../support/install_into_prefix.cmake)
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR}/build -G Ninja
                         -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
                         -DZENITH_HOST_EXAMPLE=${WORK_DIR}/prefix/share/zenith/examples/host_loop.cpp
