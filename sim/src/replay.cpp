@@ -5,6 +5,7 @@
 #include <unistd.h>
 #include <xxhash.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
@@ -31,6 +32,7 @@
 #include "zenith/track/flight_log.h"
 #include "zenith/track/trajectory.h"
 #include "zenith/version.h"
+#include "zenith/weather/altimetry.h"
 #include "zenith/weather/cloud_weather.h"
 #include "zenith/weather/metar_file.h"
 #include "zenith/weather/metar_timeline.h"
@@ -343,10 +345,61 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
     }
 
     const track::FlightLog log = track::ReadFlightLog(r.flight, r.read);
-    const track::Trajectory trajectory(log);
     ReplayResult result;
+    // The flight's first and last fix, for the reports' times.
+    const auto [first_fix, last_fix] =
+        std::minmax_element(log.samples.begin(), log.samples.end(),
+                            [](const track::FlightSample& a, const track::FlightSample& b) {
+                                return a.time_s < b.time_s;
+                            });
+    const double flight_start = log.samples.empty() ? 0.0 : first_fix->time_s;
+    const double flight_end = log.samples.empty() ? 0.0 : last_fix->time_s;
+
+    // Weather from METAR reports: read (bounded by the reader) before anything is written.
+    std::unique_ptr<weather::MetarTimeline> timeline;
+    if (!r.metar_file.empty()) {
+        weather::MetarFile file = IsCsv(r.metar_file) ? weather::ReadMetarCsv(r.metar_file)
+                                                      : weather::ReadMetarLines(r.metar_file);
+        result.notes += file.Summary() + "\n";
+        weather::TimelineOptions options;
+        options.station_elevation_m = r.station_elevation_m;
+        options.clear_visibility_m =
+            std::log(20.0) / weather::GroundExtinctionGreen(sky::LoadAtmosphere(r.preset));
+        timeline = std::make_unique<weather::MetarTimeline>(std::move(file), options, flight_start,
+                                                            flight_end);
+        for (const std::string& note : timeline->notes()) result.notes += "METAR: " + note + "\n";
+        result.notes += fmt::format(
+            "METAR: {} stations; the weather of the nearest to the aircraft at the log's time; "
+            "heights above {}\n",
+            timeline->stations().size(),
+            r.station_elevation_m
+                ? fmt::format("the stations' elevation, {} m (--station-elevation)",
+                              *r.station_elevation_m)
+                : std::string("the ground zenith draws under them (0 m; give "
+                              "--station-elevation to place them)"));
+    }
+
+    // Pressure altitudes through the reports' QNH and temperature where there are reports.
+    track::TrajectoryOptions trajectory_options;
+    if (timeline) {
+        trajectory_options.pressure_height = [&timeline](double t, double lat, double lon,
+                                                         double pressure_altitude) {
+            // Outside what altimetry takes (a corrupt fix), the pressure altitude as it is.
+            if (!(pressure_altitude >= -1000.0 && pressure_altitude <= 20000.0)) {
+                return pressure_altitude;
+            }
+            return weather::HeightFromPressureAltitude(pressure_altitude,
+                                                       timeline->AirAt(t, lat, lon));
+        };
+    }
+    const track::Trajectory trajectory(log, trajectory_options);
     result.log_summary = log.summary.ToString();
     for (const std::string& note : trajectory.notes()) result.log_summary += "\n" + note;
+    if (timeline && trajectory.altitude_kind() == track::AltitudeKind::kPressure) {
+        result.notes +=
+            "METAR: pressure altitude -> height through the reports' QNH and temperature (nearest "
+            "station, linear in time; zenith::weather::HeightFromPressureAltitude)\n";
+    }
     if (stop.load()) {
         result.interrupted = true;
         return result;
@@ -384,30 +437,6 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
             fmt::format("ground observer at {:.5f}, {:.5f}, {:.1f} m above the ellipsoid ({})\n",
                         ground.lat_deg(), ground.lon_deg(), ground.height_m(),
                         r.observer ? "as given" : "on the ground zenith draws under the first fix");
-    }
-
-    // Weather from METAR reports: read (bounded by the reader) before anything is written.
-    std::unique_ptr<weather::MetarTimeline> timeline;
-    if (!r.metar_file.empty()) {
-        weather::MetarFile file = IsCsv(r.metar_file) ? weather::ReadMetarCsv(r.metar_file)
-                                                      : weather::ReadMetarLines(r.metar_file);
-        result.notes += file.Summary() + "\n";
-        weather::TimelineOptions options;
-        options.station_elevation_m = r.station_elevation_m;
-        options.clear_visibility_m =
-            std::log(20.0) / weather::GroundExtinctionGreen(sky::LoadAtmosphere(r.preset));
-        timeline = std::make_unique<weather::MetarTimeline>(
-            std::move(file), options, trajectory.start_time_s(), trajectory.end_time_s());
-        for (const std::string& note : timeline->notes()) result.notes += "METAR: " + note + "\n";
-        result.notes += fmt::format(
-            "METAR: {} stations; the weather of the nearest to the aircraft at the log's time; "
-            "heights above {}\n",
-            timeline->stations().size(),
-            r.station_elevation_m
-                ? fmt::format("the stations' elevation, {} m (--station-elevation)",
-                              *r.station_elevation_m)
-                : std::string("the ground zenith draws under them (0 m; give "
-                              "--station-elevation to place them)"));
     }
 
     SkySystemSettings settings;

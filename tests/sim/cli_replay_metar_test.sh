@@ -86,6 +86,16 @@ check "a missing METAR file: exit 2 naming it" exited_saying 2 "missing.csv"
 err=$("$zenith" replay "$log" "${common[@]}" --metar-file "$metar/reports_a.csv" \
     --weather broken --out "$work/bad" 2>&1); rc=$?
 check "--weather with --metar-file: exit 2 naming --weather" exited_saying 2 "--weather"
+# A log with pressure altitudes only (every fix made a 'V' fix, no GNSS height): their heights
+# come from the reports' QNH and temperature (tests/weather/altimetry_test.cpp has the numbers).
+sed -E 's/^(B[0-9]{6}[0-9]{7}[NS][0-9]{8}[EW])A/\1V/' "$log" > "$work/pressure_only.igc"
+pressure=(--fps 0.1 --start 0 --end 0 --size 64x36)
+err=$("$zenith" replay "$work/pressure_only.igc" "${pressure[@]}" \
+    --metar-file "$metar/reports_a.csv" --out "$work/p" 2>&1); rc=$?
+check "a pressure-only log with METAR reports exits 0" test $rc -eq 0
+check "its heights come from the reports' QNH and temperature" \
+    grep -q "pressure altitude -> height through the reports' QNH and temperature" <<<"$err"
+
 err=$("$zenith" replay "$log" "${common[@]}" --metar-file "$metar/reports_a.csv" \
     --station-elevation 20000 --out "$work/bad" 2>&1); rc=$?
 check "--station-elevation 20000: exit 2 naming the flag and the range" \

@@ -269,6 +269,35 @@ TEST(Altitude, KindsStayApartAndConvertAsDocumented) {
                 GeometricFromGeopotential(2900.0) + n, 1e-6);
 }
 
+// A log with pressure altitudes only, and the air's conversion given (replay --metar-file): each
+// fix's height is that conversion at its own time and place, then geopotential -> geometric.
+TEST(Altitude, PressureAltitudesThroughTheGivenAir) {
+    FlightLog log;
+    for (int i = 0; i < 3; ++i) {
+        FlightSample s;
+        s.time_s = kT0 + 60.0 * i;
+        s.lat_deg = 46.0;
+        s.lon_deg = 8.0 + i * 1e-2;
+        s.pressure_altitude = 2000.0;
+        log.samples.push_back(s);
+    }
+    TrajectoryOptions options = Options(std::nullopt, 120.0, 1.0, true);
+    int calls = 0;
+    options.pressure_height = [&calls](double t, double lat, double lon, double h) {
+        ++calls;
+        EXPECT_DOUBLE_EQ(lat, 46.0);
+        EXPECT_DOUBLE_EQ(h, 2000.0);
+        return h + 100.0 * (lon - 8.0) / 1e-2 + (t - kT0) / 60.0;  // depends on place and time
+    };
+    const Trajectory t(log, options);
+    EXPECT_EQ(calls, 3);
+    EXPECT_EQ(t.altitude_kind(), AltitudeKind::kPressure);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(t.At(kT0 + 60.0 * i).height, GeometricFromGeopotential(2000.0 + 101.0 * i),
+                    1e-6);
+    }
+}
+
 TEST(SampleFlights, AllBecomeTrajectories) {
     for (const char* name : {"glider_sisteron.igc", "airliner_nadi_climb.gpx",
                              "sunset_approach_sfo.kml", "balloon_esrange.csv"}) {

@@ -227,6 +227,39 @@ TEST(MetarTimeline, NearestStationSwitchesWhereTheDistancesCross) {
     EXPECT_EQ(*t.At(kNoon, 44.0, 5.7).weather.visibility_m, 8000.0);
 }
 
+// The air for altimetry: QNH and temperature linear in time between the reports that give
+// them (a report without QNH is skipped, not read as 1013.25), blended across stations as the
+// weather is, at the stations' elevation.
+TEST(MetarTimeline, AirForAltimetryFollowsTheReports) {
+    TimelineOptions options;
+    options.station_elevation_m = 150.0;
+    const MetarTimeline t(ParseMetarCsv("station,valid,lon,lat,metar\n"
+                                        "W,2024-07-14 12:00,5.0,44.0,LFWW 141200Z 00000KT 9999 "
+                                        "FEW040 10/05 Q1000\n"
+                                        "W,2024-07-14 12:30,5.0,44.0,LFWW 141230Z 00000KT 9999 "
+                                        "FEW040 16/05\n"
+                                        "W,2024-07-14 13:00,5.0,44.0,LFWW 141300Z 00000KT 9999 "
+                                        "FEW040 20/05 Q1020\n"
+                                        "E,2024-07-14 12:00,6.0,44.0,LFEE 141200Z 00000KT 9999 "
+                                        "FEW040 Q1030\n",
+                                        "air.csv"),
+                          options, kNoon, kNoon + 3600);
+    const StationAir quarter = t.AirAt(kNoon + 900, 44.0, 5.0);
+    EXPECT_NEAR(quarter.qnh_hpa, 1005.0, 1e-9);       // 1000 -> 1020 over the hour
+    EXPECT_NEAR(*quarter.temperature_c, 13.0, 1e-9);  // 10 -> 16 over half an hour
+    EXPECT_DOUBLE_EQ(quarter.elevation_m, 150.0);
+    EXPECT_NEAR(t.AirAt(kNoon + 2700, 44.0, 5.0).temperature_c.value(), 18.0, 1e-9);
+    EXPECT_DOUBLE_EQ(t.AirAt(kNoon - 600, 44.0, 5.0).qnh_hpa, 1000.0);  // held
+    // The east station gives no temperature: the west's is kept on the line between them, and
+    // the pressure is half of each.
+    const StationAir between = t.AirAt(kNoon, 44.0, 5.5);
+    EXPECT_NEAR(between.qnh_hpa, 1015.0, 1e-6);
+    EXPECT_NEAR(*between.temperature_c, 10.0, 1e-9);
+    const StationAir east = t.AirAt(kNoon, 44.0, 5.9);
+    EXPECT_DOUBLE_EQ(east.qnh_hpa, 1030.0);
+    EXPECT_FALSE(east.temperature_c);
+}
+
 TEST(GreatCircleDistance, KnownArcs) {
     // A quarter of a meridian, and a degree of the equator.
     EXPECT_NEAR(GreatCircleDistance(0, 0, 90, 0), kEarthRadius * M_PI / 2, 1e-6);

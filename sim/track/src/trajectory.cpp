@@ -140,7 +140,11 @@ std::vector<std::optional<double>> Trajectory::Heights(const FlightLog& log,
         return std::nullopt;
     };
     const auto from_pressure = [&](const FlightSample& x) {
-        return GeometricFromGeopotential(*x.pressure_altitude) + undulation(x);
+        const double h =
+            options.pressure_height
+                ? options.pressure_height(x.time_s, x.lat_deg, x.lon_deg, *x.pressure_altitude)
+                : *x.pressure_altitude;
+        return GeometricFromGeopotential(h) + undulation(x);
     };
     std::vector<std::optional<double>> heights(n);
     std::array<std::size_t, 3> used{};  // ellipsoid, MSL, pressure
@@ -217,7 +221,7 @@ std::vector<std::optional<double>> Trajectory::Heights(const FlightLog& log,
                             AltitudeKindName(kKinds[k]), used[k]);
     }
     if (!what.empty()) notes_.push_back("altitude used: " + what);
-    if (used[2] > 0 && used[0] + used[1] == 0) {
+    if (used[2] > 0 && used[0] + used[1] == 0 && !options.pressure_height) {
         notes_.push_back(
             "pressure altitude -> height: ISA (1013.25 hPa, 15 C at MSL) with no QNH "
             "or temperature known; off by ~30 ft per hPa of QNH near the ground and "

@@ -361,6 +361,63 @@ LayerWind MetarTimeline::WindAt(double time_s, double lat_deg, double lon_deg) c
     return w;
 }
 
+namespace {
+
+// A station's reports' value at time_s: linear between the nearest two that give it, held
+// beyond them; nullopt when none gives it.
+template <class Value>
+std::optional<double> ReportedAt(const MetarFile& file, const TimelineStation& s, double time_s,
+                                 Value value) {
+    std::optional<double> before, after;
+    double t_before = 0.0, t_after = 0.0;
+    for (std::size_t k = 0; k < s.reports.size(); ++k) {
+        const std::optional<double> v = value(file.records[s.reports[k]].metar);
+        if (!v) continue;
+        if (s.times_s[k] <= time_s) {
+            before = v;
+            t_before = s.times_s[k];
+        } else {
+            after = v;
+            t_after = s.times_s[k];
+            break;
+        }
+    }
+    if (before && after) {
+        return *before + (*after - *before) * (time_s - t_before) / (t_after - t_before);
+    }
+    return before ? before : after;
+}
+
+}  // namespace
+
+StationAir MetarTimeline::StationAirAt(const TimelineStation& s, double time_s) const {
+    StationAir air;
+    air.elevation_m = options_.station_elevation_m.value_or(0.0);
+    air.qnh_hpa = ReportedAt(file_, s, time_s, [](const Metar& m) {
+                      return m.qnh_hpa;
+                  }).value_or(kIsaPressureHpa);
+    air.temperature_c =
+        ReportedAt(file_, s, time_s, [](const Metar& m) { return m.temperature_c; });
+    return air;
+}
+
+StationAir MetarTimeline::AirAt(double time_s, double lat_deg, double lon_deg) const {
+    double d_nearest = 0.0, d_second = 0.0;
+    const auto [nearest, second] = Nearest(lat_deg, lon_deg, &d_nearest, &d_second);
+    StationAir air = StationAirAt(stations_[nearest], time_s);
+    if (second && d_second - d_nearest < kStationTransition) {
+        const double w = 0.5 * (1.0 - (d_second - d_nearest) / kStationTransition);
+        const StationAir b = StationAirAt(stations_[*second], time_s);
+        air.qnh_hpa += w * (b.qnh_hpa - air.qnh_hpa);
+        if (air.temperature_c && b.temperature_c) {
+            *air.temperature_c += w * (*b.temperature_c - *air.temperature_c);
+        } else if (!air.temperature_c) {
+            air.temperature_c = b.temperature_c;
+        }
+    }
+    return air;
+}
+
 TimelineSample MetarTimeline::At(double time_s, double lat_deg, double lon_deg,
                                  const std::optional<LayerWind>& wind) const {
     TimelineSample sample;

@@ -29,6 +29,7 @@
 // altitude forces one kind, dropping the fixes without it.
 #pragma once
 
+#include <functional>
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <optional>
@@ -56,6 +57,12 @@ struct TrajectoryOptions {
     // Geoid for MSL -> ellipsoid; nullptr: GeoidGrid::Default(). ignore_geoid: use N = 0.
     const geo::GeoidGrid* geoid = nullptr;
     bool ignore_geoid = false;
+    // The geopotential height above mean sea level of a fix's pressure altitude (ISA, 1013.25 hPa
+    // datum) at its time (POSIX s) and place: the air's QNH and temperature
+    // (zenith::weather::HeightFromPressureAltitude; `zenith replay --metar-file`). Null: ISA,
+    // the pressure altitude itself.
+    std::function<double(double time_s, double lat_deg, double lon_deg, double pressure_altitude_m)>
+        pressure_height;
 };
 
 struct TrajectoryState {

@@ -37,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include "zenith/weather/altimetry.h"
 #include "zenith/weather/cloud_weather.h"
 #include "zenith/weather/metar_file.h"
 
@@ -116,6 +117,12 @@ class MetarTimeline {
     // The reported surface wind (as CloudWeatherFromMetar gives the layers) of the nearest
     // station's report nearest in time; calm when the report has none.
     LayerWind WindAt(double time_s, double lat_deg, double lon_deg) const;
+    // The air for altimetry (altimetry.h) at time_s at the aircraft's position: QNH and
+    // temperature each linear in time between the station's reports that give them (held
+    // before the first and after the last; ISA's QNH and no temperature at a station that never
+    // gives them), the nearest station blended with the second as At blends the weather, at
+    // TimelineOptions::station_elevation_m (0 m without it).
+    StationAir AirAt(double time_s, double lat_deg, double lon_deg) const;
 
     const std::vector<TimelineStation>& stations() const { return stations_; }
     const std::vector<std::string>& notes() const { return notes_; }
@@ -127,6 +134,7 @@ class MetarTimeline {
                                                                double* d_second) const;
     MetarWeather StationWeather(const TimelineStation& s, double time_s,
                                 std::string* description) const;
+    StationAir StationAirAt(const TimelineStation& s, double time_s) const;
     MetarFile file_;
     TimelineOptions options_;
     std::vector<TimelineStation> stations_;
