@@ -363,6 +363,16 @@ void SkySystem::Update() {
                            sky::SampleGroundIrradiance(d.ground_irradiance, l.sun_direction_enu.z) +
                        lights.moon_illuminance *
                            sky::SampleGroundIrradiance(d.ground_irradiance, l.moon_direction_enu.z);
+    // Under the clouds: their sky transmittance and their own light, as the renderer lights its
+    // ground (functions.glsl's ground term), from the newest shade the GPU has finished.
+    if (const std::optional<sky::CloudShade> shade = d.renderer->LatestCloudShade();
+        shade && height < shade->base_altitude) {
+        l.sky_irradiance =
+            l.sky_irradiance * shade->sky_transmittance + glm::pi<double>() * shade->luminance;
+        l.sky_cloud_transmittance = shade->sky_transmittance;
+    } else {
+        l.sky_cloud_transmittance = 1.0;
+    }
     l.sun_elevation = d.frame.ephemeris.sun.topocentric.horizontal.elevation;
     l.moon_illuminated_fraction = d.frame.ephemeris.moon_phase.illuminated_fraction;
     l.phase = PhaseOf(l.sun_elevation);

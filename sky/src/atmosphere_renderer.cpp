@@ -2,7 +2,10 @@
 
 #include <glad/gl.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -58,13 +61,93 @@ struct CpuClouds {
     }
 };
 
+CloudShade ShadeOf(const gl::LightUniforms& u) {
+    CloudShade shade;
+    shade.base_altitude = static_cast<double>(u.cloud_base) * kKm;
+    shade.direct_transmittance = u.cloud_direct;
+    shade.sky_transmittance = u.cloud_sky;
+    shade.luminance = glm::dvec3(u.cloud_luminance);
+    return shade;
+}
+
+// The light block's cloud shade carried to the CPU without waiting: each Copy goes into one of
+// kSlots parts of a persistently mapped buffer behind a fence; Latest takes the newest part
+// whose fence has signalled. A copy still pending when its part comes round again is dropped.
+class ShadeReadback {
+  public:
+    static constexpr std::size_t kSlots = 3;
+    static constexpr GLsizeiptr kSize = sizeof(gl::LightUniforms);
+
+    ShadeReadback() {
+        constexpr GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+        glCreateBuffers(1, &buffer_);
+        glNamedBufferStorage(buffer_, kSlots * kSize, nullptr, flags);
+        mapped_ = static_cast<const unsigned char*>(
+            glMapNamedBufferRange(buffer_, 0, kSlots * kSize, flags));
+    }
+    ~ShadeReadback() {
+        for (GLsync& fence : fences_) {
+            if (fence != nullptr) glDeleteSync(fence);
+        }
+        glUnmapNamedBuffer(buffer_);
+        glDeleteBuffers(1, &buffer_);
+    }
+    ShadeReadback(const ShadeReadback&) = delete;
+    ShadeReadback& operator=(const ShadeReadback&) = delete;
+
+    void Copy(GLuint light_buffer) {
+        Poll();
+        const std::size_t slot = next_;
+        next_ = (next_ + 1) % kSlots;
+        if (fences_[slot] != nullptr) glDeleteSync(fences_[slot]);
+        // The shade pass wrote the light block from a shader.
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glCopyNamedBufferSubData(light_buffer, buffer_, 0, static_cast<GLintptr>(slot) * kSize,
+                                 kSize);
+        glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+        fences_[slot] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+        serial_[slot] = ++copies_;
+    }
+
+    std::optional<CloudShade> Latest() {
+        Poll();
+        return latest_;
+    }
+
+  private:
+    void Poll() {
+        for (std::size_t slot = 0; slot < kSlots; ++slot) {
+            if (fences_[slot] == nullptr) continue;
+            // Flushing (not waiting) so that the fence can signal without a later frame's flush.
+            const GLenum state = glClientWaitSync(fences_[slot], GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+            if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) continue;
+            glDeleteSync(fences_[slot]);
+            fences_[slot] = nullptr;
+            if (serial_[slot] < latest_serial_) continue;
+            gl::LightUniforms u{};
+            std::memcpy(&u, mapped_ + slot * static_cast<std::size_t>(kSize), sizeof(u));
+            latest_ = ShadeOf(u);
+            latest_serial_ = serial_[slot];
+        }
+    }
+
+    GLuint buffer_ = 0;
+    const unsigned char* mapped_ = nullptr;
+    std::array<GLsync, kSlots> fences_{};
+    std::array<std::uint64_t, kSlots> serial_{};
+    std::uint64_t copies_ = 0, latest_serial_ = 0;
+    std::size_t next_ = 0;
+    std::optional<CloudShade> latest_;
+};
+
 }  // namespace
 
 struct AtmosphereRenderer::Impl {
     AtmospherePasses atmosphere;
-    std::unique_ptr<CloudPasses> clouds;    // with weather that has layers
-    std::unique_ptr<CpuClouds> cpu_clouds;  // the same weather's density, for CPU queries
-    clouds::Weather weather;                // as last set (also when clear)
+    std::unique_ptr<CloudPasses> clouds;            // with weather that has layers
+    std::unique_ptr<CpuClouds> cpu_clouds;          // the same weather's density, for CPU queries
+    std::unique_ptr<ShadeReadback> shade_readback;  // with clouds: LatestCloudShade
+    clouds::Weather weather;                        // as last set (also when clear)
     CloudSettings cloud_settings;
     bool preserve_gl_state = true;  // what each entry point's gl::StateGuard does
     // The last Update's scene and view, which Render draws.
@@ -118,6 +201,7 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     }
     d.clouds = std::move(passes);
     d.cpu_clouds = std::move(cpu);
+    d.shade_readback = d.clouds ? std::make_unique<ShadeReadback>() : nullptr;
     d.weather = weather;
     d.cloud_settings = settings;
 }
@@ -134,6 +218,7 @@ void AtmosphereRenderer::Update(const SkyScene& scene, const SkyView& view) {
         d.atmosphere.BindInputs();
         d.clouds->Prepare(d.atmosphere.atmosphere(), view.camera, scene.lights, scene.clouds,
                           d.atmosphere.light_buffer());
+        d.shade_readback->Copy(d.atmosphere.light_buffer());
     }
     d.atmosphere.UpdateFrameLuts();
     d.scene = scene;
@@ -167,6 +252,11 @@ void AtmosphereRenderer::Render(const RenderTarget& target) {
     }
     d.atmosphere.Composite(*d.scene, view, target, d.clouds.get());
     d.scene->clouds.reset_history = false;  // a cut applies to the first Render only
+}
+
+std::optional<CloudShade> AtmosphereRenderer::LatestCloudShade() const {
+    if (!impl_->shade_readback) return CloudShade{};
+    return impl_->shade_readback->Latest();
 }
 
 unsigned AtmosphereRenderer::transmittance_texture() const {
@@ -245,12 +335,7 @@ LutImage RendererInspection::ReadCloudShadowMap() const {
 CloudShade RendererInspection::ReadCloudShade() const {
     gl::LightUniforms u{};
     glGetNamedBufferSubData(renderer_.impl_->atmosphere.light_buffer(), 0, sizeof(u), &u);
-    CloudShade shade;
-    shade.base_altitude = static_cast<double>(u.cloud_base) * kKm;
-    shade.direct_transmittance = u.cloud_direct;
-    shade.sky_transmittance = u.cloud_sky;
-    shade.luminance = glm::dvec3(u.cloud_luminance);
-    return shade;
+    return ShadeOf(u);
 }
 
 std::size_t RendererInspection::LutMemoryBytes() const {

@@ -31,6 +31,46 @@ class SkySystemTest : public ::testing::Test {
 };
 SkySystem* SkySystemTest::sky_ = nullptr;
 
+// Under an overcast the sky light on a horizontal surface is the clouds' (issue 16): a frame or
+// two after the weather is set, the fenced shade turns the Sun's direct light, which the deck
+// stops (the CPU march gives the direct part), into sky light, so sky_irradiance rises above the
+// clear sky's while the total falls below the clear total by what the deck reflects up; above
+// the deck the sky light is the clear one. (Before, the sky light stayed the clear sky's and the
+// total under this deck was a tenth of the clear one.)
+TEST_F(SkySystemTest, SkyLightUnderTheOvercastIsTheClouds) {
+    SkySystem* sky = sky_;
+    sky->SetTime(geo::TimeFromIso8601("2024-06-21T11:30:00Z"));
+    sky->SetGeodetic(47.45, 8.56, 420.0);
+    sky->SetProjection(1.0, 16.0 / 9.0);
+    sky->Update();
+    const SkyLighting clear = sky->lighting();
+    EXPECT_EQ(clear.sky_cloud_transmittance, 1.0);
+
+    sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"));
+    for (int frame = 0; frame < 3; ++frame) {
+        sky->Update();
+        sky->RenderOffscreen({32, 18});
+    }
+    sky->Update();
+    const SkyLighting under = sky->lighting();
+    EXPECT_LT(under.sky_cloud_transmittance, 0.3);
+    const double up = std::max(under.sun_direction_enu.z, 0.0);
+    const double total = Y(under.sun_illuminance) * up + Y(under.sky_irradiance);
+    const double clear_total = Y(clear.sun_illuminance) * up + Y(clear.sky_irradiance);
+    std::printf("under overcast_stratus at noon: sky %.0f lux (clear %.0f), total %.0f lux = %.3f "
+                "of the clear sky's\n",
+                Y(under.sky_irradiance), Y(clear.sky_irradiance), total, total / clear_total);
+    EXPECT_LT(Y(under.sun_illuminance), 0.2 * Y(clear.sun_illuminance));
+    EXPECT_GT(Y(under.sky_irradiance), 2.0 * Y(clear.sky_irradiance));
+    EXPECT_GT(total / clear_total, 0.2);
+    EXPECT_LT(total / clear_total, 0.9);
+
+    sky->SetGeodetic(47.45, 8.56, 9000.0);  // above the deck
+    sky->Update();
+    EXPECT_EQ(sky->lighting().sky_cloud_transmittance, 1.0);
+    sky->SetWeather({});
+}
+
 TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
     sky_->SetTime(geo::TimeFromIso8601("2024-06-21T11:30:00Z"));
     sky_->SetGeodetic(47.45, 8.56, 420.0);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cloud_test_support.h"
@@ -538,6 +539,41 @@ TEST_F(CloudRenderGlTest, ShadeHoldsBetweenItsUpdates) {
         EXPECT_EQ(shades[frame].sky_transmittance, shades[0].sky_transmittance);
         EXPECT_EQ(shades[frame].luminance, shades[0].luminance);
     }
+}
+
+// The host's shade without a stall (issue 16): LatestCloudShade is nothing before the first
+// Update, then, once the GPU has run a frame, exactly the shade ReadCloudShade waits for; it
+// follows a change of weather, and without weather it is the clear sky's at once.
+TEST_F(CloudRenderGlTest, LatestCloudShadeIsTheFencedCopyOfTheFramesShade) {
+    const Atmosphere earth;
+    const Lights lights = Afternoon();
+    AtmosphereRenderer renderer(earth);
+    const std::optional<CloudShade> clear = renderer.LatestCloudShade();
+    ASSERT_TRUE(clear);
+    EXPECT_EQ(clear->base_altitude, 0.0);
+    EXPECT_EQ(clear->sky_transmittance, 1.0);
+    renderer.SetWeather(Cumulus(), Settings(4));
+    EXPECT_FALSE(renderer.LatestCloudShade()) << "a shade before any frame";
+    const Camera camera = CameraAt(300.0, 0.4, 0.15);
+    const FrameOptions options = Options({48, 27});
+    DrawFrames(renderer, camera, lights, options);
+    glFinish();
+    const std::optional<CloudShade> latest = renderer.LatestCloudShade();
+    ASSERT_TRUE(latest);
+    const CloudShade read = Inspect(renderer).ReadCloudShade();
+    EXPECT_EQ(latest->base_altitude, read.base_altitude);
+    EXPECT_EQ(latest->direct_transmittance, read.direct_transmittance);
+    EXPECT_EQ(latest->sky_transmittance, read.sky_transmittance);
+    EXPECT_EQ(latest->luminance, read.luminance);
+    EXPECT_LT(latest->sky_transmittance, 0.95);
+    // Thicker clouds: the next frames' copies carry the new shade.
+    renderer.SetWeather(clouds::LoadWeather("overcast_stratus"), Settings(4));
+    for (int frame = 0; frame < 3; ++frame) DrawFrames(renderer, camera, lights, options);
+    glFinish();
+    const std::optional<CloudShade> overcast = renderer.LatestCloudShade();
+    ASSERT_TRUE(overcast);
+    EXPECT_EQ(overcast->sky_transmittance, Inspect(renderer).ReadCloudShade().sky_transmittance);
+    EXPECT_LT(overcast->sky_transmittance, latest->sky_transmittance);
 }
 
 // Issue 15: the thick overcast seen from above at noon is brighter than the albedo-0.3 ground

@@ -97,9 +97,14 @@ struct SkyLighting {
     double sun_cloud_transmittance = 1.0;
     double moon_cloud_transmittance = 1.0;
     // Sky (not Sun or Moon) illuminance on a horizontal surface (lux, RGB), from the
-    // ground-irradiance LUT: exact at the ground, an overestimate at altitude.
+    // ground-irradiance LUT: exact at the ground, an overestimate at altitude. Below the clouds'
+    // base it is the clear sky's times the clouds' sky transmittance plus their own light
+    // (pi x their mean luminance over the upper hemisphere), as zenith lights its own ground:
+    // the shade the GPU works out every shadow_map_interval frames, read back behind a fence
+    // without waiting for it (AtmosphereRenderer::LatestCloudShade), so it lags a frame or two.
     glm::dvec3 sky_irradiance{0.0};
-    double sun_elevation = 0.0;  // rad, geometric
+    double sky_cloud_transmittance = 1.0;  // the clouds' part of that sky light (1 above them)
+    double sun_elevation = 0.0;            // rad, geometric
     double moon_illuminated_fraction = 0.0;
     DayPhase phase = DayPhase::kDay;
 };

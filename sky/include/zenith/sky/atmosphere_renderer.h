@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 
 #include "zenith/base/error.h"
 #include "zenith/sky/atmosphere.h"
@@ -74,6 +75,18 @@ struct CloudSettings {
     void Validate() const;
 };
 
+// What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found by
+// Update with the shadow map (every shadow_map_interval frames): the air and the ground
+// below base_altitude get each light's direct part times direct_transmittance and the sky's part
+// times sky_transmittance, and the clouds' own light as a source of luminance `luminance` over
+// the upper hemisphere.
+struct CloudShade {
+    double base_altitude = 0.0;         // m above the ground; 0: no clouds
+    double direct_transmittance = 1.0;  // toward the Sun (Moon at night), mean over the shadow map
+    double sky_transmittance = 1.0;     // mean over the upper hemisphere, from the ground
+    glm::dvec3 luminance{0.0};          // cd/m^2, the clouds' mean over the upper hemisphere
+};
+
 class AtmosphereRenderer {
   public:
     explicit AtmosphereRenderer(const Atmosphere& atmosphere, const LutSettings& settings = {});
@@ -118,6 +131,13 @@ class AtmosphereRenderer {
     // GL call, nothing to wait for). 1 without weather. For a host's sunlight at the aircraft.
     double CloudTransmittance(const glm::dvec3& position, const glm::dvec3& direction,
                               const CloudView& view, int steps = 64) const;
+
+    // The most recent CloudShade the GPU has finished, without waiting for it: each Update
+    // copies the frame's shade into a read-back buffer behind a fence, and this takes the newest
+    // copy whose fence has signalled (usually the previous frame's; a frame's own once the GPU
+    // has run it). nullopt before the first copy has arrived. For a host's sky light under the
+    // clouds (SkySystem's SkyLighting::sky_irradiance).
+    std::optional<CloudShade> LatestCloudShade() const;
 
     // GL texture names, for hosts that sample them (aerial perspective on their geometry).
     unsigned transmittance_texture() const;

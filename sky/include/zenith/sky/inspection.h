@@ -11,18 +11,6 @@
 
 namespace zenith::sky {
 
-// What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found by
-// Update with the shadow map (every shadow_map_interval frames): the air and the ground
-// below base_altitude get each light's direct part times direct_transmittance and the sky's part
-// times sky_transmittance, and the clouds' own light as a source of luminance `luminance` over
-// the upper hemisphere.
-struct CloudShade {
-    double base_altitude = 0.0;         // m above the ground; 0: no clouds
-    double direct_transmittance = 1.0;  // toward the Sun (Moon at night), mean over the shadow map
-    double sky_transmittance = 1.0;     // mean over the upper hemisphere, from the ground
-    glm::dvec3 luminance{0.0};          // cd/m^2, the clouds' mean over the upper hemisphere
-};
-
 // GPU time of each pass in milliseconds, measured with GL timer queries.
 struct PassTimes {
     double transmittance = 0.0;
@@ -57,7 +45,8 @@ class RendererInspection {
     // (i, j) at east/north offsets ((i + 0.5) / size - 0.5) extent, in the renderer's frame.
     // Throws without weather.
     LutImage ReadCloudShadowMap() const;
-    // This frame's CloudShade (the clear-sky values without weather).
+    // This frame's CloudShade (the clear-sky values without weather), waiting for the GPU
+    // (AtmosphereRenderer::LatestCloudShade is the one that does not wait).
     CloudShade ReadCloudShade() const;
 
     // Bytes of GPU memory held by the LUTs (not the frame).
