@@ -286,37 +286,36 @@ double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,
 
 // --- RendererInspection (zenith/sky/inspection.h) ----------------------------------------------
 
+// A texture of the renderer read back under its GL state guard.
+LutImage RendererInspection::Read(unsigned texture, const glm::ivec3& size) const {
+    const gl::StateGuard guard(renderer_.preserve_gl_state());
+    return gl::ReadTexture(texture, size);
+}
+
 LutImage RendererInspection::ReadTransmittance() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
-    const gl::StateGuard guard(renderer_.preserve_gl_state());
-    return gl::ReadTexture(a.transmittance(), glm::ivec3(a.settings().transmittance_size, 1));
+    return Read(a.transmittance(), glm::ivec3(a.settings().transmittance_size, 1));
 }
 LutImage RendererInspection::ReadMultipleScattering() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
-    const gl::StateGuard guard(renderer_.preserve_gl_state());
-    return gl::ReadTexture(a.multiple_scattering(),
-                           glm::ivec3(a.settings().multiple_scattering_size, 1));
+    return Read(a.multiple_scattering(), glm::ivec3(a.settings().multiple_scattering_size, 1));
 }
 LutImage RendererInspection::ReadGroundIrradiance() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
-    const gl::StateGuard guard(renderer_.preserve_gl_state());
-    return gl::ReadTexture(a.irradiance(), glm::ivec3(a.settings().irradiance_size, 1));
+    return Read(a.irradiance(), glm::ivec3(a.settings().irradiance_size, 1));
 }
 LutImage RendererInspection::ReadSkyView() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
-    const gl::StateGuard guard(renderer_.preserve_gl_state());
-    return gl::ReadTexture(a.sky_view(), glm::ivec3(a.settings().sky_view_size, 1));
+    return Read(a.sky_view(), glm::ivec3(a.settings().sky_view_size, 1));
 }
 LutImage RendererInspection::ReadAerialPerspective() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
-    const gl::StateGuard guard(renderer_.preserve_gl_state());
-    return gl::ReadTexture(a.aerial_perspective(), a.settings().aerial_perspective_size);
+    return Read(a.aerial_perspective(), a.settings().aerial_perspective_size);
 }
 LutImage RendererInspection::ReadFrame() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
     if (a.frame() == 0) throw gl::GlError("ReadFrame before any Render");
-    const gl::StateGuard guard(renderer_.preserve_gl_state());
-    return gl::ReadTexture(a.frame(), glm::ivec3(a.frame_size(), 1));
+    return Read(a.frame(), glm::ivec3(a.frame_size(), 1));
 }
 LutImage RendererInspection::ReadClouds() const {
     const CloudPasses* clouds = renderer_.impl_->clouds.get();

@@ -55,6 +55,7 @@ class RendererInspection {
     PassTimes LastPassTimes() const;
 
   private:
+    LutImage Read(unsigned texture, const glm::ivec3& size) const;
     const AtmosphereRenderer& renderer_;
 };
 
