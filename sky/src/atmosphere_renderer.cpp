@@ -375,6 +375,7 @@ struct AtmosphereRenderer::Impl {
         u.moon_direction = glm::vec3(glm::normalize(options.moon.direction));
         u.moon_angular_radius = static_cast<float>(options.moon.angular_radius);
         u.moon_albedo = static_cast<float>(options.moon.albedo);
+        u.moon_sunlight = glm::vec3(options.moon.sunlight);
         u.stars_enabled = stars_enabled ? 1 : 0;
         if (options.target_framebuffer) {
             u.viewport_x = options.target_viewport.x;
@@ -489,7 +490,8 @@ void AtmosphereRenderer::UpdateFrameLuts(const Camera& camera, const Lights& lig
     const LutSettings& s = d.settings;
     // With one light, each invocation marches a texel of the first half of the azimuths and
     // writes its mirror image too (sky_view.comp).
-    const int columns = d.light_count == 1 ? (s.sky_view_size.x + 1) / 2 : s.sky_view_size.x;
+    const bool mirrored = d.light_count == 1 && !lights.eclipse.active;
+    const int columns = mirrored ? (s.sky_view_size.x + 1) / 2 : s.sky_view_size.x;
     d.Dispatch(kSkyViewPass, d.sky_view, false, Groups(columns, kLutGroupSize),
                Groups(s.sky_view_size.y, kLutGroupSize), 1);
     d.Dispatch(kAerialPerspectivePass, d.aerial_perspective, true,
@@ -588,7 +590,10 @@ void AtmosphereRenderer::Render(const Camera& camera, const Lights& lights,
         boxes.push_back(*box);
     };
     if (options.draw_sun_disk && sun_disk_resolved) {
-        add_disk(lights.sun_direction, d.atmosphere.sun_angular_radius);
+        // In a solar eclipse the corona too, out to 6 solar radii (render.frag).
+        add_disk(lights.sun_direction, lights.eclipse.active
+                                           ? 6.0 * lights.eclipse.sun_angular_radius
+                                           : d.atmosphere.sun_angular_radius);
     }
     if (options.moon.enabled) add_disk(options.moon.direction, options.moon.angular_radius);
     const Pass disk_pass = options.scene_depth ? kDiskDepthPass : kDiskPass;

@@ -463,7 +463,78 @@ struct LightSet {
     Number cloud_sky;
     vec3 cloud_luminance;
     Number padding0;
+    // A solar eclipse (eclipse 1; 0 without): light 0 lights each point of the air (and the
+    // ground) by what the Moon leaves of the Sun's disk there, from eclipse_sun_illuminance, the
+    // unobscured Sun (light 0's illuminance is what is left at the camera). The Moon's shadow is
+    // the cone along light 0's direction through the Moon's centre: eclipse_axis_point is the
+    // axis's point nearest the camera (km, planet-centred), eclipse_axis_distance the Moon's
+    // centre's distance from it along the axis (km), the radii those of the disks seen from the
+    // camera (rad; a few hundred km away they differ by < 0.1 %).
+    vec3 eclipse_sun_illuminance;
+    int eclipse;
+    vec3 eclipse_axis_point;
+    Number eclipse_axis_distance;
+    Number eclipse_sun_radius;
+    Number eclipse_moon_radius;
+    Number padding1;
+    Number padding2;
+    // The limb-darkened Sun's light left over its uniform disk's area left (rgb; a unused), at
+    // x = x_in + (x_out - x_in) (i / (kEclipseLimbSamples - 1))^2 between the disks' inner and
+    // outer contacts (x the separation in Sun radii, x_in = |1 - k|, x_out = 1 + k, k the Moon's
+    // radius in Sun radii): geo::CoveredFluxFraction's, 0.1-0.7 for the thin crescents near
+    // totality, 1 when the disks just touch (sky::EclipseLimbTable).
+    vec4 eclipse_limb[kEclipseLimbSamples];
 };
+
+// Fraction of a uniform disk of radius 1 that a disk of radius k, its centre x away, leaves
+// uncovered (the two-circle intersection in closed form; geo::DiskOverlapArea's). The Sun's
+// limb darkening multiplies it (LimbDarkenedRatio).
+Number UncoveredDiskFraction(Number k, Number x) {
+    if (x >= 1.0 + k) return 1.0;
+    if (x <= abs(1.0 - k)) return k >= 1.0 ? 0.0 : 1.0 - k * k;
+    Number c1 = clamp((x * x + 1.0 - k * k) / (2.0 * x), -1.0, 1.0);
+    Number c2 = clamp((x * x + k * k - 1.0) / (2.0 * x * k), -1.0, 1.0);
+    Number q = (-x + 1.0 + k) * (x + 1.0 - k) * (x - 1.0 + k) * (x + 1.0 + k);
+    Number area = acos(c1) + k * k * acos(c2) - 0.5 * sqrt(max(q, 0.0));
+    return clamp(1.0 - area / kPi, 0.0, 1.0);
+}
+
+// LightSet.eclipse_limb interpolated at separation x (Sun radii) for a Moon of k Sun radii;
+// inside the antumbra of an annular eclipse its inner value (the ring's ratio varies there by
+// < 7 %), outside the outer contact 1.
+vec3 LimbDarkenedRatio(IN(LightSet) lights, Number k, Number x) {
+    Number x_in = abs(1.0 - k);
+    Number s = sqrt(clamp((x - x_in) / (1.0 + k - x_in), 0.0, 1.0)) *
+               Number(kEclipseLimbSamples - 1);
+    int i = min(int(s), kEclipseLimbSamples - 2);
+    vec4 a = lights.eclipse_limb[i];
+    vec4 b = lights.eclipse_limb[i + 1];
+    return mix(vec3(a.x, a.y, a.z), vec3(b.x, b.y, b.z), s - Number(i));
+}
+
+// The Sun's illuminance at point p (km, planet-centred) in a solar eclipse: the Moon's centre
+// appears from p its distance from the shadow's axis over its distance along it away from the
+// Sun's; what is left of the disk is the uniform disk's closed form times the limb darkening's
+// ratio (within 1 % of geo::CoveredFluxFraction, tests/sky/eclipse_sky_test.cpp).
+vec3 EclipsedSunIlluminance(IN(LightSet) lights, vec3 p) {
+    vec3 q = p - lights.eclipse_axis_point;
+    Number along = dot(q, lights.light[0].direction);
+    Number offset = length(q - lights.light[0].direction * along);
+    Number separation = offset / (lights.eclipse_axis_distance - along);
+    Number k = lights.eclipse_moon_radius / lights.eclipse_sun_radius;
+    Number x = separation / lights.eclipse_sun_radius;
+    return lights.eclipse_sun_illuminance * UncoveredDiskFraction(k, x) *
+           LimbDarkenedRatio(lights, k, x);
+}
+
+// Light l's illuminance at point p: its own, or in a solar eclipse the Sun's there. A loop
+// rather than a branch (see LightSet): without an eclipse it never runs.
+vec3 LightIlluminanceAt(IN(LightSet) lights, int l, vec3 p) {
+    vec3 illuminance = lights.light[l].illuminance;
+    int eclipsed = l == 0 ? lights.eclipse : 0;
+    for (int k = 0; k < eclipsed; ++k) illuminance = EclipsedSunIlluminance(lights, p);
+    return illuminance;
+}
 
 // A sample at `altitude` (km) lies under the clouds: 1, else 0. A factor rather than a branch
 // (see LightSet).
@@ -581,7 +652,7 @@ ScatteringResult IntegrateScatteredLuminance(
         Number sky = 1.0 + under * (lights.cloud_sky - 1.0);
         vec3 source = s.scattering * lights.cloud_luminance * (0.5 * under);
         for (int l = 0; l < lights.count; ++l) {
-            source += lights.light[l].illuminance *
+            source += LightIlluminanceAt(lights, l, p) *
                       LightInScattering(atmosphere, transmittance_texture, transmittance_size,
                                         multiple_scattering_texture, multiple_scattering_size, s,
                                         p, r_p, direction, lights.light[l].direction, direct,
@@ -604,7 +675,7 @@ ScatteringResult IntegrateScatteredLuminance(
         vec3 ground = lights.cloud_luminance * (kPi * under);
         for (int l = 0; l < lights.count; ++l) {
             Number mu_l = dot(n_ground, lights.light[l].direction);
-            ground += lights.light[l].illuminance *
+            ground += LightIlluminanceAt(lights, l, p) *
                       (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
                                                               transmittance_size,
                                                               atmosphere.bottom_radius, mu_l) *
