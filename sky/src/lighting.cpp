@@ -53,6 +53,16 @@ std::array<glm::dvec3, 8> EclipseLimbTable(double moon_over_sun) {
     return table;
 }
 
+glm::dvec3 EclipseAroundIlluminance(const Atmosphere& atmosphere, const Lights& lights,
+                                    const glm::dvec3& camera_position) {
+    if (!lights.eclipse.active) return glm::dvec3(0.0);
+    const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
+    const ref::LightSet set = MakeLightSet<ref::LightSet>(lights, camera_position);
+    const double extinction = ref::SampleMedium(a, 0.0).extinction.y;  // 1/km
+    const double free_path = std::clamp(1.0 / std::max(extinction, 1e-9), 1.0, 300.0);
+    return ref::EclipsedSkyIlluminance(set, camera_position / 1000.0, free_path);
+}
+
 glm::dvec3 UmbraRefractedLight(const Atmosphere& atmosphere, double axis_distance,
                                double moon_distance, double sun_angular_radius) {
     const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);

@@ -73,6 +73,7 @@ LightSet MakeLightSet(const Lights& lights, const glm::dvec3& up) {
         l.eclipse_axis_distance = Scalar(glm::dot(moon - axis_point, sun) / kKm);
         l.eclipse_sun_radius = Scalar(lights.eclipse.sun_angular_radius);
         l.eclipse_moon_radius = Scalar(lights.eclipse.moon_angular_radius);
+        l.eclipse_around_illuminance = Vec3(lights.eclipse.around_illuminance);
         static_assert(sizeof(l.eclipse_limb) / sizeof(l.eclipse_limb[0]) ==
                       std::tuple_size_v<decltype(lights.eclipse.limb_ratio)>);
         for (std::size_t i = 0; i < lights.eclipse.limb_ratio.size(); ++i) {

@@ -80,6 +80,8 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
         eclipse.moon_angular_radius = solar.moon_radius;
         eclipse.limb_ratio = EclipseLimbTable(solar.moon_radius / solar.sun_radius);
         s.lights.sun_illuminance *= solar.uncovered_flux;
+        eclipse.around_illuminance =
+            EclipseAroundIlluminance(atmosphere, s.lights, s.camera.position);
     }
     // A lunar eclipse: the Sun's light reaching the Moon past the Earth and its air in straight
     // lines, plus what the air refracts and filters into the shadow (computed only while the

@@ -127,6 +127,8 @@ void AddLights(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, eclipse_moon_radius);
     ZENITH_SAME(S, padding1);
     ZENITH_SAME(S, padding2);
+    ZENITH_SAME(S, eclipse_around_illuminance);
+    ZENITH_SAME(S, padding3);
     ZENITH_SAME(S, eclipse_limb);
 }
 

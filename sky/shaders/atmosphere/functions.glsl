@@ -478,6 +478,10 @@ struct LightSet {
     Number eclipse_moon_radius;
     Number padding1;
     Number padding2;
+    // The Sun's illuminance behind the multiply scattered light around the camera
+    // (EclipsedSkyIlluminance at the camera, on the CPU: sky::EclipseAroundIlluminance).
+    vec3 eclipse_around_illuminance;
+    Number padding3;
     // The limb-darkened Sun's light left over its uniform disk's area left (rgb; a unused), at
     // x = x_in + (x_out - x_in) (i / (kEclipseLimbSamples - 1))^2 between the disks' inner and
     // outer contacts (x the separation in Sun radii, x_in = |1 - k|, x_out = 1 + k, k the Moon's
@@ -525,6 +529,39 @@ vec3 EclipsedSunIlluminance(IN(LightSet) lights, vec3 p) {
     Number x = separation / lights.eclipse_sun_radius;
     return lights.eclipse_sun_illuminance * UncoveredDiskFraction(k, x) *
            LimbDarkenedRatio(lights, k, x);
+}
+
+// In a solar eclipse, the Sun's illuminance behind the light multiply scattered at point p:
+// that light last scattered in the air around p, not at p, so it carries the Sun's share there.
+// Averaged over where it comes from: 4 horizontal directions (along and across the Sun's
+// azimuth) at the 2-node Gauss-Laguerre distances of an exponential of the mean free path
+// `free_path` (km, 1 / extinction at the ground; the chance that light last scattered at
+// distance s is ~exp(-s / free_path)). So the umbra's air, dark to the Sun, is lit by the sunlit air beyond
+// it: the second scattering that the per-point shadow leaves out. Horizontal only (upward the
+// air thins, downward is ground in the same shadow), with the ground's free path at every
+// altitude (the light multiply scattered up there comes mostly from the dense air below): a
+// documented approximation, evaluated once per frame at the camera (its 8 shadow evaluations per
+// sample tripled the Sky-View LUT's cost) and used for every sample where it exceeds the share
+// there (the umbra, ~100 km across, is where it matters; across it the value varies by the
+// share at a free path's distance, which the camera's stands for).
+vec3 EclipsedSkyIlluminance(IN(LightSet) lights, vec3 p, Number free_path) {
+    vec3 up = normalize(p);
+    vec3 across = cross(up, lights.light[0].direction);
+    Number across_length = length(across);
+    // The Sun at the zenith: any horizontal axis.
+    across = across_length > 1e-6 ? across / across_length
+                                   : normalize(cross(up, vec3(up.y, up.z, up.x)));
+    vec3 along = cross(across, up);
+    Number near = 0.585786437626905 * free_path;  // 2 - sqrt 2, weight (2 + sqrt 2) / 4
+    Number far = 3.414213562373095 * free_path;   // 2 + sqrt 2, weight (2 - sqrt 2) / 4
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 4; ++k) {
+        Number sign = k < 2 ? 1.0 : -1.0;
+        vec3 e = (k % 2 == 0 ? along : across) * sign;
+        sum += 0.853553390593274 * EclipsedSunIlluminance(lights, p + e * near) +
+               0.146446609406726 * EclipsedSunIlluminance(lights, p + e * far);
+    }
+    return sum * 0.25;
 }
 
 // Light l's illuminance at point p: its own, or in a solar eclipse the Sun's there. A loop
@@ -658,6 +695,19 @@ ScatteringResult IntegrateScatteredLuminance(
                                         p, r_p, direction, lights.light[l].direction, direct,
                                         sky);
         }
+        // A solar eclipse: the multiply scattered part lit by the Sun's share around the
+        // camera (EclipsedSkyIlluminance there, once per frame) where that exceeds the share
+        // at p: the umbra's air is lit by the sunlit air beyond it; outside the umbra the
+        // share at p is already as large. Runs only in an eclipse.
+        for (int k = 0; k < lights.eclipse; ++k) {
+            vec3 around = max(lights.eclipse_around_illuminance -
+                                  EclipsedSunIlluminance(lights, p),
+                              vec3(0.0));
+            Number mu_sun = dot(p, lights.light[0].direction) / r_p;
+            source += around * s.scattering * sky *
+                      GetMultipleScattering(atmosphere, multiple_scattering_texture,
+                                            multiple_scattering_size, r_p, mu_sun);
+        }
         vec3 step_transmittance = exp(-s.extinction * dt);
         vec3 integral = StepIntegral(s.extinction, dt);
         result.luminance += result.transmittance * source * integral;
@@ -681,6 +731,15 @@ ScatteringResult IntegrateScatteredLuminance(
                                                               atmosphere.bottom_radius, mu_l) *
                            direct +
                        GetGroundSkyIrradiance(irradiance_texture, irradiance_size, mu_l) * sky);
+        }
+        // A solar eclipse: the ground's skylight from the air around it, as the air's above.
+        for (int k = 0; k < lights.eclipse; ++k) {
+            vec3 around = max(lights.eclipse_around_illuminance -
+                                  EclipsedSunIlluminance(lights, p),
+                              vec3(0.0));
+            ground += around * sky *
+                      GetGroundSkyIrradiance(irradiance_texture, irradiance_size,
+                                             dot(n_ground, lights.light[0].direction));
         }
         result.luminance += result.transmittance * ground * atmosphere.ground_albedo / kPi;
     }

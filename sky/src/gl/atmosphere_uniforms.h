@@ -55,11 +55,14 @@ struct LightUniforms {  // functions.glsl: struct LightSet (array elements 16-by
     float eclipse_moon_radius;
     float padding1;
     float padding2;
+    glm::vec3 eclipse_around_illuminance;
+    float padding3;
     glm::vec4 eclipse_limb[kEclipseLimbSamples];
 };
 static_assert(sizeof(LightUniforms::Light) == 32);
-static_assert(sizeof(LightUniforms) == 272);
-static_assert(offsetof(LightUniforms, eclipse_limb) == 144);
+static_assert(sizeof(LightUniforms) == 288);
+static_assert(offsetof(LightUniforms, eclipse_around_illuminance) == 144);
+static_assert(offsetof(LightUniforms, eclipse_limb) == 160);
 static_assert(offsetof(LightUniforms, eclipse_sun_illuminance) == 96);
 static_assert(offsetof(LightUniforms, eclipse) == 108);
 static_assert(offsetof(LightUniforms, eclipse_axis_point) == 112);

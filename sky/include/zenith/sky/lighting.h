@@ -27,6 +27,13 @@ glm::dvec3 SampleGroundIrradiance(const LutImage& irradiance, double mu);
 // contact, where both vanish).
 std::array<glm::dvec3, 8> EclipseLimbTable(double moon_over_sun);
 
+// Lights::SolarEclipse::around_illuminance for `lights` (the rest of their eclipse filled in)
+// seen from `camera_position` (m, planet-centred): the shared code's EclipsedSkyIlluminance
+// (sky/shaders/atmosphere/functions.glsl) at the camera, with the atmosphere's mean free path
+// at the ground.
+glm::dvec3 EclipseAroundIlluminance(const Atmosphere& atmosphere, const Lights& lights,
+                                    const glm::dvec3& camera_position);
+
 // Sunlight refracted into the Earth's umbra by its air, as a fraction (per channel) of the
 // unobscured Sun's illuminance, at a point `axis_distance` (m) from the shadow's axis and
 // `moon_distance` (m) behind the Earth; `sun_angular_radius` (rad) the Sun's seen from there.
@@ -46,8 +53,8 @@ std::array<glm::dvec3, 8> EclipseLimbTable(double moon_over_sun);
 //  - The Sun's disk smooths it: averaged over 16 offsets across the Sun's diameter (weighted by
 //    its chord); within half the Sun's radius of the axis, where the focusing of a point source
 //    diverges, the value there is used.
-// Not modelled: clouds and aerosols above the boundary layer, which dim real eclipses by a
-// factor of a few (Danjon L = 2-3); so this umbra is a bright one (L ~ 3-4).
+// Not modelled: clouds and volcanic aerosols, which darken real eclipses; so this umbra is a
+// bright one (2022-11-08 at mid-eclipse: 2e-4 of the full Moon's luminance, magnitude ~ -3.5).
 glm::dvec3 UmbraRefractedLight(const Atmosphere& atmosphere, double axis_distance,
                                double moon_distance, double sun_angular_radius);
 

@@ -79,6 +79,10 @@ struct Lights {
         glm::dvec3 moon_position{0.0};           // m, planet-centred: the Moon's centre
         double sun_angular_radius = 0.0;         // rad, seen from the camera
         double moon_angular_radius = 0.0;        // rad, seen from the camera
+        // The Sun's illuminance behind the light multiply scattered around the camera
+        // (EclipseAroundIlluminance; LightSet.eclipse_around_illuminance): what lights the
+        // umbra's air from the sunlit air beyond it. 0: none.
+        glm::dvec3 around_illuminance{0.0};
         // The limb darkening's ratio of light to area left at 8 separations (EclipseLimbTable;
         // LightSet.eclipse_limb in sky/shaders/atmosphere/functions.glsl). All 1: uniform disks.
         std::array<glm::dvec3, 8> limb_ratio = {glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0),
