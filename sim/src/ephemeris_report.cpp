@@ -11,6 +11,7 @@
 #include "zenith/base/error.h"
 #include "zenith/base/json_text.h"
 #include "zenith/base/json_value.h"
+#include "zenith/geo/eclipse.h"
 #include "zenith/geo/planets.h"
 
 namespace zenith::sim {
@@ -19,6 +20,9 @@ namespace {
 constexpr double kRadToDeg = 57.295779513082320876798;
 
 double Deg(double radians) { return radians * kRadToDeg; }
+
+// Rec. 709 luminance weights, as the renderer's (sky/atmosphere.h).
+double Luminance(const glm::dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
 
 std::string FormatLatLon(double lat_deg, double lon_deg) {
     return fmt::format("{:.5f}°{} {:.5f}°{}", std::abs(lat_deg), lat_deg >= 0 ? 'N' : 'S',
@@ -80,6 +84,16 @@ nlohmann::json EphemerisRecord(const geo::SkyEphemeris& e) {
         {"moon_phase_angle_deg", Deg(e.moon_phase.phase_angle)},
         {"moon_bright_limb_deg", Deg(e.moon_phase.bright_limb_angle)},
     };
+    // Eclipses (geo/eclipse.h): the Sun's disk area the Moon covers for this observer and the
+    // share of its light (luminance Y of the limb-darkened RGB) left; the sunlight reaching the
+    // Moon's centre past the solid Earth and the umbral magnitude of its place.
+    const geo::SolarEclipse solar = geo::ComputeSolarEclipse(e);
+    record["sun_obscuration"] = solar.obscuration;
+    record["sun_eclipse_magnitude"] = solar.magnitude;
+    record["sun_uncovered_flux"] = Luminance(solar.uncovered_flux);
+    const geo::LunarEclipse lunar = geo::ComputeLunarEclipse(e);
+    record["moon_direct_sunlight"] = Luminance(lunar.direct_sunlight);
+    record["moon_umbral_magnitude"] = lunar.umbral_magnitude;
     // Planets: <name>_az_deg, _el_deg, _dist_au, _mag, _illum_fraction ("venus_mag").
     for (const geo::PlanetPosition& planet : e.planets) {
         const std::string key(geo::PlanetName(planet.planet));
@@ -118,6 +132,22 @@ std::string EphemerisTable(const geo::SkyEphemeris& e, const geo::Observer& obse
                     "position angle {:.2f}° (from north), {:.2f}° from the zenith direction",
                     100.0 * p.illuminated_fraction, p.waxing ? "waxing" : "waning",
                     Deg(p.phase_angle), Deg(p.bright_limb_angle), Deg(p.bright_limb_from_zenith)));
+    const geo::SolarEclipse solar = geo::ComputeSolarEclipse(e);
+    if (solar.partial()) {
+        line(
+            fmt::format("Solar eclipse: {} magnitude {:.4f}, {:.2f}% of the Sun's disk covered, "
+                        "{:.2f}% of its light left (limb-darkened)",
+                        solar.total() ? "total," : "partial,", solar.magnitude,
+                        100.0 * solar.obscuration, 100.0 * Luminance(solar.uncovered_flux)));
+    }
+    const geo::LunarEclipse lunar = geo::ComputeLunarEclipse(e);
+    if (lunar.penumbral_magnitude > 0.0) {
+        line(
+            fmt::format("Lunar eclipse: umbral magnitude {:.4f}, penumbral {:.4f}; {:.2f}% of "
+                        "the Sun's light reaches the Moon's centre directly",
+                        lunar.umbral_magnitude, lunar.penumbral_magnitude,
+                        100.0 * Luminance(lunar.direct_sunlight)));
+    }
     if (!e.planets.empty()) {
         line("");
         line(fmt::format("  {:<8} {:>10} {:>10} {:>11} {:>6} {:>8} {:>9}", "planet", "azimuth °",

@@ -12,6 +12,7 @@
 
 // Limits shared by the std140 blocks and the renderer.
 const int kMaxLights = 2;       // LightSet.light[]: the Sun and the Moon (H20's N_light = 2)
+const int kEclipseLimbSamples = 8;  // LightSet.eclipse_limb[]: its table of the Sun's limb
 const int kCloudMaxLayers = 4;  // CloudBlock.cloud_layers[], weather_maps[]
 
 // Uniform block binding points (std140).

@@ -290,6 +290,7 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     const auto lights = MakeLightSet<gl::LightUniforms>(scene.lights, camera.position);
     glNamedBufferSubData(buffers_[1], 0, sizeof(lights), &lights);
     light_count_ = lights.count;
+    eclipse_active_ = scene.lights.eclipse.active;
 
     gl::FrameUniforms& u = frame_uniforms_;
     u = {};
@@ -302,6 +303,7 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     u.moon_direction = glm::vec3(glm::normalize(scene.moon.direction));
     u.moon_angular_radius = static_cast<float>(scene.moon.angular_radius);
     u.moon_albedo = static_cast<float>(scene.moon.albedo);
+    u.moon_sunlight = glm::vec3(scene.moon.sunlight);
     // Per-frame constants, from the shared functions compiled as C++ (double).
     const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere_);
     const glm::dvec3 up = glm::normalize(camera.position);
@@ -320,7 +322,8 @@ void AtmospherePasses::UpdateFrameLuts() {
     const LutSettings& s = settings_;
     // With one light, each invocation marches a texel of the first half of the azimuths and
     // writes its mirror image too (sky_view.comp).
-    const int columns = light_count_ == 1 ? (s.sky_view_size.x + 1) / 2 : s.sky_view_size.x;
+    const bool mirrored = light_count_ == 1 && !eclipse_active_;
+    const int columns = mirrored ? (s.sky_view_size.x + 1) / 2 : s.sky_view_size.x;
     Dispatch(kSkyViewPass, sky_view_, false, Groups(columns, kLutGroupSize),
              Groups(s.sky_view_size.y, kLutGroupSize), 1);
     Dispatch(kAerialPerspectivePass, aerial_perspective_, true,
@@ -420,7 +423,10 @@ void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
         boxes.push_back(*box);
     };
     if (scene.draw_sun_disk && SunDiskResolved(view, size)) {
-        add_disk(scene.lights.sun_direction, atmosphere_.sun_angular_radius);
+        // In a solar eclipse the corona too, out to 6 solar radii (render.frag).
+        const Lights::SolarEclipse& eclipse = scene.lights.eclipse;
+        add_disk(scene.lights.sun_direction, eclipse.active ? 6.0 * eclipse.sun_angular_radius
+                                                            : atmosphere_.sun_angular_radius);
     }
     if (scene.moon.enabled) add_disk(scene.moon.direction, scene.moon.angular_radius);
     const Pass disk_pass = target.scene_depth ? kDiskDepthPass : kDiskPass;

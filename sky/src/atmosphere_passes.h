@@ -107,7 +107,8 @@ class AtmospherePasses {
     glm::ivec2 frame_size_{0, 0};
     std::array<GLuint, kQueryCount> queries_{};
     std::array<bool, kQueryCount> query_used_{};
-    int light_count_ = 1;                 // with the Sun alone, the Sky-View LUT is symmetric
+    int light_count_ = 1;                 // with the Sun alone, the Sky-View LUT is symmetric...
+    bool eclipse_active_ = false;         // ...unless the Moon covers part of the Sun
     gl::FrameUniforms frame_uniforms_{};  // SetFrame's part of the frame block
 };
 

@@ -3,6 +3,8 @@
 // mirror. The conversion happens here once.
 #pragma once
 
+#include <type_traits>
+
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/lut.h"
 
@@ -38,8 +40,10 @@ Parameters MakeShaderParameters(const Atmosphere& a) {
 inline bool MoonIsLight(const Lights& lights, const glm::dvec3& up) {
     if (!lights.moon_enabled) return false;
     const bool sun_up = glm::dot(glm::normalize(lights.sun_direction), glm::normalize(up)) > 0.0;
-    return !(sun_up &&
-             glm::length(lights.moon_illuminance) < 1e-3 * glm::length(lights.sun_illuminance));
+    // In a solar eclipse the Sun's light lights the air outside the Moon's shadow all the same.
+    const glm::dvec3& sun =
+        lights.eclipse.active ? lights.eclipse.unobscured_illuminance : lights.sun_illuminance;
+    return !(sun_up && glm::length(lights.moon_illuminance) < 1e-3 * glm::length(sun));
 }
 
 template <typename LightSet>
@@ -55,6 +59,28 @@ LightSet MakeLightSet(const Lights& lights, const glm::dvec3& up) {
     l.cloud_base = 0.0;
     l.cloud_direct = 1.0;
     l.cloud_sky = 1.0;
+    if (lights.eclipse.active) {
+        // The Moon's shadow axis: through its centre along the Sun's direction; its point
+        // nearest the camera (`up` is the camera's position) and the Moon's distance from there.
+        const glm::dvec3 sun = glm::normalize(lights.sun_direction);
+        const glm::dvec3& moon = lights.eclipse.moon_position;
+        const glm::dvec3 axis_point = moon + glm::dot(up - moon, sun) * sun;
+        using Scalar = decltype(LightSet{}.cloud_base);
+        constexpr double kKm = 1000.0;
+        l.eclipse = 1;
+        l.eclipse_sun_illuminance = Vec3(lights.eclipse.unobscured_illuminance);
+        l.eclipse_axis_point = Vec3(axis_point / kKm);
+        l.eclipse_axis_distance = Scalar(glm::dot(moon - axis_point, sun) / kKm);
+        l.eclipse_sun_radius = Scalar(lights.eclipse.sun_angular_radius);
+        l.eclipse_moon_radius = Scalar(lights.eclipse.moon_angular_radius);
+        l.eclipse_around_illuminance = Vec3(lights.eclipse.around_illuminance);
+        static_assert(sizeof(l.eclipse_limb) / sizeof(l.eclipse_limb[0]) ==
+                      std::tuple_size_v<decltype(lights.eclipse.limb_ratio)>);
+        for (std::size_t i = 0; i < lights.eclipse.limb_ratio.size(); ++i) {
+            using Vec4 = std::remove_reference_t<decltype(l.eclipse_limb[0])>;
+            l.eclipse_limb[i] = Vec4(Vec3(lights.eclipse.limb_ratio[i]), Scalar(1.0));
+        }
+    }
     return l;
 }
 

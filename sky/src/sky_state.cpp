@@ -7,10 +7,12 @@
 
 #include "zenith/base/error.h"
 #include "zenith/base/units.h"
+#include "zenith/geo/eclipse.h"
 #include "zenith/geo/moon.h"
 #include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
 #include "zenith/geo/sun.h"
+#include "zenith/sky/lighting.h"
 
 namespace zenith::sky {
 namespace {
@@ -69,6 +71,34 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     s.lights.moon_illuminance = s.lights.sun_illuminance *
                                 LambertSphereIlluminanceFactor(
                                     s.moon.albedo, e.moon_phase.phase_angle, s.moon.angular_radius);
+
+    // A solar eclipse: the camera's sunlight is what the Moon leaves of the limb-darkened disk;
+    // the air elsewhere gets its own share and the disk pass draws the crescent (Lights).
+    const geo::SolarEclipse solar = geo::ComputeSolarEclipse(e);
+    if (solar.partial()) {
+        Lights::SolarEclipse& eclipse = s.lights.eclipse;
+        eclipse.active = true;
+        eclipse.unobscured_illuminance = s.lights.sun_illuminance;
+        eclipse.moon_position =
+            camera.position + e.moon.topocentric.horizontal.distance * s.moon.direction;
+        eclipse.sun_angular_radius = solar.sun_radius;
+        eclipse.moon_angular_radius = solar.moon_radius;
+        eclipse.limb_ratio = EclipseLimbTable(solar.moon_radius / solar.sun_radius);
+        s.lights.sun_illuminance *= solar.uncovered_flux;
+        eclipse.around_illuminance =
+            EclipseAroundIlluminance(atmosphere, s.lights, camera.position);
+    }
+    // A lunar eclipse: the Sun's light reaching the Moon past the Earth and its air in straight
+    // lines, plus what the air refracts and filters into the shadow (computed only while the
+    // Moon is in the penumbra).
+    const geo::LunarEclipse lunar = geo::ComputeLunarEclipse(
+        e, geo::kEarthShadowRadius + atmosphere.top_radius - atmosphere.bottom_radius);
+    if (lunar.direct_sunlight != glm::dvec3(1.0)) {
+        s.moon.sunlight =
+            lunar.direct_sunlight + UmbraRefractedLight(atmosphere, lunar.axis_distance,
+                                                        lunar.moon_distance, lunar.sun_radius);
+        s.lights.moon_illuminance *= s.moon.sunlight;
+    }
 
     s.stars.reserve(e.stars.size());
     for (const geo::StarState& star : e.stars) {

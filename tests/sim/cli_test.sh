@@ -13,6 +13,13 @@ check "table has Sun and Moon rows" grep -q "^Moon " <<<"$out"
 json=$("$zenith" ephemeris --utc 2024-04-08T18:18:00Z --lat 31.0 --lon -104.0 --height 1000 --json --stars 3)
 check "--json is valid JSON with the batch keys" \
     /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin); assert "moon_bright_limb_deg" in d and "sun_el_deg" in d' <<<"$json"
+check "table reports the partial solar eclipse at 31 N" grep -q "^Solar eclipse: partial" <<<"$out"
+# 2024-04-08 at greatest eclipse (NASA: 18:17:16 UT, 25.29 N 104.12 W): total.
+out=$("$zenith" ephemeris --utc 2024-04-08T18:17:16Z --lat 25.2917 --lon -104.12 --stars 0)
+check "table reports the total solar eclipse" grep -q "^Solar eclipse: total" <<<"$out"
+json=$("$zenith" ephemeris --utc 2024-04-08T18:17:16Z --lat 25.2917 --lon -104.12 --json --stars 0)
+check "--json has sun_obscuration 1" \
+    /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["sun_obscuration"] == 1.0 and d["sun_uncovered_flux"] == 0.0' <<<"$json"
 
 # Bad arguments: clear message naming the parameter, non-zero exit, nothing on stdout.
 err=$("$zenith" ephemeris --utc 2024-02-30T00:00:00Z 2>&1 >/dev/null); rc=$?

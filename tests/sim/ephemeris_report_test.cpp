@@ -97,5 +97,36 @@ TEST(EphemerisReport, PlanetsAreReported) {
     EXPECT_NEAR(record["venus_illum_fraction"].get<double>(), 0.27, 0.01);
 }
 
+// Eclipses in the batch records and the table: 2024-04-08 at Chicago's maximum (timeanddate:
+// 93.9 % of the Sun covered) and in Dallas's totality; the 2022-11-08 lunar eclipse's greatest
+// (tests/geo/eclipse_test.cpp has the sources).
+TEST(EphemerisReport, EclipsesAreReported) {
+    std::istringstream in(
+        R"({"utc": "2024-04-08T19:07:41Z", "lat_deg": 41.8781, "lon_deg": -87.6298, "height_m": 180})"
+        "\n"
+        R"({"utc": "2024-04-08T18:42:00Z", "lat_deg": 32.7767, "lon_deg": -96.797, "height_m": 140})"
+        "\n"
+        R"({"utc": "2024-04-08T12:00:00Z", "lat_deg": 41.8781, "lon_deg": -87.6298, "height_m": 180})"
+        "\n"
+        R"({"utc": "2022-11-08T10:59:08Z", "lat_deg": 21.3, "lon_deg": -157.86, "height_m": 10})"
+        "\n");
+    std::ostringstream out;
+    RunEphemerisBatch(in, out);
+    const auto lines = Lines(out.str());
+    ASSERT_EQ(lines.size(), 4u);
+    EXPECT_NEAR(lines[0]["sun_obscuration"].get<double>(), 0.939, 0.002);
+    EXPECT_LT(lines[0]["sun_uncovered_flux"].get<double>(), 1.0 - 0.939);
+    EXPECT_GT(lines[0]["sun_uncovered_flux"].get<double>(), 0.02);
+    EXPECT_NEAR(lines[0]["sun_eclipse_magnitude"].get<double>(), 0.942, 0.003);
+    EXPECT_EQ(lines[1]["sun_obscuration"].get<double>(), 1.0);
+    EXPECT_EQ(lines[1]["sun_uncovered_flux"].get<double>(), 0.0);
+    EXPECT_GT(lines[1]["sun_eclipse_magnitude"].get<double>(), 1.0);
+    EXPECT_EQ(lines[2]["sun_obscuration"].get<double>(), 0.0);  // before it began
+    EXPECT_EQ(lines[2]["sun_uncovered_flux"].get<double>(), 1.0);
+    EXPECT_EQ(lines[3]["moon_direct_sunlight"].get<double>(), 0.0);
+    EXPECT_NEAR(lines[3]["moon_umbral_magnitude"].get<double>(), 1.339, 0.005);
+    EXPECT_EQ(lines[0]["moon_direct_sunlight"].get<double>(), 1.0);
+}
+
 }  // namespace
 }  // namespace zenith::sim

@@ -119,6 +119,17 @@ void AddLights(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, cloud_sky);
     ZENITH_SAME(S, cloud_luminance);
     ZENITH_SAME(S, padding0);
+    ZENITH_SAME(S, eclipse_sun_illuminance);
+    ZENITH_SAME(S, eclipse);
+    ZENITH_SAME(S, eclipse_axis_point);
+    ZENITH_SAME(S, eclipse_axis_distance);
+    ZENITH_SAME(S, eclipse_sun_radius);
+    ZENITH_SAME(S, eclipse_moon_radius);
+    ZENITH_SAME(S, padding1);
+    ZENITH_SAME(S, padding2);
+    ZENITH_SAME(S, eclipse_around_illuminance);
+    ZENITH_SAME(S, padding3);
+    ZENITH_SAME(S, eclipse_limb);
 }
 
 void AddSettings(Layout& layout, const std::string& prefix, std::size_t base) {
@@ -164,6 +175,8 @@ void AddFrame(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, scene_depth_offset);
     ZENITH_SAME(S, scene_depth_slope);
     ZENITH_SAME(S, scene_depth_reversed);
+    ZENITH_SAME(S, moon_sunlight);
+    ZENITH_SAME(S, frame_padding0);
 }
 
 void AddCloudLayer(Layout& layout, const std::string& prefix, std::size_t base) {

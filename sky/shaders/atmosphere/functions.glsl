@@ -461,7 +461,115 @@ struct LightSet {
     Number cloud_sky;
     vec3 cloud_luminance;
     Number padding0;
+    // A solar eclipse (eclipse 1; 0 without): light 0 lights each point of the air (and the
+    // ground) by what the Moon leaves of the Sun's disk there, from eclipse_sun_illuminance, the
+    // unobscured Sun (light 0's illuminance is what is left at the camera). The Moon's shadow is
+    // the cone along light 0's direction through the Moon's centre: eclipse_axis_point is the
+    // axis's point nearest the camera (km, planet-centred), eclipse_axis_distance the Moon's
+    // centre's distance from it along the axis (km), the radii those of the disks seen from the
+    // camera (rad; a few hundred km away they differ by < 0.1 %).
+    vec3 eclipse_sun_illuminance;
+    int eclipse;
+    vec3 eclipse_axis_point;
+    Number eclipse_axis_distance;
+    Number eclipse_sun_radius;
+    Number eclipse_moon_radius;
+    Number padding1;
+    Number padding2;
+    // The Sun's illuminance behind the multiply scattered light around the camera
+    // (EclipsedSkyIlluminance at the camera, on the CPU: sky::EclipseAroundIlluminance).
+    vec3 eclipse_around_illuminance;
+    Number padding3;
+    // The limb-darkened Sun's light left over its uniform disk's area left (rgb; a unused), at
+    // x = x_in + (x_out - x_in) (i / (kEclipseLimbSamples - 1))^2 between the disks' inner and
+    // outer contacts (x the separation in Sun radii, x_in = |1 - k|, x_out = 1 + k, k the Moon's
+    // radius in Sun radii): geo::CoveredFluxFraction's, 0.1-0.7 for the thin crescents near
+    // totality, 1 when the disks just touch (sky::EclipseLimbTable).
+    vec4 eclipse_limb[kEclipseLimbSamples];
 };
+
+// Fraction of a uniform disk of radius 1 that a disk of radius k, its centre x away, leaves
+// uncovered (the two-circle intersection in closed form; geo::DiskOverlapArea's). The Sun's
+// limb darkening multiplies it (LimbDarkenedRatio).
+Number UncoveredDiskFraction(Number k, Number x) {
+    if (x >= 1.0 + k) return 1.0;
+    if (x <= abs(1.0 - k)) return k >= 1.0 ? 0.0 : 1.0 - k * k;
+    Number c1 = clamp((x * x + 1.0 - k * k) / (2.0 * x), -1.0, 1.0);
+    Number c2 = clamp((x * x + k * k - 1.0) / (2.0 * x * k), -1.0, 1.0);
+    Number q = (-x + 1.0 + k) * (x + 1.0 - k) * (x - 1.0 + k) * (x + 1.0 + k);
+    Number area = acos(c1) + k * k * acos(c2) - 0.5 * sqrt(max(q, 0.0));
+    return clamp(1.0 - area / kPi, 0.0, 1.0);
+}
+
+// LightSet.eclipse_limb interpolated at separation x (Sun radii) for a Moon of k Sun radii;
+// inside the antumbra of an annular eclipse its inner value (the ring's ratio varies there by
+// < 7 %), outside the outer contact 1.
+vec3 LimbDarkenedRatio(IN(LightSet) lights, Number k, Number x) {
+    Number x_in = abs(1.0 - k);
+    Number s = sqrt(clamp((x - x_in) / (1.0 + k - x_in), 0.0, 1.0)) *
+               Number(kEclipseLimbSamples - 1);
+    int i = min(int(s), kEclipseLimbSamples - 2);
+    vec4 a = lights.eclipse_limb[i];
+    vec4 b = lights.eclipse_limb[i + 1];
+    return mix(vec3(a.x, a.y, a.z), vec3(b.x, b.y, b.z), s - Number(i));
+}
+
+// The Sun's illuminance at point p (km, planet-centred) in a solar eclipse: the Moon's centre
+// appears from p its distance from the shadow's axis over its distance along it away from the
+// Sun's; what is left of the disk is the uniform disk's closed form times the limb darkening's
+// ratio (within 1 % of geo::CoveredFluxFraction, tests/sky/eclipse_sky_test.cpp).
+vec3 EclipsedSunIlluminance(IN(LightSet) lights, vec3 p) {
+    vec3 q = p - lights.eclipse_axis_point;
+    Number along = dot(q, lights.light[0].direction);
+    Number offset = length(q - lights.light[0].direction * along);
+    Number separation = offset / (lights.eclipse_axis_distance - along);
+    Number k = lights.eclipse_moon_radius / lights.eclipse_sun_radius;
+    Number x = separation / lights.eclipse_sun_radius;
+    return lights.eclipse_sun_illuminance * UncoveredDiskFraction(k, x) *
+           LimbDarkenedRatio(lights, k, x);
+}
+
+// In a solar eclipse, the Sun's illuminance behind the light multiply scattered at point p:
+// that light last scattered in the air around p, not at p, so it carries the Sun's share there.
+// Averaged over where it comes from: 4 horizontal directions (along and across the Sun's
+// azimuth) at the 2-node Gauss-Laguerre distances of an exponential of the mean free path
+// `free_path` (km, 1 / extinction at the ground; the chance that light last scattered at
+// distance s is ~exp(-s / free_path)). So the umbra's air, dark to the Sun, is lit by the sunlit air beyond
+// it: the second scattering that the per-point shadow leaves out. Horizontal only (upward the
+// air thins, downward is ground in the same shadow), with the ground's free path at every
+// altitude (the light multiply scattered up there comes mostly from the dense air below): a
+// documented approximation, evaluated once per frame at the camera (its 8 shadow evaluations per
+// sample tripled the Sky-View LUT's cost) and used for every sample where it exceeds the share
+// there (the umbra, ~100 km across, is where it matters; across it the value varies by the
+// share at a free path's distance, which the camera's stands for).
+vec3 EclipsedSkyIlluminance(IN(LightSet) lights, vec3 p, Number free_path) {
+    vec3 up = normalize(p);
+    vec3 across = cross(up, lights.light[0].direction);
+    Number across_length = length(across);
+    // The Sun at the zenith: any horizontal axis.
+    across = across_length > 1e-6 ? across / across_length
+                                   : normalize(cross(up, vec3(up.y, up.z, up.x)));
+    vec3 along = cross(across, up);
+    Number near = 0.585786437626905 * free_path;  // 2 - sqrt 2, weight (2 + sqrt 2) / 4
+    Number far = 3.414213562373095 * free_path;   // 2 + sqrt 2, weight (2 - sqrt 2) / 4
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < 4; ++k) {
+        Number sign = k < 2 ? 1.0 : -1.0;
+        vec3 e = (k % 2 == 0 ? along : across) * sign;
+        sum += 0.853553390593274 * EclipsedSunIlluminance(lights, p + e * near) +
+               0.146446609406726 * EclipsedSunIlluminance(lights, p + e * far);
+    }
+    return sum * 0.25;
+}
+
+// Light l's illuminance at point p: its own, or in a solar eclipse the Sun's there. A loop
+// rather than a branch (see LightSet): without an eclipse it never runs.
+vec3 LightIlluminanceAt(IN(LightSet) lights, int l, vec3 p) {
+    vec3 illuminance = lights.light[l].illuminance;
+    int eclipsed = l == 0 ? lights.eclipse : 0;
+    for (int k = 0; k < eclipsed; ++k) illuminance = EclipsedSunIlluminance(lights, p);
+    return illuminance;
+}
 
 // A sample at `altitude` (km) lies under the clouds: 1, else 0. A factor rather than a branch
 // (see LightSet).
@@ -577,11 +685,23 @@ ScatteringResult IntegrateScatteredLuminance(
         Number sky = 1.0 + under * (lights.cloud_sky - 1.0);
         vec3 source = s.scattering * lights.cloud_luminance * (0.5 * under);
         for (int l = 0; l < lights.count; ++l) {
-            source += lights.light[l].illuminance *
+            source += LightIlluminanceAt(lights, l, p) *
                       LightInScattering(atmosphere, transmittance_texture,
                                         multiple_scattering_texture, s,
                                         p, r_p, direction, lights.light[l].direction, direct,
                                         sky);
+        }
+        // A solar eclipse: the multiply scattered part lit by the Sun's share around the
+        // camera (EclipsedSkyIlluminance there, once per frame) where that exceeds the share
+        // at p: the umbra's air is lit by the sunlit air beyond it; outside the umbra the
+        // share at p is already as large. Runs only in an eclipse.
+        for (int k = 0; k < lights.eclipse; ++k) {
+            vec3 around = max(lights.eclipse_around_illuminance -
+                                  EclipsedSunIlluminance(lights, p),
+                              vec3(0.0));
+            Number mu_sun = dot(p, lights.light[0].direction) / r_p;
+            source += around * s.scattering * sky *
+                      GetMultipleScattering(atmosphere, multiple_scattering_texture, r_p, mu_sun);
         }
         vec3 step_transmittance = exp(-s.extinction * dt);
         vec3 integral = StepIntegral(s.extinction, dt);
@@ -600,11 +720,20 @@ ScatteringResult IntegrateScatteredLuminance(
         vec3 ground = lights.cloud_luminance * (kPi * under);
         for (int l = 0; l < lights.count; ++l) {
             Number mu_l = dot(n_ground, lights.light[l].direction);
-            ground += lights.light[l].illuminance *
+            ground += LightIlluminanceAt(lights, l, p) *
                       (max(mu_l, 0.0) * GetTransmittanceToSun(atmosphere, transmittance_texture,
                                                               atmosphere.bottom_radius, mu_l) *
                            direct +
                        GetGroundSkyIrradiance(irradiance_texture, mu_l) * sky);
+        }
+        // A solar eclipse: the ground's skylight from the air around it, as the air's above.
+        for (int k = 0; k < lights.eclipse; ++k) {
+            vec3 around = max(lights.eclipse_around_illuminance -
+                                  EclipsedSunIlluminance(lights, p),
+                              vec3(0.0));
+            ground += around * sky *
+                      GetGroundSkyIrradiance(irradiance_texture,
+                                             dot(n_ground, lights.light[0].direction));
         }
         result.luminance += result.transmittance * ground * atmosphere.ground_albedo / kPi;
     }

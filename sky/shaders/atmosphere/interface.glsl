@@ -53,6 +53,8 @@ layout(std140, binding = kFrameBlockBinding) uniform FrameBlock {
     float scene_depth_offset;
     float scene_depth_slope;
     int scene_depth_reversed;
+    vec3 moon_sunlight;  // MoonDisk::sunlight: the Sun's light reaching the Moon (lunar eclipse)
+    float frame_padding0;
 };
 
 // Units and bindings: bindings.glsl.

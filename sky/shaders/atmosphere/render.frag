@@ -35,8 +35,27 @@ vec3 MoonLuminance(vec3 direction) {
     float b = dot(direction, moon_direction);
     float t = b - sqrt(max(b * b - (1.0 - rho * rho), 0.0));
     vec3 normal = normalize(direction * t - moon_direction);
-    return lights.light[0].illuminance * (moon_albedo / kPi) *
+    return lights.light[0].illuminance * moon_sunlight * (moon_albedo / kPi) *
            max(dot(normal, lights.light[0].direction), 0.0);
+}
+
+// The Sun in a solar eclipse (LightSet.eclipse): the disk at its unobscured luminance where the
+// Moon does not cover it, and around it the corona: Baumbach's (1937) mean K+F corona,
+// I(r) / I(disk centre) = 1e-6 (0.0532 r^-2.5 + 1.425 r^-7 + 2.565 r^-17), r in solar radii
+// (Allen's Astrophysical Quantities, 4th ed., §14.x; ~1.3e-6 at 1.1 radii, its whole light
+// ~1.4e-6 of the Sun's, about the full Moon's), faded out between 4 and 6 radii, where the disk
+// pass's box ends. Nothing behind the Moon. Angles from chord lengths: an acos of a float cosine
+// near 1 resolves only 3.5e-4 rad, 7 % of the Sun's radius.
+vec3 EclipsedSunLuminance(vec3 direction) {
+    float moon_chord = 2.0 * sin(0.5 * moon_angular_radius);
+    if (length(direction - moon_direction) < moon_chord) return vec3(0.0);
+    float radius = lights.eclipse_sun_radius;
+    float x = 2.0 * asin(0.5 * length(direction - lights.light[0].direction)) / radius;
+    float half_sin = sin(0.5 * radius);
+    vec3 mean = lights.eclipse_sun_illuminance / (4.0 * kPi * half_sin * half_sin);
+    if (x < 1.0) return mean * SunLimbDarkening(x);
+    float corona = 1e-6 * (0.0532 * pow(x, -2.5) + 1.425 * pow(x, -7.0) + 2.565 * pow(x, -17.0));
+    return mean * SunLimbDarkening(0.0) * (corona * (1.0 - smoothstep(4.0, 6.0, x)));
 }
 
 void main() {
@@ -56,7 +75,9 @@ void main() {
   #endif
     vec3 beyond = vec3(0.0);
     float cos_sun = dot(direction, lights.light[0].direction);
-    if (draw_sun_disk != 0 && cos_sun > cos_sun_radius) {
+    if (draw_sun_disk != 0 && lights.eclipse != 0) {
+        beyond += EclipsedSunLuminance(direction);
+    } else if (draw_sun_disk != 0 && cos_sun > cos_sun_radius) {
         float angle = acos(clamp(cos_sun, -1.0, 1.0));
         float solid_angle = 2.0 * kPi * (1.0 - cos_sun_radius);
         beyond += lights.light[0].illuminance / solid_angle *

@@ -3,10 +3,11 @@ layout(binding = kOutputImageUnit, rgba32f) uniform writeonly image2D output_ima
 
 // With the Sun alone the sky is symmetric about the Sun's vertical plane: azimuth phi and
 // 2 pi - phi, texel columns x and width - 1 - x, see the same luminance. The host then dispatches
-// the first (width + 1) / 2 columns and each invocation writes both; with the Moon, every column.
+// the first (width + 1) / 2 columns and each invocation writes both; with the Moon (as a light,
+// or its shadow in a solar eclipse), every column.
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-    bool mirrored = lights.count == 1;
+    bool mirrored = lights.count == 1 && lights.eclipse == 0;  // the Moon's shadow is not
     int columns = mirrored ? (sky_view_size.x + 1) / 2 : sky_view_size.x;
     if (texel.x >= columns || texel.y >= sky_view_size.y) return;
     vec2 uv = (vec2(texel) + 0.5) / vec2(sky_view_size);

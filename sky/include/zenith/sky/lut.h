@@ -3,6 +3,7 @@
 // centre is the origin and the camera's "up" is its position's direction.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <glm/glm.hpp>
 #include <vector>
@@ -64,6 +65,30 @@ struct Lights {
     bool moon_enabled = false;
     glm::dvec3 moon_direction{0.0, 0.0, 1.0};
     glm::dvec3 moon_illuminance{0.0};
+    // A solar eclipse seen from the camera (MakeSkyState fills it from the ephemeris; inactive by
+    // default, and then nothing below is used). sun_illuminance is then the light the Moon leaves
+    // the camera (geo::SolarEclipse::uncovered_flux times the Sun's), for everything lit as a
+    // whole (clouds, the host's SkyLighting). The LUTs' ray marches light each point of the air
+    // by what the Moon leaves of the Sun there (the umbra and penumbra: a cone along the Sun's
+    // direction through the Moon's centre, uniform disks), from unobscured_illuminance, so the
+    // air outside the umbra stays sunlit; the disk pass draws the uncovered part of the Sun's
+    // disk at its unobscured luminance and the corona around it.
+    struct SolarEclipse {
+        bool active = false;
+        glm::dvec3 unobscured_illuminance{0.0};  // lux per channel, top of the atmosphere
+        glm::dvec3 moon_position{0.0};           // m, planet-centred: the Moon's centre
+        double sun_angular_radius = 0.0;         // rad, seen from the camera
+        double moon_angular_radius = 0.0;        // rad, seen from the camera
+        // The Sun's illuminance behind the light multiply scattered around the camera
+        // (EclipseAroundIlluminance; LightSet.eclipse_around_illuminance): what lights the
+        // umbra's air from the sunlit air beyond it. 0: none.
+        glm::dvec3 around_illuminance{0.0};
+        // The limb darkening's ratio of light to area left at 8 separations (EclipseLimbTable;
+        // LightSet.eclipse_limb in sky/shaders/atmosphere/functions.glsl). All 1: uniform disks.
+        std::array<glm::dvec3, 8> limb_ratio = {glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0),
+                                                glm::dvec3(1.0), glm::dvec3(1.0), glm::dvec3(1.0),
+                                                glm::dvec3(1.0), glm::dvec3(1.0)};
+    } eclipse;
 };
 
 // The Moon drawn as a Lambertian sphere lit by the Sun (its phase and bright limb follow).
@@ -72,6 +97,9 @@ struct MoonDisk {
     glm::dvec3 direction{0.0, 0.0, 1.0};  // unit, toward the Moon's centre
     double angular_radius = 0.0045;       // rad
     double albedo = 0.12;                 // Lambertian reflectance (the Moon's mean albedo)
+    // Fraction of the Sun's light (per channel) reaching the Moon: < 1 in a lunar eclipse, the
+    // sunlight past the Earth's disk plus what the air refracts into the umbra (MakeSkyState).
+    glm::dvec3 sunlight{1.0};
 };
 
 // A point source: a star, or the Sun when its disk is smaller than a pixel.

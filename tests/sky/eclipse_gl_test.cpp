@@ -1,0 +1,274 @@
+// Solar and lunar eclipses as the renderer draws them, from the ephemeris: the partial eclipse's
+// crescent carries the eclipsed sunlight, the sky dims with the Sun's uncovered light, totality
+// is dark at the zenith with a bright horizon, and the eclipsed Moon is lit by the penumbra's
+// sunlight and the umbra's refracted light.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <glm/gtc/constants.hpp>
+#include <string>
+#include <tuple>
+
+#include "draw_frame.h"
+#include "gl_test_support.h"
+#include "zenith/geo/eclipse.h"
+#include "zenith/geo/ephemeris.h"
+#include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/inspection.h"
+#include "zenith/sky/lighting.h"
+#include "zenith/sky/reference/atmosphere_reference.h"
+#include "zenith/sky/sky_state.h"
+
+namespace zenith::sky {
+namespace {
+
+double Y(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+double Y(const glm::vec4& c) { return Y(glm::dvec3(c.x, c.y, c.z)); }
+
+struct Scene {
+    geo::SkyEphemeris ephemeris;
+    geo::Observer observer;
+};
+
+Scene At(const std::string& utc, double lat, double lon, double height_m) {
+    geo::EphemerisOptions options;
+    options.planets = false;
+    const geo::Observer observer(lat, lon, height_m);
+    return {geo::Ephemeris().Compute(geo::TimeFromIso8601(utc), observer, options), observer};
+}
+
+// The same lights without the eclipse: the Sun's whole light everywhere.
+Lights Uneclipsed(Lights lights) {
+    if (lights.eclipse.active) lights.sun_illuminance = lights.eclipse.unobscured_illuminance;
+    lights.eclipse = {};
+    return lights;
+}
+
+class EclipseFrames : public gl::test::HeadlessGlTest {
+  protected:
+    static void SetUpTestSuite() {
+        HeadlessGlTest::SetUpTestSuite();
+        renderer_ = new AtmosphereRenderer(Atmosphere{});
+    }
+    static void TearDownTestSuite() {
+        delete renderer_;
+        HeadlessGlTest::TearDownTestSuite();
+    }
+    // One frame: `lights` for the sky, the state's Moon; draw_sun_disk as given.
+    static LutImage Render(const SkyState& state, const Lights& lights, glm::ivec2 size,
+                           bool sun_disk = true) {
+        SkyScene scene = test::LightsOnly(lights, sun_disk);
+        scene.moon = state.scene.moon;
+        return test::DrawFrame(*renderer_, scene, state.view, size);
+    }
+    static inline AtmosphereRenderer* renderer_ = nullptr;
+};
+
+// Chicago at maximum (93.9 % covered, tests/geo/eclipse_test.cpp), looking at the Sun through a
+// 1 degree field: the disk pass's light, summed over its pixels, is the eclipsed illuminance
+// MakeSkyState gives the lights (the uncovered, limb-darkened share of the Sun), through the
+// air; and the sky around it is dimmed by about the same share.
+TEST_F(EclipseFrames, PartialEclipseCrescentCarriesTheUncoveredLight) {
+    const Scene scene = At("2024-04-08T19:07:41Z", 41.8781, -87.6298, 180.0);
+    const geo::SolarEclipse eclipse = geo::ComputeSolarEclipse(scene.ephemeris);
+    ASSERT_NEAR(eclipse.obscuration, 0.939, 0.002);
+    const auto& sun = scene.ephemeris.sun.topocentric.horizontal;
+    const double fov = glm::radians(1.0);
+    const glm::ivec2 size(256, 256);
+    const SkyState state = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
+                                        {sun.azimuth, sun.elevation, 0.0}, fov, 1.0);
+    ASSERT_TRUE(state.scene.lights.eclipse.active);
+    // The lights carry the limb-darkened share of the Sun.
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(state.scene.lights.sun_illuminance[c] /
+                        state.scene.lights.eclipse.unobscured_illuminance[c],
+                    eclipse.uncovered_flux[c], 1e-12);
+    }
+    const LutImage with_disk = Render(state, state.scene.lights, size, true);
+    const LutImage sky = Render(state, state.scene.lights, size, false);
+    const double pixel = 2.0 * std::tan(0.5 * fov) / size.y;  // side, rad (near the axis)
+    glm::dvec3 disk(0.0);
+    int lit = 0;
+    for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+            const glm::vec4 d = with_disk.at(x, y) - sky.at(x, y);
+            disk += glm::dvec3(d.x, d.y, d.z) * pixel * pixel;
+            if (Y(d) > 1e6) ++lit;
+        }
+    }
+    const glm::dvec3 through_air =
+        state.scene.lights.sun_illuminance *
+        TransmittanceToLight(Atmosphere{}, 180.0, sun.direction_enu.z, eclipse.sun_radius);
+    std::printf("crescent: %.0f lux drawn, %.0f lux expected (%d pixels lit of %.0f in the disk)\n",
+                Y(disk), Y(through_air), lit,
+                glm::pi<double>() * std::pow(eclipse.sun_radius / pixel, 2));
+    EXPECT_NEAR(Y(disk) / Y(through_air), 1.0, 0.03);
+    // A crescent: far fewer lit pixels than the whole disk, but some.
+    const double disk_pixels = glm::pi<double>() * std::pow(eclipse.sun_radius / pixel, 2);
+    EXPECT_GT(lit, 0.5 * (1.0 - eclipse.obscuration) * disk_pixels);
+    EXPECT_LT(lit, 1.5 * (1.0 - eclipse.obscuration) * disk_pixels);
+
+    // The sky at the zenith: dimmed by the Sun's uncovered light (the air within tens of km has
+    // nearly the camera's share).
+    const SkyState up = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
+                                     {0.0, glm::radians(90.0), 0.0}, glm::radians(10.0), 1.0);
+    const glm::ivec2 small(32, 32);
+    const double eclipsed = Y(Render(up, up.scene.lights, small, false).at(16, 16));
+    const double clear = Y(Render(up, Uneclipsed(up.scene.lights), small, false).at(16, 16));
+    std::printf("zenith sky: %.1f cd/m^2 eclipsed, %.1f clear: ratio %.4f, light left %.4f\n",
+                eclipsed, clear, eclipsed / clear, Y(eclipse.uncovered_flux));
+    EXPECT_NEAR(eclipsed / clear, Y(eclipse.uncovered_flux), 0.15 * Y(eclipse.uncovered_flux));
+}
+
+// Dallas in totality (2024-04-08 18:42 UT, 2 min into its 3 min 52 s): the zenith three orders
+// of magnitude below the same sky uneclipsed, the horizon (sunlit air beyond the umbra, ~100 km
+// away) far brighter than the zenith, and the corona around the Moon's black disk.
+TEST_F(EclipseFrames, TotalityIsDarkAtTheZenithWithABrightHorizon) {
+    const Scene scene = At("2024-04-08T18:42:00Z", 32.7767, -96.797, 140.0);
+    const geo::SolarEclipse eclipse = geo::ComputeSolarEclipse(scene.ephemeris);
+    ASSERT_TRUE(eclipse.total());
+    const glm::ivec2 small(32, 32);
+    const SkyState up = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
+                                     {0.0, glm::radians(90.0), 0.0}, glm::radians(10.0), 1.0);
+    EXPECT_EQ(up.scene.lights.sun_illuminance, glm::dvec3(0.0));
+    const double zenith = Y(Render(up, up.scene.lights, small, false).at(16, 16));
+    const double daylight = Y(Render(up, Uneclipsed(up.scene.lights), small, false).at(16, 16));
+    // The horizon opposite the Sun (the Sun is at 188 deg azimuth, 65 deg up), 1 deg up.
+    const SkyState level = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
+                                        {0.0, glm::radians(1.0), 0.0}, glm::radians(10.0), 1.0);
+    const double horizon = Y(Render(level, level.scene.lights, small, false).at(16, 16));
+    std::printf("totality: zenith %.3g cd/m^2 (daylight %.3g, ratio %.2g), north horizon %.3g\n",
+                zenith, daylight, zenith / daylight, horizon);
+    // Measured: "about four orders of magnitude" below the day sky (Dandekar & Turtle 1971,
+    // Appl. Opt. 10, 1220). Here only the light scattered in the sunlit air beyond the umbra
+    // and again in it lights the zenith (EclipsedSkyIlluminance): 7e-4 of the day sky, within
+    // an order of magnitude of that, and far below the horizon.
+    EXPECT_GT(zenith / daylight, 1e-5);
+    EXPECT_LT(zenith / daylight, 1e-3);
+    EXPECT_GT(horizon / zenith, 10.0);
+    EXPECT_LT(horizon, 0.5 * daylight);
+
+    // The corona: around the Sun, 1e-6-ish of its disk's luminance, nothing on the Moon.
+    const auto& sun = scene.ephemeris.sun.topocentric.horizontal;
+    const double fov = glm::radians(3.0);
+    const glm::ivec2 size(128, 128);
+    const SkyState view = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
+                                       {sun.azimuth, sun.elevation, 0.0}, fov, 1.0);
+    const LutImage with_disk = Render(view, view.scene.lights, size, true);
+    const LutImage sky = Render(view, view.scene.lights, size, false);
+    const double pixel = 2.0 * std::tan(0.5 * fov) / size.y;
+    const double mean_disk = Y(view.scene.lights.eclipse.unobscured_illuminance) /
+                             (glm::pi<double>() * eclipse.sun_radius * eclipse.sun_radius);
+    const auto corona_at = [&](double radii) {  // to the right of the centre (pixel 64 + r)
+        const int x = 64 + static_cast<int>(std::lround(radii * eclipse.sun_radius / pixel));
+        return Y(with_disk.at(x, 64) - sky.at(x, 64));
+    };
+    const double centre = Y(with_disk.at(64, 64) - sky.at(64, 64));
+    std::printf("corona / mean disk: %.3g at 1.1, %.3g at 2, %.3g at 3 radii; centre %.3g\n",
+                corona_at(1.1) / mean_disk, corona_at(2.0) / mean_disk, corona_at(3.0) / mean_disk,
+                centre);
+    EXPECT_EQ(centre, 0.0);  // the Moon
+    const double t = Y(TransmittanceToLight(Atmosphere{}, 140.0, sun.direction_enu.z, 0.0));
+    EXPECT_GT(corona_at(1.1) / mean_disk / t, 0.5e-6);
+    EXPECT_LT(corona_at(1.1) / mean_disk / t, 3e-6);
+    EXPECT_GT(corona_at(1.1), 10.0 * corona_at(2.0));
+    EXPECT_GT(corona_at(2.0), corona_at(3.0));
+}
+
+// The eclipsed Sky-View LUT on the GPU against the shared code compiled as C++ in double (the
+// CPU reference): the shadow's per-sample geometry in float holds in totality and in the
+// partial eclipse beside the path. Texels compared relative to max(|CPU|, 1e-3 of the LUT's
+// mean luminance), so the black umbra's texels count by absolute difference.
+TEST_F(EclipseFrames, EclipsedSkyViewMatchesTheCpuReference) {
+    const reference::AtmosphereReference cpu(Atmosphere{});
+    for (const auto& [utc, lat, lon] : {std::tuple("2024-04-08T18:42:00Z", 32.7767, -96.797),
+                                        std::tuple("2024-04-08T19:07:41Z", 41.8781, -87.6298)}) {
+        const Scene scene = At(utc, lat, lon, 140.0);
+        const SkyState state =
+            MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{}, {}, 1.0, 1.0);
+        ASSERT_TRUE(state.scene.lights.eclipse.active);
+        renderer_->Update(test::LightsOnly(state.scene.lights), state.view);
+        const LutImage gpu = Inspect(*renderer_).ReadSkyView();
+        const LutImage reference = cpu.SkyView(state.view.camera.position, state.scene.lights);
+        ASSERT_EQ(gpu.size, reference.size);
+        double mean = 0.0;
+        for (const glm::vec4& t : reference.texels) mean += Y(t);
+        mean /= static_cast<double>(reference.texels.size());
+        double worst = 0.0;
+        for (std::size_t i = 0; i < gpu.texels.size(); ++i) {
+            const double a = Y(gpu.texels[i]), b = Y(reference.texels[i]);
+            worst = std::max(worst, std::abs(a - b) / std::max(std::abs(b), 1e-3 * mean));
+        }
+        std::printf("%s: eclipsed Sky-View GPU vs CPU max relative %.2e (mean %.3g cd/m^2)\n", utc,
+                    worst, mean);
+        EXPECT_LT(worst, 2e-2) << utc;
+    }
+}
+
+// The 2022-11-08 lunar eclipse: the Moon's light through the penumbra follows the direct
+// sunlight reaching it, and in the umbra it is the refracted light, reddened by the air's own
+// transmittance (red over blue >> 1) and 1e-5-1e-3 of the full Moon's.
+TEST_F(EclipseFrames, EclipsedMoonFollowsThePenumbraAndIsRedInTheUmbra) {
+    const auto moon_state = [](const char* utc) {
+        // Honolulu, where the Moon was high.
+        const Scene scene = At(utc, 21.3, -157.86, 10.0);
+        return std::pair(MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{}, {}, 1.0, 1.0),
+                         geo::ComputeLunarEclipse(scene.ephemeris,
+                                                  geo::kEarthShadowRadius + 100e3));  // + air
+    };
+    const auto [before, before_geometry] = moon_state("2022-11-08T07:30:00Z");
+    EXPECT_EQ(before.scene.moon.sunlight, glm::dvec3(1.0));
+    double previous = 1.0;
+    for (const char* utc : {"2022-11-08T08:40:00Z", "2022-11-08T08:55:00Z", "2022-11-08T09:10:00Z",
+                            "2022-11-08T09:25:00Z"}) {
+        const auto [state, geometry] = moon_state(utc);
+        const double direct = Y(geometry.direct_sunlight);
+        const double refracted = Y(state.scene.moon.sunlight - geometry.direct_sunlight);
+        const double ratio =
+            Y(state.scene.lights.moon_illuminance) / Y(before.scene.lights.moon_illuminance);
+        std::printf(
+            "%s: direct sunlight %.4f + refracted %.4f, Moon illuminance / uneclipsed "
+            "%.4f\n",
+            utc, direct, refracted, ratio);
+        EXPECT_GT(direct, 0.0);
+        EXPECT_LT(direct, previous);
+        previous = direct;
+        // The distance and phase change the uneclipsed light by < 1 % over these two hours.
+        EXPECT_NEAR(ratio, direct + refracted, 0.01);
+        // The refracted light: a few % of the Sun's at most, where the air's upper, clear layers
+        // bend it into the inner penumbra.
+        EXPECT_GE(refracted, 0.0);
+        EXPECT_LT(refracted, 0.1);
+    }
+    const auto [total, total_geometry] = moon_state("2022-11-08T10:59:08Z");
+    EXPECT_EQ(total_geometry.direct_sunlight, glm::dvec3(0.0));
+    const glm::dvec3 umbra = total.scene.moon.sunlight;
+    std::printf("umbra: refracted light %.3g %.3g %.3g (rgb) of the Sun's, red/blue %.1f\n",
+                umbra.x, umbra.y, umbra.z, umbra.x / umbra.z);
+    EXPECT_GT(Y(umbra), 1e-5);
+    EXPECT_LT(Y(umbra), 1e-3);
+    EXPECT_GT(umbra.x / umbra.z, 5.0);
+    EXPECT_GT(umbra.x, umbra.y);
+
+    // Drawn: the Moon's disk scaled by it (the disk pass's MoonLuminance).
+    const double fov = glm::radians(2.0);
+    const Scene scene = At("2022-11-08T10:59:08Z", 21.3, -157.86, 10.0);
+    const auto& moon = scene.ephemeris.moon.topocentric.horizontal;
+    const SkyState view = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
+                                       {moon.azimuth, moon.elevation, 0.0}, fov, 1.0);
+    SkyState uneclipsed = view;
+    uneclipsed.scene.moon.sunlight = glm::dvec3(1.0);
+    const glm::ivec2 size(64, 64);
+    const LutImage eclipsed_frame = Render(view, view.scene.lights, size);
+    const LutImage full_frame = Render(uneclipsed, view.scene.lights, size);
+    const glm::vec4 e = eclipsed_frame.at(32, 32), f = full_frame.at(32, 32);
+    std::printf("Moon's centre: %.4g cd/m^2 eclipsed, %.4g full\n", Y(e), Y(f));
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(e[c] / f[c], umbra[c], 0.02 * umbra[c] + 1e-7) << c;
+    }
+}
+
+}  // namespace
+}  // namespace zenith::sky
