@@ -1,0 +1,190 @@
+// live_check — checks what `zenith live` wrote while a recorded packet stream was replayed into
+// it (tests/live/live_replay_test.sh):
+//   - every datagram of the recording parses (a recording from a real simulator has no bad one)
+//     and packets.csv holds exactly those fixes, in order (nothing lost or reordered on
+//     loopback);
+//   - live.csv has at least MIN_FRAMES frames, each with its frame file, decodable, of the size;
+//   - each frame's position lies on the path between the two packets around its time (within
+//     kPositionTolerance of the chord: the trajectory is a cubic through the packets) and its
+//     attitude between theirs (within kAngleTolerance);
+//   - the frames' UTC never goes back, and the rebuilt clock agrees with the whole second of
+//     every packet received before the frame: floor(UTC at the packet's arrival) is its stamp,
+//     within kClockTolerance.
+// Usage: live_check PROTOCOL RECORDING OUT_DIR MIN_FRAMES WIDTH HEIGHT
+// Prints what it measured; exits 1 naming the first failed check.
+#include <fmt/format.h>
+
+#include <GeographicLib/Geocentric.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "zenith/base/text_lines.h"
+#include "zenith/sim/live.h"
+#include "zenith/sim/replay.h"
+#include "zenith/sky/image_io.h"
+#include "zenith/track/live_packets.h"
+
+namespace {
+
+constexpr double kPositionTolerance = 2.0;  // m
+constexpr double kAngleTolerance = 0.5;     // deg
+constexpr double kClockTolerance = 0.05;    // s
+
+[[noreturn]] void Fail(const std::string& message) {
+    fmt::print(stderr, "live_check: FAILED: {}\n", message);
+    std::exit(1);
+}
+
+std::vector<std::vector<double>> ReadCsv(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) Fail("cannot read " + path.string());
+    std::vector<std::vector<double>> rows;
+    std::string line;
+    std::getline(in, line);  // header
+    std::vector<std::string> fields;
+    while (std::getline(in, line)) {
+        if (!zenith::SplitCsvLine(line, fields)) Fail("bad line in " + path.string());
+        std::vector<double> row;
+        for (const std::string& f : fields) row.push_back(f.empty() ? NAN : std::stod(f));
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+glm::dvec3 Ecef(double lat, double lon, double h) {
+    double x, y, z;
+    GeographicLib::Geocentric::WGS84().Forward(lat, lon, h, x, y, z);
+    return {x, y, z};
+}
+
+double DistanceToSegment(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 ab = b - a;
+    const double length2 = glm::dot(ab, ab);
+    const double s = length2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+    return glm::length(p - (a + s * ab));
+}
+
+// How far `angle` lies outside the shorter arc from a to b, degrees (0 inside).
+double OutsideArc(double angle, double a, double b) {
+    auto wrap = [](double d) { return std::remainder(d, 360.0); };
+    const double span = wrap(b - a);
+    const double along = wrap(angle - a);
+    const double lo = std::min(0.0, span), hi = std::max(0.0, span);
+    if (along >= lo && along <= hi) return 0.0;
+    return std::min(std::abs(along - lo), std::abs(along - hi));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 7) {
+        fmt::print(stderr, "usage: live_check PROTOCOL RECORDING OUT_DIR MIN_FRAMES W H\n");
+        return 2;
+    }
+    const auto protocol = zenith::sim::ParseLiveProtocol(argv[1]);
+    const std::filesystem::path recording = argv[2], out = argv[3];
+    const auto min_frames = static_cast<std::size_t>(std::stoul(argv[4]));
+    const int width = std::stoi(argv[5]), height = std::stoi(argv[6]);
+
+    // The recording, parsed.
+    std::vector<zenith::track::LiveFix> fixes;
+    {
+        std::ifstream in(recording);
+        if (!in) Fail("cannot read " + recording.string());
+        std::string line;
+        while (std::getline(in, line)) {
+            if (line.empty() || line[0] == '#') continue;
+            std::istringstream fields(line);
+            double t;
+            std::string hex;
+            fields >> t >> hex;
+            std::vector<std::byte> bytes;
+            for (std::size_t k = 0; k + 1 < hex.size(); k += 2) {
+                bytes.push_back(std::byte(std::stoul(hex.substr(k, 2), nullptr, 16)));
+            }
+            try {
+                fixes.push_back(zenith::track::ParseLivePacket(protocol, bytes));
+            } catch (const zenith::track::PacketError& e) {
+                Fail(fmt::format("datagram {} of the recording: {}", fixes.size(), e.what()));
+            }
+        }
+    }
+    // packets.csv: arrival_s,utc_whole_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,roll_deg
+    const auto packets = ReadCsv(out / "packets.csv");
+    if (packets.size() != fixes.size()) {
+        Fail(fmt::format("packets.csv has {} fixes, the recording {}", packets.size(),
+                         fixes.size()));
+    }
+    for (std::size_t i = 0; i < fixes.size(); ++i) {
+        const auto& f = fixes[i];
+        const auto& p = packets[i];
+        const bool same =
+            std::abs(p[2] - *f.lat_deg) < 1e-8 && std::abs(p[3] - *f.lon_deg) < 1e-8 &&
+            std::abs(p[4] - *f.height_m) < 1e-3 && (!f.utc_whole_s || p[1] == *f.utc_whole_s);
+        if (!same) Fail(fmt::format("packets.csv line {} is not datagram {}", i + 2, i));
+        if (i > 0 && !(p[0] > packets[i - 1][0])) Fail("packets.csv arrivals not increasing");
+    }
+    // live.csv: frame,receiver_s,utc_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,
+    // roll_deg,newest_packet_s,render_s
+    const auto frames = ReadCsv(out / "live.csv");
+    if (frames.size() < min_frames) {
+        Fail(fmt::format("{} frames (expected at least {})", frames.size(), min_frames));
+    }
+    double worst_position = 0.0, worst_angle = 0.0, worst_clock = 0.0, previous_utc = -1e300;
+    double render_sum = 0.0;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        const auto& f = frames[k];
+        const auto index = static_cast<std::size_t>(f[0]);
+        if (index != k)
+            Fail(fmt::format("live.csv line {}: frame {} (expected {})", k + 2, index, k));
+        const auto png = out / zenith::sim::ReplayFrameName(index, "png");
+        const zenith::sky::Srgb8Image image = zenith::sky::ReadPng(png);
+        if (image.width != width || image.height != height) {
+            Fail(fmt::format("{} is {}x{} (expected {}x{})", png.string(), image.width,
+                             image.height, width, height));
+        }
+        const double t = f[1], utc = f[2];
+        if (utc < previous_utc)
+            Fail(fmt::format("frame {}: UTC {} before {}", k, utc, previous_utc));
+        previous_utc = utc;
+        render_sum += f[10];
+        // The packets around t.
+        std::size_t after = 0;
+        while (after < packets.size() && packets[after][0] < t) ++after;
+        const std::size_t a = after == 0 ? 0 : after - 1;
+        const std::size_t b = std::min(after, packets.size() - 1);
+        const glm::dvec3 p = Ecef(f[3], f[4], f[5]);
+        const double position =
+            DistanceToSegment(p, Ecef(packets[a][2], packets[a][3], packets[a][4]),
+                              Ecef(packets[b][2], packets[b][3], packets[b][4]));
+        worst_position = std::max(worst_position, position);
+        for (std::size_t c = 6; c <= 8; ++c) {
+            worst_angle =
+                std::max(worst_angle, OutsideArc(f[c], packets[a][c - 1], packets[b][c - 1]));
+        }
+        // The clock against every packet received before this frame.
+        const double offset = utc - t;
+        for (const auto& q : packets) {
+            if (q[0] > f[9] || std::isnan(q[1])) continue;
+            const double rebuilt = q[0] + offset;
+            const double outside = std::max(q[1] - rebuilt, rebuilt - (q[1] + 1.0));
+            worst_clock = std::max(worst_clock, outside);
+        }
+    }
+    fmt::print(
+        "live_check: {} datagrams, {} frames; position off the packets' path <= {:.3f} m, "
+        "attitude outside theirs <= {:.3f} deg, clock outside their seconds <= {:.3f} s; "
+        "{:.3f} s per frame\n",
+        fixes.size(), frames.size(), worst_position, worst_angle, worst_clock,
+        render_sum / static_cast<double>(frames.size()));
+    if (worst_position > kPositionTolerance) Fail(fmt::format("position {} m", worst_position));
+    if (worst_angle > kAngleTolerance) Fail(fmt::format("attitude {} deg", worst_angle));
+    if (worst_clock > kClockTolerance) Fail(fmt::format("clock {} s", worst_clock));
+    return 0;
+}
