@@ -248,7 +248,7 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
         std::thread& thread;
         ~Join() {
             quit.store(true);
-            thread.join();
+            if (thread.joinable()) thread.join();
         }
     } join{quit, receiver};
 
@@ -321,11 +321,12 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
             window.back().arrival_s, render_s);
         frame_log.flush();
         ++result.frames;
-        next_frame = std::max(next_frame + r.every_s, frame_started);
+        // The next slot; slots missed while this frame was drawn are skipped.
+        next_frame += r.every_s;
+        if (next_frame <= frame_started) next_frame = frame_started + r.every_s;
     }
     quit.store(true);
     receiver.join();
-    join.quit.store(true);
     {
         std::lock_guard lock(shared.mutex);
         result.packets = shared.counts.packets;
