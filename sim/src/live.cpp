@@ -87,9 +87,9 @@ struct Shared {
     LiveResult counts;
 };
 
-void NotePacketProblem(LiveResult& r, const std::string& message) {
+void NotePacketProblem(LiveResult& r, const std::string& kind, const std::string& message) {
     ++r.malformed;
-    ++r.malformed_by_kind[ProblemKind(message)];
+    ++r.malformed_by_kind[kind];
     if (r.first_problems.size() < kLiveProblemsKept) r.first_problems.push_back(message);
 }
 
@@ -110,7 +110,7 @@ void Receive(const Socket& socket, track::LiveProtocol protocol, SteadyClock::ti
         ++shared.counts.packets;
         if (size > track::kMaxPacketBytes) {
             NotePacketProblem(
-                shared.counts,
+                shared.counts, "size",
                 fmt::format("{} packet: size {} bytes (expected at most {})",
                             track::LiveProtocolName(protocol), size, track::kMaxPacketBytes));
             continue;
@@ -119,7 +119,7 @@ void Receive(const Socket& socket, track::LiveProtocol protocol, SteadyClock::ti
         try {
             fix = track::ParseLivePacket(protocol, std::span(buffer.data(), size));
         } catch (const track::PacketError& e) {
-            NotePacketProblem(shared.counts, e.what());
+            NotePacketProblem(shared.counts, e.kind(), e.what());
             continue;
         }
         ++shared.counts.used;
@@ -175,20 +175,6 @@ track::LiveProtocol ParseLiveProtocol(const std::string& text) {
     if (text == "xplane") return track::LiveProtocol::kXPlane;
     throw ArgumentError("protocol", "protocol = " + text +
                                         " is not known (expected fg-native, fg-generic or xplane)");
-}
-
-std::string ProblemKind(const std::string& message) {
-    std::string_view rest(message);
-    const std::size_t colon = rest.find("packet: ");
-    if (colon != std::string_view::npos) rest.remove_prefix(colon + 8);
-    std::size_t end = 0;
-    while (end < rest.size() && rest[end] != '=' && rest[end] != ':' && rest[end] != '(' &&
-           !(rest[end] >= '0' && rest[end] <= '9') && rest[end] != '\'') {
-        ++end;
-    }
-    std::string kind(rest.substr(0, end));
-    while (!kind.empty() && kind.back() == ' ') kind.pop_back();
-    return kind.empty() ? "other" : kind;
 }
 
 void ValidateLiveRequest(const LiveRequest& r) {

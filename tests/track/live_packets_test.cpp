@@ -62,6 +62,16 @@ struct Fdm {
     }
 };
 
+std::string KindOf(const std::vector<std::byte>& packet,
+                   LiveFix (*parse)(std::span<const std::byte>)) {
+    try {
+        parse(packet);
+    } catch (const PacketError& e) {
+        return e.kind();
+    }
+    return "(no error)";
+}
+
 std::string MessageOf(const std::vector<std::byte>& packet,
                       LiveFix (*parse)(std::span<const std::byte>)) {
     try {
@@ -94,6 +104,7 @@ TEST(FlightGearNative, RefusesWrongSizesNamingThem) {
     EXPECT_THAT(MessageOf(fdm.Bytes(409), ParseFlightGearNative), HasSubstr("size 409 bytes"));
     EXPECT_THAT(MessageOf(fdm.Bytes(3), ParseFlightGearNative), HasSubstr("size 3 bytes"));
     EXPECT_THAT(MessageOf({}, ParseFlightGearNative), HasSubstr("size 0 bytes"));
+    EXPECT_EQ(KindOf(fdm.Bytes(407), ParseFlightGearNative), "size");
 }
 
 TEST(FlightGearNative, RefusesOtherVersionsAndLittleEndianPackets) {
@@ -104,6 +115,7 @@ TEST(FlightGearNative, RefusesOtherVersionsAndLittleEndianPackets) {
     std::vector<std::byte> swapped = Fdm{}.Bytes();
     Put(swapped, 0, std::uint32_t{24}, false);
     EXPECT_THAT(MessageOf(swapped, ParseFlightGearNative), HasSubstr("little-endian"));
+    EXPECT_EQ(KindOf(swapped, ParseFlightGearNative), "version");
 }
 
 TEST(FlightGearNative, RefusesNanAndOutOfRangeValues) {

@@ -50,13 +50,14 @@ T Load(std::span<const std::byte> bytes, std::size_t offset, std::endian order) 
     return std::bit_cast<T>(bits);
 }
 
-[[noreturn]] void Fail(LiveProtocol protocol, const std::string& message) {
-    throw PacketError(fmt::format("{} packet: {}", LiveProtocolName(protocol), message));
+[[noreturn]] void Fail(LiveProtocol protocol, std::string_view kind, const std::string& message) {
+    throw PacketError(std::string(kind),
+                      fmt::format("{} packet: {}", LiveProtocolName(protocol), message));
 }
 
 double Check(LiveProtocol protocol, std::string_view field, double value, std::string_view unit,
              const Range& range) {
-    if (!range.Contains(value)) Fail(protocol, RangeMessage(field, value, unit, range));
+    if (!range.Contains(value)) Fail(protocol, field, RangeMessage(field, value, unit, range));
     return value;
 }
 
@@ -95,13 +96,13 @@ double ParseNumber(LiveProtocol protocol, std::string_view field, std::string_vi
     while (!s.empty() && (s.back() == ' ' || s.back() == '\r')) s.pop_back();
     std::size_t first = s.find_first_not_of(' ');
     if (first == std::string::npos || s.size() > 64) {
-        Fail(protocol, fmt::format("{} = '{}' is not a number", field, Printable(text)));
+        Fail(protocol, field, fmt::format("{} = '{}' is not a number", field, Printable(text)));
     }
     s = s.substr(first);
     char* end = nullptr;
     const double value = std::strtod(s.c_str(), &end);
     if (end != s.c_str() + s.size()) {
-        Fail(protocol, fmt::format("{} = '{}' is not a number", field, Printable(text)));
+        Fail(protocol, field, fmt::format("{} = '{}' is not a number", field, Printable(text)));
     }
     return value;
 }
@@ -123,20 +124,23 @@ std::string_view LiveProtocolName(LiveProtocol protocol) {
 LiveFix ParseFlightGearNative(std::span<const std::byte> packet) {
     constexpr LiveProtocol p = LiveProtocol::kFlightGearNative;
     if (packet.size() < 4) {
-        Fail(p, fmt::format("size {} bytes is too short for the version field", packet.size()));
+        Fail(p, "size",
+             fmt::format("size {} bytes is too short for the version field", packet.size()));
     }
     const auto version = Load<std::uint32_t>(packet, kFdmVersion, std::endian::big);
     if (version != kFlightGearNetFdmVersion) {
-        Fail(p, fmt::format("version {} is not supported (expected FG_NET_FDM_VERSION {}{})",
-                            version, kFlightGearNetFdmVersion,
-                            Load<std::uint32_t>(packet, kFdmVersion, std::endian::little) ==
-                                    kFlightGearNetFdmVersion
-                                ? "; the packet is in little-endian order, not network order"
-                                : ""));
+        Fail(p, "version",
+             fmt::format("version {} is not supported (expected FG_NET_FDM_VERSION {}{})", version,
+                         kFlightGearNetFdmVersion,
+                         Load<std::uint32_t>(packet, kFdmVersion, std::endian::little) ==
+                                 kFlightGearNetFdmVersion
+                             ? "; the packet is in little-endian order, not network order"
+                             : ""));
     }
     if (packet.size() != kFlightGearNetFdmBytes) {
-        Fail(p, fmt::format("size {} bytes (expected {} for version {})", packet.size(),
-                            kFlightGearNetFdmBytes, kFlightGearNetFdmVersion));
+        Fail(p, "size",
+             fmt::format("size {} bytes (expected {} for version {})", packet.size(),
+                         kFlightGearNetFdmBytes, kFlightGearNetFdmVersion));
     }
     const struct {
         const char* name;
@@ -147,7 +151,7 @@ LiveFix ParseFlightGearNative(std::span<const std::byte> packet) {
                   {"num_wheels", kFdmNumWheels, kFdmMaxWheels}};
     for (const auto& c : counts) {
         const auto n = Load<std::uint32_t>(packet, c.offset, std::endian::big);
-        if (n > c.max) Fail(p, fmt::format("{} = {} (expected 0 to {})", c.name, n, c.max));
+        if (n > c.max) Fail(p, c.name, fmt::format("{} = {} (expected 0 to {})", c.name, n, c.max));
     }
     LiveFix fix;
     fix.altitude_kind = AltitudeKind::kEllipsoid;
@@ -179,14 +183,15 @@ LiveFix ParseFlightGearNative(std::span<const std::byte> packet) {
 LiveFix ParseFlightGearGeneric(std::span<const std::byte> packet) {
     constexpr LiveProtocol p = LiveProtocol::kFlightGearGeneric;
     if (packet.size() > kMaxPacketBytes) {
-        Fail(p, fmt::format("size {} bytes (expected at most {})", packet.size(), kMaxPacketBytes));
+        Fail(p, "size",
+             fmt::format("size {} bytes (expected at most {})", packet.size(), kMaxPacketBytes));
     }
     std::string_view text(reinterpret_cast<const char*>(packet.data()), packet.size());
     // One line: FlightGear ends it with "\n" (line_separator newline); "\r\n" is accepted.
     if (!text.empty() && text.back() == '\n') text.remove_suffix(1);
     if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
     if (text.find_first_of(std::string_view("\n\0", 2)) != std::string_view::npos) {
-        Fail(p, "more than one line, or a NUL byte (expected one line of text)");
+        Fail(p, "lines", "more than one line, or a NUL byte (expected one line of text)");
     }
     std::vector<std::string_view> fields;
     std::size_t start = 0;
@@ -198,25 +203,27 @@ LiveFix ParseFlightGearGeneric(std::span<const std::byte> packet) {
         start = comma + 1;
     }
     if (fields.size() != kGenericFields) {
-        Fail(p, fmt::format(
-                    "{} fields (expected {}: gmt,lat,lon,alt_ft,heading,pitch,roll, as "
-                    "data/flightgear/zenith.xml sends them)",
-                    fields.size() > kGenericFields ? "more than 7" : std::to_string(fields.size()),
-                    kGenericFields));
+        Fail(p, "fields",
+             fmt::format(
+                 "{} fields (expected {}: gmt,lat,lon,alt_ft,heading,pitch,roll, as "
+                 "data/flightgear/zenith.xml sends them)",
+                 fields.size() > kGenericFields ? "more than 7" : std::to_string(fields.size()),
+                 kGenericFields));
     }
     LiveFix fix;
     fix.altitude_kind = AltitudeKind::kEllipsoid;
     // /sim/time/gmt: "YYYY-MM-DDTHH:MM:SS" (FlightGear's own format: no zone, UTC).
     std::string gmt(fields[0].substr(0, std::min<std::size_t>(fields[0].size(), 32)));
     if (fields[0].size() != 19) {
-        Fail(p, fmt::format("gmt = '{}' (expected YYYY-MM-DDTHH:MM:SS)", Printable(fields[0])));
+        Fail(p, "gmt",
+             fmt::format("gmt = '{}' (expected YYYY-MM-DDTHH:MM:SS)", Printable(fields[0])));
     }
     try {
         SetUtc(p, fix, geo::UnixSecondsFromCivil(geo::ParseIso8601(gmt + "Z")));
     } catch (const PacketError&) {
         throw;
     } catch (const Error& e) {
-        Fail(p, fmt::format("gmt = '{}': {}", gmt, e.what()));
+        Fail(p, "gmt", fmt::format("gmt = '{}': {}", gmt, e.what()));
     }
     const double lat = ParseNumber(p, "latitude", fields[1]);
     const double lon = ParseNumber(p, "longitude", fields[2]);
@@ -232,19 +239,21 @@ LiveFix ParseFlightGearGeneric(std::span<const std::byte> packet) {
 LiveFix ParseXPlane(std::span<const std::byte> packet) {
     constexpr LiveProtocol p = LiveProtocol::kXPlane;
     if (packet.size() > kMaxPacketBytes) {
-        Fail(p, fmt::format("size {} bytes (expected at most {})", packet.size(), kMaxPacketBytes));
+        Fail(p, "size",
+             fmt::format("size {} bytes (expected at most {})", packet.size(), kMaxPacketBytes));
     }
     if (packet.size() < 5) {
-        Fail(p, fmt::format("size {} bytes is too short for a header (expected DATA or RPOS "
-                            "and one byte)",
-                            packet.size()));
+        Fail(p, "size",
+             fmt::format("size {} bytes is too short for a header (expected DATA or RPOS "
+                         "and one byte)",
+                         packet.size()));
     }
     const std::string_view head(reinterpret_cast<const char*>(packet.data()), 4);
     LiveFix fix;
     fix.altitude_kind = AltitudeKind::kMsl;
     if (head == "RPOS") {
         if (packet.size() != kXPlaneRposBytes) {
-            Fail(p,
+            Fail(p, "size",
                  fmt::format("RPOS size {} bytes (expected {})", packet.size(), kXPlaneRposBytes));
         }
         const double lon = Load<double>(packet, 5, std::endian::little);
@@ -260,12 +269,13 @@ LiveFix ParseXPlane(std::span<const std::byte> packet) {
     if (head != "DATA") {
         std::string shown;
         for (const char c : head) shown += (c >= 32 && c < 127) ? c : '?';
-        Fail(p, fmt::format("header '{}' (expected DATA or RPOS)", shown));
+        Fail(p, "header", fmt::format("header '{}' (expected DATA or RPOS)", shown));
     }
     const std::size_t body = packet.size() - 5;
     if (body == 0 || body % kXPlaneDataRecordBytes != 0) {
-        Fail(p, fmt::format("DATA size {} bytes (expected 5 + a multiple of {})", packet.size(),
-                            kXPlaneDataRecordBytes));
+        Fail(p, "size",
+             fmt::format("DATA size {} bytes (expected 5 + a multiple of {})", packet.size(),
+                         kXPlaneDataRecordBytes));
     }
     bool any = false;
     for (std::size_t at = 5; at < packet.size(); at += kXPlaneDataRecordBytes) {
@@ -277,7 +287,7 @@ LiveFix ParseXPlane(std::span<const std::byte> packet) {
         }
         auto value = [&](int i, const char* name) -> double {
             if (v[i] == kXPlaneUnused) {
-                Fail(p, fmt::format("DATA index {}: {} is unset (-999)", index, name));
+                Fail(p, name, fmt::format("DATA index {}: {} is unset (-999)", index, name));
             }
             return v[i];
         };
@@ -296,9 +306,10 @@ LiveFix ParseXPlane(std::span<const std::byte> packet) {
         }
     }
     if (!any) {
-        Fail(p, fmt::format("DATA without index {} or {} (enable 'lat, lon, altitude' and "
-                            "'pitch, roll, headings' in X-Plane's Data Output)",
-                            kXPlaneAttitudeIndex, kXPlanePositionIndex));
+        Fail(p, "indices",
+             fmt::format("DATA without index {} or {} (enable 'lat, lon, altitude' and "
+                         "'pitch, roll, headings' in X-Plane's Data Output)",
+                         kXPlaneAttitudeIndex, kXPlanePositionIndex));
     }
     return fix;
 }
@@ -312,7 +323,7 @@ LiveFix ParseLivePacket(LiveProtocol protocol, std::span<const std::byte> packet
         case LiveProtocol::kXPlane:
             return ParseXPlane(packet);
     }
-    throw PacketError("unknown protocol");
+    throw PacketError("protocol", "unknown protocol");
 }
 
 bool WholeSecondClock::Observe(double utc_whole_s, double arrival_s) {

@@ -67,8 +67,8 @@ struct LiveResult {
     std::size_t frames = 0;
     std::size_t packets = 0;  // datagrams received
     std::size_t used = 0;     // parsed into a fix
-    // Malformed datagrams: how many, by what was wrong (the parser's message up to the first
-    // value), and the first kLiveProblemsKept messages in full.
+    // Malformed datagrams: how many, by what was wrong (track::PacketError::kind()), and the
+    // first kLiveProblemsKept messages in full.
     std::size_t malformed = 0;
     std::map<std::string, std::size_t> malformed_by_kind;
     std::vector<std::string> first_problems;
@@ -83,9 +83,5 @@ struct LiveResult {
 // packet is read.
 LiveResult RunLive(const LiveRequest& request, const std::atomic<bool>& stop,
                    const std::function<void(int port)>& on_listening = {});
-
-// The kind of a parser's message, for counting: the text after "<protocol> packet: " up to
-// the first " = " or digit ("size", "version", "latitude", ...).
-std::string ProblemKind(const std::string& message);
 
 }  // namespace zenith::sim

@@ -34,6 +34,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "zenith/base/error.h"
 #include "zenith/geo/frames.h"
@@ -42,9 +43,16 @@
 namespace zenith::track {
 
 // A datagram that cannot be used; the message names the field, the value and what was expected.
+// kind() is what was wrong, for counting: "size", "version", "header", "fields", "lines",
+// "indices", or the field whose value is wrong ("latitude", "gmt", "num_engines", ...).
 class PacketError : public InputError {
   public:
-    using InputError::InputError;
+    PacketError(std::string kind, const std::string& message)
+        : InputError(message), kind_(std::move(kind)) {}
+    const std::string& kind() const { return kind_; }
+
+  private:
+    std::string kind_;
 };
 
 enum class LiveProtocol { kFlightGearNative, kFlightGearGeneric, kXPlane };
