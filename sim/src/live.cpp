@@ -321,6 +321,7 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
         result.malformed_by_kind = shared.counts.malformed_by_kind;
         result.first_problems = shared.counts.first_problems;
         result.clock_resets = shared.clock.resets();
+        result.late_packets = shared.clock.late_packets();
     }
     return result;
 }

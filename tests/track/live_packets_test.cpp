@@ -290,21 +290,60 @@ TEST(WholeSecondClock, ConvergesFromBelowAndIsMonotonic) {
     EXPECT_LT(clock.uncertainty_s(), 0.06);
 }
 
-TEST(WholeSecondClock, StartsOverWhenTheSimulatorsTimeJumps) {
+TEST(WholeSecondClock, JumpsForwardAtOnceWhenTheTimeIsSetForward) {
     WholeSecondClock clock;
     for (int i = 0; i < 40; ++i) clock.Observe(std::floor(1000.25 + 0.05 * i), 0.05 * i);
     EXPECT_FALSE(clock.Observe(1002.0, 2.0));
     EXPECT_TRUE(clock.Observe(4602.0, 2.05));  // an hour later: the time was set
     EXPECT_EQ(clock.resets(), 1);
-    EXPECT_NEAR(clock.UtcAt(2.05), 4602.0 - 0.0, 1.0);
+    EXPECT_EQ(clock.UtcAt(2.05), 4602.0);
 }
 
-TEST(WholeSecondClock, ALatePacketDoesNotReset) {
+// FlightGear stalled for 1.67 s between stamping a packet and sending it (seen in a real run):
+// the packet is set aside, the clock neither resets nor moves.
+TEST(WholeSecondClock, ALatePacketIsSetAside) {
     WholeSecondClock clock;
     for (int i = 0; i < 40; ++i) clock.Observe(std::floor(1000.25 + 0.05 * i), 0.05 * i);
     const double before = clock.UtcAt(2.0);
     EXPECT_FALSE(clock.Observe(1001.0, 2.1));  // sent at 1.70 (UTC 1001.95), 0.4 s late
+    EXPECT_FALSE(clock.Observe(1001.0, 3.6));  // 1.9 s late
     EXPECT_EQ(clock.UtcAt(2.0), before);
+    EXPECT_EQ(clock.late_packets(), 1);
+    EXPECT_EQ(clock.resets(), 0);
+    // The stream goes on as before.
+    EXPECT_FALSE(clock.Observe(1003.0, 3.65));
+    EXPECT_EQ(clock.UtcAt(2.0), before);
+}
+
+// The real run's stall: two late packets 4 s apart (1.7 and 2.4 s late), then on time again.
+TEST(WholeSecondClock, TwoLatePacketsOverAStallAreSetAside) {
+    WholeSecondClock clock;
+    for (int i = 0; i < 40; ++i) {
+        const double t = 45.0 + 0.05 * i;
+        clock.Observe(std::floor(596.80 + t), t);
+    }
+    const double before = clock.UtcAt(0.0);
+    EXPECT_FALSE(clock.Observe(650.0, 54.871));  // the arrivals and stamps of the real run
+    EXPECT_FALSE(clock.Observe(653.0, 58.867));
+    EXPECT_FALSE(clock.Observe(657.0, 60.632));
+    EXPECT_EQ(clock.resets(), 0);
+    EXPECT_EQ(clock.late_packets(), 2);
+    EXPECT_EQ(clock.UtcAt(0.0), before);
+}
+
+// The time set back by a minute: earlier packets that keep coming for kLateResetSeconds.
+TEST(WholeSecondClock, StartsOverWhenEarlierPacketsLast) {
+    WholeSecondClock clock;
+    double t = 0.0;
+    for (; t < 2.0; t += 0.05) clock.Observe(std::floor(1000.25 + t), t);
+    int resets_at = -1;
+    for (int i = 0; t < 6.0; t += 0.05, ++i) {
+        if (clock.Observe(std::floor(940.25 + t), t) && resets_at < 0) resets_at = i;
+    }
+    EXPECT_EQ(clock.resets(), 1);
+    EXPECT_GE(resets_at, 40);  // 2 s of packets 50 ms apart (41: 40 x 0.05 rounds under 2)
+    EXPECT_LE(resets_at, 41);
+    EXPECT_NEAR(clock.UtcAt(t), 940.25 + t, 0.05);
 }
 
 }  // namespace

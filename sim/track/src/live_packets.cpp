@@ -326,27 +326,50 @@ LiveFix ParseLivePacket(LiveProtocol protocol, std::span<const std::byte> packet
     throw PacketError("protocol", "unknown protocol");
 }
 
+void WholeSecondClock::Restart(double lower, double upper) {
+    lower_ = lower;
+    upper_ = std::max(upper, lower);
+    late_ = false;
+}
+
 bool WholeSecondClock::Observe(double utc_whole_s, double arrival_s) {
     const double lower = utc_whole_s - arrival_s;
     const double upper = utc_whole_s + 1.0 - arrival_s;
     if (!valid_) {
         valid_ = true;
-        lower_ = lower;
-        upper_ = upper;
+        Restart(lower, upper);
         return false;
     }
-    const double new_lower = std::max(lower_, lower);
-    const double new_upper = std::min(upper_, upper);
-    if (new_lower > new_upper + kResetTolerance) {
-        lower_ = lower;
-        upper_ = upper;
+    if (lower > upper_ + kResetTolerance) {  // later than the clock allows: set forward
+        Restart(lower, upper);
         ++resets_;
         return true;
     }
-    lower_ = new_lower;
-    // A late packet can push the upper bound under the lower one (by less than the tolerance):
+    if (upper < lower_ - kResetTolerance) {  // earlier: late, or set back if it lasts
+        ++late_packets_;
+        if (!late_) {
+            late_ = true;
+            late_since_ = arrival_s;
+            late_lower_ = lower;
+            late_upper_ = upper;
+            late_run_ = 0;
+        } else {
+            late_lower_ = std::max(late_lower_, lower);
+            late_upper_ = std::min(late_upper_, upper);
+        }
+        ++late_run_;
+        if (late_run_ >= kLatePacketsToReset && arrival_s - late_since_ >= kLateResetSeconds) {
+            Restart(late_lower_, late_upper_);
+            ++resets_;
+            return true;
+        }
+        return false;
+    }
+    late_ = false;
+    lower_ = std::max(lower_, lower);
+    // A packet late by less than the tolerance can push the upper bound under the lower one:
     // the lower bound, from the packets that came soonest after a turn of the second, stays.
-    upper_ = std::max(new_upper, new_lower);
+    upper_ = std::max(std::min(upper_, upper), lower_);
     return false;
 }
 

@@ -73,6 +73,7 @@ struct LiveResult {
     std::map<std::string, std::size_t> malformed_by_kind;
     std::vector<std::string> first_problems;
     int clock_resets = 0;
+    int late_packets = 0;  // stamped earlier than the clock allows, set aside (WholeSecondClock)
     bool interrupted = false;
     int port = 0;
     double render_seconds = 0.0;  // rendering and writing, all frames

@@ -91,15 +91,24 @@ LiveFix ParseLivePacket(LiveProtocol protocol, std::span<const std::byte> packet
 // latency aside), every packet bounds the offset, floor(T) - t <= C < floor(T) + 1 - t, and the
 // packet in which the second turns over gives C to within the packets' spacing. The estimate is
 // the tightest lower bound, so it only grows: the rebuilt time t + C is monotonic while the
-// simulator's time runs at the receiver's rate. When the bounds contradict each other by more
-// than kResetTolerance (the simulator's time was set, warped or paused), the clock starts over
-// from the latest packet, and resets() counts it.
+// simulator's time runs at the receiver's rate. A packet that contradicts the bounds by more
+// than kResetTolerance:
+//   - later than the clock allows (the simulator's time was set forward or warped): the clock
+//     starts over from it at once (it jumps forward);
+//   - earlier (a packet that waited in a stalled simulator: FlightGear stamps its time at the
+//     start of a frame and sends at the end; a real run had two in a row, 4 s apart, 1.7 and
+//     2.4 s late): it is set aside and counted as late; only when such packets keep coming, at
+//     least kLatePacketsToReset of them over kLateResetSeconds (the time was set back), does
+//     the clock start over from them.
+// resets() counts the restarts.
 class WholeSecondClock {
   public:
-    static constexpr double kResetTolerance = 0.5;  // s: latency jitter larger than this resets
+    static constexpr double kResetTolerance = 0.5;    // s of contradiction
+    static constexpr double kLateResetSeconds = 2.0;  // s of only earlier packets: set back
+    static constexpr int kLatePacketsToReset = 5;     // and at least this many of them
 
-    // A packet stamped utc_whole_s (whole seconds) arrived at arrival_s (receiver seconds).
-    // Returns true when it reset the clock.
+    // A packet stamped utc_whole_s (whole seconds) arrived at arrival_s (receiver seconds,
+    // not decreasing). Returns true when it restarted the clock.
     bool Observe(double utc_whole_s, double arrival_s);
     bool valid() const { return valid_; }
     // The simulator's UTC (POSIX seconds) at receiver time t; requires valid().
@@ -107,12 +116,23 @@ class WholeSecondClock {
     // How far the offset is known: upper - lower bound, seconds (1 after one packet).
     double uncertainty_s() const { return upper_ - lower_; }
     int resets() const { return resets_; }
+    // Packets set aside as late (earlier than the clock by more than kResetTolerance).
+    int late_packets() const { return late_packets_; }
 
   private:
+    void Restart(double lower, double upper);
+
     bool valid_ = false;
     double lower_ = 0.0;  // max(whole - arrival)
-    double upper_ = 0.0;  // min(whole + 1 - arrival)
+    double upper_ = 0.0;  // min(whole + 1 - arrival), kept >= lower_
     int resets_ = 0;
+    int late_packets_ = 0;
+    // The run of late packets since the last consistent one.
+    bool late_ = false;
+    double late_since_ = 0.0;
+    double late_lower_ = 0.0;
+    double late_upper_ = 0.0;
+    int late_run_ = 0;
 };
 
 }  // namespace zenith::track
