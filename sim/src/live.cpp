@@ -83,7 +83,6 @@ struct Shared {
     std::mutex mutex;
     std::deque<TimedFix> window;
     track::WholeSecondClock clock;
-    bool clock_reset = false;  // since the last frame
     LiveResult counts;
 };
 
@@ -124,7 +123,7 @@ void Receive(const Socket& socket, track::LiveProtocol protocol, SteadyClock::ti
         }
         ++shared.counts.used;
         if (fix.utc_whole_s) {
-            if (shared.clock.Observe(*fix.utc_whole_s, arrival)) shared.clock_reset = true;
+            shared.clock.Observe(*fix.utc_whole_s, arrival);
         }
         TimedFix timed = last.value_or(TimedFix{arrival, 0.0, 0.0, 0.0, fix.altitude_kind, {}});
         timed.arrival_s = arrival;
@@ -258,13 +257,10 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
         }
         std::deque<TimedFix> window;
         track::WholeSecondClock clock;
-        bool reset = false;
         {
             std::lock_guard lock(shared.mutex);
             window = shared.window;
             clock = shared.clock;
-            reset = shared.clock_reset;
-            shared.clock_reset = false;
         }
         const bool needs_clock = r.protocol != track::LiveProtocol::kXPlane;
         if (window.size() < 2 || (needs_clock && !clock.valid())) {
@@ -282,7 +278,8 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
         sky->SetEcef(state.ecef);
         sky->SetViewFromEnu(geo::Observer::FromEcef(state.ecef).enu_from_ecef() *
                             glm::mat3_cast(state.ecef_from_body) * geo::BodyFromView());
-        if (reset) sky->ResetCloudHistory();
+        // Frames are every_s apart: nothing to reproject from the last one (as in replay).
+        sky->ResetCloudHistory();
         sky->Update();
         const sky::LutImage frame = sky->RenderOffscreen(r.size);
         sky::Image image(r.size.x, r.size.y);

@@ -11,7 +11,7 @@
 //   - the frames' UTC never goes back, and, once the stream has run kClockSettle seconds, the
 //     clock's offset from the receiver's is within kClockTolerance of the best bound the whole
 //     stream gives (max over packets of whole second - arrival) and never above it.
-// Usage: live_check PROTOCOL RECORDING OUT_DIR MIN_FRAMES WIDTH HEIGHT
+// Usage: live_check PROTOCOL RECORDING|- OUT_DIR MIN_FRAMES WIDTH HEIGHT
 // Prints what it measured; exits 1 naming the first failed check.
 #include <fmt/format.h>
 
@@ -101,8 +101,10 @@ int main(int argc, char** argv) {
     const int width = std::stoi(argv[5]), height = std::stoi(argv[6]);
 
     // The recording, parsed.
+    // RECORDING "-": a live run with no recording (a real simulator): packets.csv is taken as
+    // what arrived, and the frames are checked against it.
     std::vector<zenith::track::LiveFix> fixes;
-    {
+    if (recording != "-") {
         std::ifstream in(recording);
         if (!in) Fail("cannot read " + recording.string());
         std::string line;
@@ -125,6 +127,16 @@ int main(int argc, char** argv) {
     }
     // packets.csv: arrival_s,utc_whole_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,roll_deg
     const auto packets = ReadCsv(out / "packets.csv");
+    if (recording == "-") {
+        for (const auto& p : packets) {
+            zenith::track::LiveFix f;
+            f.lat_deg = p[2];
+            f.lon_deg = p[3];
+            f.height_m = p[4];
+            if (!std::isnan(p[1])) f.utc_whole_s = p[1];
+            fixes.push_back(f);
+        }
+    }
     if (packets.size() != fixes.size()) {
         Fail(fmt::format("packets.csv has {} fixes, the recording {}", packets.size(),
                          fixes.size()));
