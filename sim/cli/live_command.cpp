@@ -107,10 +107,11 @@ Command AddLiveCommand(CLI::App& app) {
             fmt::print(
                 stderr,
                 "zenith live: {} frames into {} ({:.3f} s per frame); {} packets, {} "
-                "used, {} malformed; clock reset {} times, {} late packets set aside\n",
+                "used, {} malformed, {} in bursts not interpolated through; clock reset {} times, "
+                "{} late packets set aside\n",
                 result.frames, request.out_dir.string(),
                 result.frames ? result.render_seconds / static_cast<double>(result.frames) : 0.0,
-                result.packets, result.used, result.malformed, result.clock_resets,
+                result.packets, result.used, result.malformed, result.bunched, result.clock_resets,
                 result.late_packets);
             for (const auto& [kind, count] : result.malformed_by_kind) {
                 fmt::print(stderr, "zenith live: warning: {} malformed packets: {}\n", count, kind);

@@ -136,14 +136,24 @@ void Receive(const Socket& socket, track::LiveProtocol protocol, SteadyClock::ti
         if (fix.attitude) timed.attitude = fix.attitude;
         if (!fix.has_position() && !last) continue;  // no position yet
         last = timed;
-        if (!shared.window.empty() && arrival <= shared.window.back().arrival_s) continue;
-        shared.window.push_back(timed);
-        while (shared.window.size() > kLiveWindow) shared.window.pop_front();
+        // A fix that arrives within kLiveMinSpacing of the last one kept (a burst: the
+        // simulator or this machine was stalled) is not interpolated through: its arrival time
+        // says nothing of when it was sent, and the trajectory's tangents would divide its
+        // displacement by that tiny interval (kilometres of overshoot under load).
+        const bool kept =
+            shared.window.empty() || arrival >= shared.window.back().arrival_s + kLiveMinSpacing;
+        if (kept) {
+            shared.window.push_back(timed);
+            while (shared.window.size() > kLiveWindow) shared.window.pop_front();
+        } else {
+            ++shared.counts.bunched;
+        }
         const geo::Attitude a = timed.attitude.value_or(geo::Attitude{});
-        packet_log << fmt::format(
-            "{:.6f},{},{:.9f},{:.9f},{:.3f},{:.4f},{:.4f},{:.4f}\n", arrival,
-            fix.utc_whole_s ? FormatValue(*fix.utc_whole_s) : "", timed.lat_deg, timed.lon_deg,
-            timed.height_m, Degrees(a.heading_rad), Degrees(a.pitch_rad), Degrees(a.roll_rad));
+        packet_log << fmt::format("{:.6f},{},{:.9f},{:.9f},{:.3f},{:.4f},{:.4f},{:.4f},{}\n",
+                                  arrival, fix.utc_whole_s ? FormatValue(*fix.utc_whole_s) : "",
+                                  timed.lat_deg, timed.lon_deg, timed.height_m,
+                                  Degrees(a.heading_rad), Degrees(a.pitch_rad), Degrees(a.roll_rad),
+                                  kept ? 1 : 0);
     }
 }
 
@@ -213,7 +223,7 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
 
     std::ofstream packet_log(r.out_dir / "packets.csv", std::ios::trunc);
     packet_log << "arrival_s,utc_whole_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,"
-                  "roll_deg\n";
+                  "roll_deg,kept\n";
     std::ofstream frame_log(r.out_dir / "live.csv", std::ios::trunc);
     frame_log << "frame,receiver_s,utc_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,"
                  "roll_deg,newest_packet_s,render_s\n";
@@ -316,6 +326,7 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
         result.used = shared.counts.used;
         result.malformed = shared.counts.malformed;
         result.malformed_by_kind = shared.counts.malformed_by_kind;
+        result.bunched = shared.counts.bunched;
         result.first_problems = shared.counts.first_problems;
         result.clock_resets = shared.clock.resets();
         result.late_packets = shared.clock.late_packets();

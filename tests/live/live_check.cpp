@@ -125,7 +125,8 @@ int main(int argc, char** argv) {
             }
         }
     }
-    // packets.csv: arrival_s,utc_whole_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,roll_deg
+    // packets.csv: arrival_s,utc_whole_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,roll_deg,
+    // kept (0: within kLiveMinSpacing of the last kept, not interpolated through)
     const auto packets = ReadCsv(out / "packets.csv");
     if (recording == "-") {
         for (const auto& p : packets) {
@@ -148,8 +149,14 @@ int main(int argc, char** argv) {
             std::abs(p[2] - *f.lat_deg) < 1e-8 && std::abs(p[3] - *f.lon_deg) < 1e-8 &&
             std::abs(p[4] - *f.height_m) < 1e-3 && (!f.utc_whole_s || p[1] == *f.utc_whole_s);
         if (!same) Fail(fmt::format("packets.csv line {} is not datagram {}", i + 2, i));
-        if (i > 0 && !(p[0] > packets[i - 1][0])) Fail("packets.csv arrivals not increasing");
+        if (i > 0 && !(p[0] >= packets[i - 1][0])) Fail("packets.csv arrivals go back");
     }
+    // The frames are checked against the fixes the trajectory went through.
+    std::vector<std::vector<double>> kept;
+    for (const auto& p : packets) {
+        if (p.size() < 9 || p[8] != 0.0) kept.push_back(p);
+    }
+    fmt::print("live_check: {} of {} fixes kept for interpolation\n", kept.size(), packets.size());
     // live.csv: frame,receiver_s,utc_s,lat_deg,lon_deg,height_m,heading_deg,pitch_deg,
     // roll_deg,newest_packet_s,render_s
     const auto frames = ReadCsv(out / "live.csv");
@@ -187,20 +194,18 @@ int main(int argc, char** argv) {
         render_sum += f[10];
         // The packets around t.
         std::size_t after = 0;
-        while (after < packets.size() && packets[after][0] < t) ++after;
+        while (after < kept.size() && kept[after][0] < t) ++after;
         const std::size_t a = after == 0 ? 0 : after - 1;
-        const std::size_t b = std::min(after, packets.size() - 1);
+        const std::size_t b = std::min(after, kept.size() - 1);
         const glm::dvec3 p = Ecef(f[3], f[4], f[5]);
-        const double position =
-            DistanceToSegment(p, Ecef(packets[a][2], packets[a][3], packets[a][4]),
-                              Ecef(packets[b][2], packets[b][3], packets[b][4]));
-        const double chord = glm::length(Ecef(packets[b][2], packets[b][3], packets[b][4]) -
-                                         Ecef(packets[a][2], packets[a][3], packets[a][4]));
+        const double position = DistanceToSegment(p, Ecef(kept[a][2], kept[a][3], kept[a][4]),
+                                                  Ecef(kept[b][2], kept[b][3], kept[b][4]));
+        const double chord = glm::length(Ecef(kept[b][2], kept[b][3], kept[b][4]) -
+                                         Ecef(kept[a][2], kept[a][3], kept[a][4]));
         const double allowed = std::max(kPositionTolerance, kChordFraction * chord);
         worst_position = std::max(worst_position, position / allowed);
         for (std::size_t c = 6; c <= 8; ++c) {
-            worst_angle =
-                std::max(worst_angle, OutsideArc(f[c], packets[a][c - 1], packets[b][c - 1]));
+            worst_angle = std::max(worst_angle, OutsideArc(f[c], kept[a][c - 1], kept[b][c - 1]));
         }
         // The clock, once the stream has run kClockSettle seconds: the offset it used against
         // the best lower bound the whole stream gives.

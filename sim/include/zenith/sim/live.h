@@ -12,7 +12,8 @@
 //
 // Every every_s seconds (receiver time) a frame is rendered and written under out_dir as
 // frame_NNNNNN.png / .exr (atomically: a reader never sees half a frame); live.csv gets one
-// line per frame with what it was drawn from, packets.csv one line per usable packet. It stops
+// line per frame with what it was drawn from, packets.csv one line per usable packet (and
+// whether it was kept for interpolation: one within kLiveMinSpacing of the last is not). It stops
 // after max_frames frames, after duration_s seconds, or when `stop` becomes true (SIGINT,
 // SIGTERM), after the frame in progress.
 //
@@ -38,6 +39,8 @@ namespace zenith::sim {
 inline constexpr std::size_t kLiveWindow = 64;        // fixes kept for interpolation
 inline constexpr std::size_t kLiveProblemsKept = 16;  // first problems listed in the result
 inline constexpr std::size_t kMaxLiveFrames = 10'000'000;
+// Fixes arriving closer than this to the last one kept are not interpolated through (a burst).
+inline constexpr double kLiveMinSpacing = 0.02;  // s
 
 // "fg-native" | "fg-generic" | "xplane"; throws ArgumentError (field "protocol").
 track::LiveProtocol ParseLiveProtocol(const std::string& text);
@@ -73,7 +76,9 @@ struct LiveResult {
     std::map<std::string, std::size_t> malformed_by_kind;
     std::vector<std::string> first_problems;
     int clock_resets = 0;
-    int late_packets = 0;  // stamped earlier than the clock allows, set aside (WholeSecondClock)
+    int late_packets = 0;
+    std::size_t bunched = 0;  // fixes that came within kLiveMinSpacing of the last one kept  //
+                              // stamped earlier than the clock allows, set aside (WholeSecondClock)
     bool interrupted = false;
     int port = 0;
     double render_seconds = 0.0;  // rendering and writing, all frames
