@@ -2,7 +2,8 @@
 # `zenith live` end to end: packet streams recorded from a real FlightGear flight
 # (tests/data/live/README.md) are sent again at their recorded timing into `zenith live` on
 # loopback, with a few malformed datagrams first; live_check then compares the frames it wrote
-# with the packets (positions, attitudes, clock), and SIGINT must stop it cleanly (exit 130).
+# with the packets (positions, attitudes, clock), and SIGINT / SIGTERM must stop it cleanly
+# (exit 130 / 143, every frame whole).
 # Usage: live_replay_test.sh zenith udp_stream live_check fixture_dir
 set -uo pipefail
 zenith=$(realpath "$1")
@@ -53,7 +54,8 @@ for protocol in fg-native fg-generic; do
 done
 wait "${senders[@]}"
 sleep 1
-kill -INT "$pid_fg_native" "$pid_fg_generic"
+kill -INT "$pid_fg_native"
+kill -TERM "$pid_fg_generic"
 wait "$pid_fg_native"
 rc_native=$?
 wait "$pid_fg_generic"
@@ -61,7 +63,7 @@ rc_generic=$?
 pids=()
 cat "$work/fg-native.log" "$work/fg-generic.log"
 check "SIGINT stops the native receiver with 130" test "$rc_native" -eq 130
-check "SIGINT stops the generic receiver with 130" test "$rc_generic" -eq 130
+check "SIGTERM stops the generic receiver with 143" test "$rc_generic" -eq 143
 
 rc=$rc_native err=$(cat "$work/fg-native.log")
 check "native: the three malformed datagrams are counted and named" \
@@ -69,7 +71,7 @@ check "native: the three malformed datagrams are counted and named" \
     "little-endian"
 rc=$rc_generic err=$(cat "$work/fg-generic.log")
 check "generic: the two malformed lines are counted and named" \
-    exited_saying 130 "2 malformed" "latitude = 95 deg" "1 fields"
+    exited_saying 143 "2 malformed" "latitude = 95 deg" "1 fields"
 
 # Frames against the packets. The streams are ~40 s long: at least 60 frames at 2 a second.
 check "native: frames follow the packets" \
