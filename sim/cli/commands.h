@@ -17,6 +17,7 @@ Command AddEphemerisCommand(CLI::App& app);  // ephemeris_command.cpp
 Command AddRenderCommand(CLI::App& app);     // render_command.cpp
 Command AddReplayCommand(CLI::App& app);     // replay_command.cpp
 Command AddInfoCommand(CLI::App& app);       // info_command.cpp
+Command AddLiveCommand(CLI::App& app);       // live_command.cpp
 
 // The command-line option of a library field named in an ArgumentError ("" if none).
 std::string FlagForField(const std::string& field);

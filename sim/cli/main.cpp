@@ -1,4 +1,4 @@
-// zenith — the command-line front end: `zenith ephemeris`, `render`, `replay`, `info`. Each
+// zenith — the command-line front end: `zenith ephemeris`, `render`, `replay`, `info`, `live`. Each
 // subcommand is in its own file (commands.h); this one parses and reports errors.
 #include <fmt/format.h>
 
@@ -42,6 +42,13 @@ std::string FlagForField(const std::string& field) {
         {"metar_file", "--metar-file"},
         {"station_elevation", "--station-elevation"},
         {"visibility", "--metar"},
+        {"protocol", "--fg-native/--fg-generic/--xplane"},
+        {"port", "--fg-native/--fg-generic/--xplane"},
+        {"bind_address", "--bind"},
+        {"every_s", "--every"},
+        {"delay_s", "--delay"},
+        {"frames", "--frames"},
+        {"duration_s", "--duration"},
     };
     const auto it = kFlags.find(field);
     return it == kFlags.end() ? std::string() : it->second;
@@ -55,7 +62,8 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("zenith ") + kVersion);
     const cli::Command commands[] = {cli::AddEphemerisCommand(app), cli::AddRenderCommand(app),
-                                     cli::AddReplayCommand(app), cli::AddInfoCommand(app)};
+                                     cli::AddReplayCommand(app), cli::AddInfoCommand(app),
+                                     cli::AddLiveCommand(app)};
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
