@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "host_frame.h"
+#include "luminance.h"
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
@@ -32,6 +33,8 @@
 namespace zenith::sim {
 namespace {
 
+using zenith::test::Luminance;
+
 constexpr int kWidth = 64, kHeight = 8;
 constexpr int kRow = kHeight / 2;      // the row just above the horizon
 constexpr double kVerticalFov = 0.02;  // rad: row 4's centre is 0.07 deg up
@@ -39,8 +42,6 @@ constexpr double kNear = 0.1;
 constexpr double kEyeHeight = 2.0;  // m above the ground
 constexpr double kLat = 46.5, kLon = 8.0;
 constexpr const char* kTime = "2024-06-21T09:00:00Z";  // Sun ~55 deg up, in the south-east
-
-double Y(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 class MetarFramesTest : public ::testing::Test {
   protected:
@@ -94,14 +95,15 @@ class MetarFramesTest : public ::testing::Test {
         std::vector<double> contrast(kWidth);
         for (int x = 0; x < kWidth; ++x) {
             const std::size_t i = static_cast<std::size_t>(kRow * kWidth + x);
-            contrast[static_cast<std::size_t>(x)] = (Y(sky[i]) - Y(targets[i])) / Y(sky[i]);
+            contrast[static_cast<std::size_t>(x)] =
+                (Luminance(sky[i]) - Luminance(targets[i])) / Luminance(sky[i]);
         }
         if (std::getenv("ZENITH_DEBUG_VR") != nullptr) {
             for (int x = 0; x < kWidth; x += 4) {
                 const std::size_t i = static_cast<std::size_t>(kRow * kWidth + x);
                 std::printf("  d %8.1f sky %.5g target %.5g C %.4f\n",
-                            distance[static_cast<std::size_t>(x)], Y(sky[i]), Y(targets[i]),
-                            contrast[static_cast<std::size_t>(x)]);
+                            distance[static_cast<std::size_t>(x)], Luminance(sky[i]),
+                            Luminance(targets[i]), contrast[static_cast<std::size_t>(x)]);
             }
             const sky::reference::AtmosphereReference reference(sky_->atmosphere());
             const sky::SkyState state = sky::MakeSkyState(
@@ -113,10 +115,11 @@ class MetarFramesTest : public ::testing::Test {
                 const glm::dvec4 ap = reference.InScattering(state.view.camera.position, dir,
                                                              state.scene.lights, d, 4000);
                 std::printf("  reference d %9.1f L %.5g T %.4g\n", d,
-                            Y(glm::vec4(glm::vec3(ap), 0.0f)), ap.w);
+                            Luminance(glm::vec4(glm::vec3(ap), 0.0f)), ap.w);
             }
-            std::printf("  reference ray march %.5g\n",
-                        Y(glm::vec4(glm::vec3(reference.RayMarch(state.view.camera.position, dir,
+            std::printf(
+                "  reference ray march %.5g\n",
+                Luminance(glm::vec4(glm::vec3(reference.RayMarch(state.view.camera.position, dir,
                                                                  state.scene.lights, 4000)),
                                     0.0f)));
         }

@@ -12,6 +12,7 @@
 
 #include "colour_target.h"
 #include "host_frame.h"
+#include "luminance.h"
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
@@ -21,7 +22,7 @@
 namespace zenith::sim {
 namespace {
 
-double Y(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+using zenith::test::Luminance;
 
 class SkySystemTest : public ::testing::Test {
   protected:
@@ -55,13 +56,16 @@ TEST_F(SkySystemTest, SkyLightUnderTheOvercastIsTheClouds) {
     const SkyLighting under = sky->lighting();
     EXPECT_LT(under.sky_cloud_transmittance, 0.3);
     const double up = std::max(under.sun_direction_enu.z, 0.0);
-    const double total = Y(under.sun_illuminance) * up + Y(under.sky_irradiance);
-    const double clear_total = Y(clear.sun_illuminance) * up + Y(clear.sky_irradiance);
-    std::printf("under overcast_stratus at noon: sky %.0f lux (clear %.0f), total %.0f lux = %.3f "
-                "of the clear sky's\n",
-                Y(under.sky_irradiance), Y(clear.sky_irradiance), total, total / clear_total);
-    EXPECT_LT(Y(under.sun_illuminance), 0.2 * Y(clear.sun_illuminance));
-    EXPECT_GT(Y(under.sky_irradiance), 2.0 * Y(clear.sky_irradiance));
+    const double total = Luminance(under.sun_illuminance) * up + Luminance(under.sky_irradiance);
+    const double clear_total =
+        Luminance(clear.sun_illuminance) * up + Luminance(clear.sky_irradiance);
+    std::printf(
+        "under overcast_stratus at noon: sky %.0f lux (clear %.0f), total %.0f lux = %.3f "
+        "of the clear sky's\n",
+        Luminance(under.sky_irradiance), Luminance(clear.sky_irradiance), total,
+        total / clear_total);
+    EXPECT_LT(Luminance(under.sun_illuminance), 0.2 * Luminance(clear.sun_illuminance));
+    EXPECT_GT(Luminance(under.sky_irradiance), 2.0 * Luminance(clear.sky_irradiance));
     EXPECT_GT(total / clear_total, 0.2);
     EXPECT_LT(total / clear_total, 0.9);
 
@@ -82,10 +86,10 @@ TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
     EXPECT_GT(day.sun_elevation, glm::radians(60.0));
     // Direct sun at the ground with the sun 66 deg up: ~100 klux (Frostbite 2016 §4.1.1:
     // 100,000-120,000 lux), the sky another ~15 klux on a horizontal surface.
-    EXPECT_GT(Y(day.sun_illuminance), 90000.0);
-    EXPECT_LT(Y(day.sun_illuminance), 125000.0);
-    EXPECT_GT(Y(day.sky_irradiance), 5000.0);
-    EXPECT_LT(Y(day.sky_irradiance), 40000.0);
+    EXPECT_GT(Luminance(day.sun_illuminance), 90000.0);
+    EXPECT_LT(Luminance(day.sun_illuminance), 125000.0);
+    EXPECT_GT(Luminance(day.sky_irradiance), 5000.0);
+    EXPECT_LT(Luminance(day.sky_irradiance), 40000.0);
     EXPECT_NEAR(glm::length(day.sun_direction_enu), 1.0, 1e-12);
     EXPECT_NEAR(glm::length(day.sun_direction_ecef), 1.0, 1e-12);
 
@@ -93,11 +97,11 @@ TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
     sky_->Update();
     const SkyLighting& night = sky_->lighting();
     EXPECT_EQ(night.phase, DayPhase::kNight);
-    EXPECT_EQ(Y(night.sun_illuminance), 0.0);
+    EXPECT_EQ(Luminance(night.sun_illuminance), 0.0);
     // Full Moon (2024-06-22) and up: a fraction of a lux.
     EXPECT_GT(night.moon_illuminated_fraction, 0.95);
-    EXPECT_GT(Y(night.moon_illuminance), 0.01);
-    EXPECT_LT(Y(night.moon_illuminance), 0.4);
+    EXPECT_GT(Luminance(night.moon_illuminance), 0.01);
+    EXPECT_LT(Luminance(night.moon_illuminance), 0.4);
 }
 
 // Under an overcast deck the Sun reaching the aircraft is what the clouds let through: the

@@ -9,12 +9,15 @@
 
 #include "draw_frame.h"
 #include "gl_test_support.h"
+#include "luminance.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/inspection.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 
 namespace zenith::sky {
 namespace {
+
+using test::Luminance;
 
 struct Difference {
     double max_absolute = 0.0;
@@ -99,14 +102,13 @@ TEST_F(AtmosphereGlTest, FrameLutsMatchTheCpuReference) {
 }
 
 // Luminance (Rec.709 Y) of a frame's texel.
-double Y(const glm::vec4& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
 double RelativeRmse(const LutImage& a, const LutImage& b) {
     double sum_sq = 0.0, sum = 0.0;
     for (std::size_t i = 0; i < a.texels.size(); ++i) {
-        const double d = Y(a.texels[i]) - Y(b.texels[i]);
+        const double d = Luminance(a.texels[i]) - Luminance(b.texels[i]);
         sum_sq += d * d;
-        sum += Y(b.texels[i]);
+        sum += Luminance(b.texels[i]);
     }
     const double n = static_cast<double>(a.texels.size());
     return std::sqrt(sum_sq / n) / (sum / n);
@@ -129,7 +131,7 @@ TEST_F(AtmosphereGlTest, FrameMatchesTheCpuSkyViewLookup) {
             const glm::dvec3 expected =
                 cpu.SampleSkyView(sky_view, camera.position, lights.sun_direction, direction);
             const double e = 0.2126 * expected.x + 0.7152 * expected.y + 0.0722 * expected.z;
-            worst = std::max(worst, std::abs(Y(frame.at(x, y)) - e) / std::max(e, 1.0));
+            worst = std::max(worst, std::abs(Luminance(frame.at(x, y)) - e) / std::max(e, 1.0));
         }
     }
     std::printf("frame vs CPU Sky-View lookup: max relative %.2e\n", worst);
@@ -168,7 +170,7 @@ double FrameIlluminance(const LutImage& frame, const Camera& camera) {
         for (int x = 0; x < frame.size.x; ++x) {
             const double u = ((x + 0.5) / frame.size.x * 2.0 - 1.0) * tan_x;
             const double v = ((y + 0.5) / frame.size.y * 2.0 - 1.0) * tan_y;
-            sum += Y(frame.at(x, y)) * dx * dy / std::pow(1.0 + u * u + v * v, 1.5);
+            sum += Luminance(frame.at(x, y)) * dx * dy / std::pow(1.0 + u * u + v * v, 1.5);
         }
     }
     return sum;
@@ -191,7 +193,7 @@ TEST_F(AtmosphereGlTest, SunDiskAndStarsIntegrateToTheirIlluminance) {
     AtmosphereRenderer gpu(Atmosphere{});
     Lights lights;
     lights.sun_direction = glm::normalize(glm::dvec3(0.0, 0.3, 1.0));
-    const double sun_y = Y(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
+    const double sun_y = Luminance(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
     const glm::ivec2 size(256, 256);
     // Resolved disk: 2 deg field, the Sun 0.27 deg across 34 pixels in radius.
     Camera camera = SpaceCameraLookingAt(lights.sun_direction, 2.0 * 0.017453292519943295);
@@ -233,7 +235,7 @@ TEST_F(AtmosphereGlTest, OffAxisSunDiskIsDrawnWhole) {
     lights.sun_direction = glm::normalize(-camera.world_from_view[2] * std::cos(off_axis) +
                                           diagonal * std::sin(off_axis));
     const LutImage frame = test::DrawFrame(gpu, test::LightsOnly(lights), {camera}, {512, 512});
-    const double sun_y = Y(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
+    const double sun_y = Luminance(glm::vec4(glm::vec3(lights.sun_illuminance), 0.0f));
     const double ratio = FrameIlluminance(frame, camera) / sun_y;
     std::printf("off-axis sun disk: integrated / true illuminance %.4f\n", ratio);
     EXPECT_NEAR(ratio, 1.0, 0.01);
@@ -252,7 +254,7 @@ TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {
     const LutImage frame = test::DrawFrame(gpu, scene, {camera}, {128, 128});
     double left_sum = 0.0, right_sum = 0.0;
     for (int y = 0; y < 128; ++y) {
-        for (int x = 0; x < 128; ++x) (x < 64 ? left_sum : right_sum) += Y(frame.at(x, y));
+        for (int x = 0; x < 128; ++x) (x < 64 ? left_sum : right_sum) += Luminance(frame.at(x, y));
     }
     EXPECT_GT(right_sum, 0.0);
     EXPECT_LT(left_sum, 1e-3 * right_sum);

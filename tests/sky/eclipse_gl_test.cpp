@@ -13,6 +13,7 @@
 
 #include "draw_frame.h"
 #include "gl_test_support.h"
+#include "luminance.h"
 #include "zenith/geo/eclipse.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/sky/atmosphere_renderer.h"
@@ -24,8 +25,7 @@
 namespace zenith::sky {
 namespace {
 
-double Y(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-double Y(const glm::vec4& c) { return Y(glm::dvec3(c.x, c.y, c.z)); }
+using test::Luminance;
 
 struct Scene {
     geo::SkyEphemeris ephemeris;
@@ -95,16 +95,16 @@ TEST_F(EclipseFrames, PartialEclipseCrescentCarriesTheUncoveredLight) {
         for (int x = 0; x < size.x; ++x) {
             const glm::vec4 d = with_disk.at(x, y) - sky.at(x, y);
             disk += glm::dvec3(d.x, d.y, d.z) * pixel * pixel;
-            if (Y(d) > 1e6) ++lit;
+            if (Luminance(d) > 1e6) ++lit;
         }
     }
     const glm::dvec3 through_air =
         state.scene.lights.sun_illuminance *
         TransmittanceToLight(Atmosphere{}, 180.0, sun.direction_enu.z, eclipse.sun_radius);
     std::printf("crescent: %.0f lux drawn, %.0f lux expected (%d pixels lit of %.0f in the disk)\n",
-                Y(disk), Y(through_air), lit,
+                Luminance(disk), Luminance(through_air), lit,
                 glm::pi<double>() * std::pow(eclipse.sun_radius / pixel, 2));
-    EXPECT_NEAR(Y(disk) / Y(through_air), 1.0, 0.03);
+    EXPECT_NEAR(Luminance(disk) / Luminance(through_air), 1.0, 0.03);
     // A crescent: far fewer lit pixels than the whole disk, but some.
     const double disk_pixels = glm::pi<double>() * std::pow(eclipse.sun_radius / pixel, 2);
     EXPECT_GT(lit, 0.5 * (1.0 - eclipse.obscuration) * disk_pixels);
@@ -115,11 +115,13 @@ TEST_F(EclipseFrames, PartialEclipseCrescentCarriesTheUncoveredLight) {
     const SkyState up = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
                                      {0.0, glm::radians(90.0), 0.0}, glm::radians(10.0), 1.0);
     const glm::ivec2 small(32, 32);
-    const double eclipsed = Y(Render(up, up.scene.lights, small, false).at(16, 16));
-    const double clear = Y(Render(up, Uneclipsed(up.scene.lights), small, false).at(16, 16));
+    const double eclipsed = Luminance(Render(up, up.scene.lights, small, false).at(16, 16));
+    const double clear =
+        Luminance(Render(up, Uneclipsed(up.scene.lights), small, false).at(16, 16));
     std::printf("zenith sky: %.1f cd/m^2 eclipsed, %.1f clear: ratio %.4f, light left %.4f\n",
-                eclipsed, clear, eclipsed / clear, Y(eclipse.uncovered_flux));
-    EXPECT_NEAR(eclipsed / clear, Y(eclipse.uncovered_flux), 0.15 * Y(eclipse.uncovered_flux));
+                eclipsed, clear, eclipsed / clear, Luminance(eclipse.uncovered_flux));
+    EXPECT_NEAR(eclipsed / clear, Luminance(eclipse.uncovered_flux),
+                0.15 * Luminance(eclipse.uncovered_flux));
 }
 
 // Dallas in totality (2024-04-08 18:42 UT, 2 min into its 3 min 52 s): the zenith three orders
@@ -133,12 +135,13 @@ TEST_F(EclipseFrames, TotalityIsDarkAtTheZenithWithABrightHorizon) {
     const SkyState up = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
                                      {0.0, glm::radians(90.0), 0.0}, glm::radians(10.0), 1.0);
     EXPECT_EQ(up.scene.lights.sun_illuminance, glm::dvec3(0.0));
-    const double zenith = Y(Render(up, up.scene.lights, small, false).at(16, 16));
-    const double daylight = Y(Render(up, Uneclipsed(up.scene.lights), small, false).at(16, 16));
+    const double zenith = Luminance(Render(up, up.scene.lights, small, false).at(16, 16));
+    const double daylight =
+        Luminance(Render(up, Uneclipsed(up.scene.lights), small, false).at(16, 16));
     // The horizon opposite the Sun (the Sun is at 188 deg azimuth, 65 deg up), 1 deg up.
     const SkyState level = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
                                         {0.0, glm::radians(1.0), 0.0}, glm::radians(10.0), 1.0);
-    const double horizon = Y(Render(level, level.scene.lights, small, false).at(16, 16));
+    const double horizon = Luminance(Render(level, level.scene.lights, small, false).at(16, 16));
     std::printf("totality: zenith %.3g cd/m^2 (daylight %.3g, ratio %.2g), north horizon %.3g\n",
                 zenith, daylight, zenith / daylight, horizon);
     // Measured: "about four orders of magnitude" below the day sky (Dandekar & Turtle 1971,
@@ -159,18 +162,18 @@ TEST_F(EclipseFrames, TotalityIsDarkAtTheZenithWithABrightHorizon) {
     const LutImage with_disk = Render(view, view.scene.lights, size, true);
     const LutImage sky = Render(view, view.scene.lights, size, false);
     const double pixel = 2.0 * std::tan(0.5 * fov) / size.y;
-    const double mean_disk = Y(view.scene.lights.eclipse.unobscured_illuminance) /
+    const double mean_disk = Luminance(view.scene.lights.eclipse.unobscured_illuminance) /
                              (glm::pi<double>() * eclipse.sun_radius * eclipse.sun_radius);
     const auto corona_at = [&](double radii) {  // to the right of the centre (pixel 64 + r)
         const int x = 64 + static_cast<int>(std::lround(radii * eclipse.sun_radius / pixel));
-        return Y(with_disk.at(x, 64) - sky.at(x, 64));
+        return Luminance(with_disk.at(x, 64) - sky.at(x, 64));
     };
-    const double centre = Y(with_disk.at(64, 64) - sky.at(64, 64));
+    const double centre = Luminance(with_disk.at(64, 64) - sky.at(64, 64));
     std::printf("corona / mean disk: %.3g at 1.1, %.3g at 2, %.3g at 3 radii; centre %.3g\n",
                 corona_at(1.1) / mean_disk, corona_at(2.0) / mean_disk, corona_at(3.0) / mean_disk,
                 centre);
     EXPECT_EQ(centre, 0.0);  // the Moon
-    const double t = Y(TransmittanceToLight(Atmosphere{}, 140.0, sun.direction_enu.z, 0.0));
+    const double t = Luminance(TransmittanceToLight(Atmosphere{}, 140.0, sun.direction_enu.z, 0.0));
     EXPECT_GT(corona_at(1.1) / mean_disk / t, 0.5e-6);
     EXPECT_LT(corona_at(1.1) / mean_disk / t, 3e-6);
     EXPECT_GT(corona_at(1.1), 10.0 * corona_at(2.0));
@@ -194,11 +197,11 @@ TEST_F(EclipseFrames, EclipsedSkyViewMatchesTheCpuReference) {
         const LutImage reference = cpu.SkyView(state.view.camera.position, state.scene.lights);
         ASSERT_EQ(gpu.size, reference.size);
         double mean = 0.0;
-        for (const glm::vec4& t : reference.texels) mean += Y(t);
+        for (const glm::vec4& t : reference.texels) mean += Luminance(t);
         mean /= static_cast<double>(reference.texels.size());
         double worst = 0.0;
         for (std::size_t i = 0; i < gpu.texels.size(); ++i) {
-            const double a = Y(gpu.texels[i]), b = Y(reference.texels[i]);
+            const double a = Luminance(gpu.texels[i]), b = Luminance(reference.texels[i]);
             worst = std::max(worst, std::abs(a - b) / std::max(std::abs(b), 1e-3 * mean));
         }
         std::printf("%s: eclipsed Sky-View GPU vs CPU max relative %.2e (mean %.3g cd/m^2)\n", utc,
@@ -224,10 +227,10 @@ TEST_F(EclipseFrames, EclipsedMoonFollowsThePenumbraAndIsRedInTheUmbra) {
     for (const char* utc : {"2022-11-08T08:40:00Z", "2022-11-08T08:55:00Z", "2022-11-08T09:10:00Z",
                             "2022-11-08T09:25:00Z"}) {
         const auto [state, geometry] = moon_state(utc);
-        const double direct = Y(geometry.direct_sunlight);
-        const double refracted = Y(state.scene.moon.sunlight - geometry.direct_sunlight);
-        const double ratio =
-            Y(state.scene.lights.moon_illuminance) / Y(before.scene.lights.moon_illuminance);
+        const double direct = Luminance(geometry.direct_sunlight);
+        const double refracted = Luminance(state.scene.moon.sunlight - geometry.direct_sunlight);
+        const double ratio = Luminance(state.scene.lights.moon_illuminance) /
+                             Luminance(before.scene.lights.moon_illuminance);
         std::printf(
             "%s: direct sunlight %.4f + refracted %.4f, Moon illuminance / uneclipsed "
             "%.4f\n",
@@ -247,8 +250,8 @@ TEST_F(EclipseFrames, EclipsedMoonFollowsThePenumbraAndIsRedInTheUmbra) {
     const glm::dvec3 umbra = total.scene.moon.sunlight;
     std::printf("umbra: refracted light %.3g %.3g %.3g (rgb) of the Sun's, red/blue %.1f\n",
                 umbra.x, umbra.y, umbra.z, umbra.x / umbra.z);
-    EXPECT_GT(Y(umbra), 1e-5);
-    EXPECT_LT(Y(umbra), 1e-3);
+    EXPECT_GT(Luminance(umbra), 1e-5);
+    EXPECT_LT(Luminance(umbra), 1e-3);
     EXPECT_GT(umbra.x / umbra.z, 5.0);
     EXPECT_GT(umbra.x, umbra.y);
 
@@ -264,7 +267,7 @@ TEST_F(EclipseFrames, EclipsedMoonFollowsThePenumbraAndIsRedInTheUmbra) {
     const LutImage eclipsed_frame = Render(view, view.scene.lights, size);
     const LutImage full_frame = Render(uneclipsed, view.scene.lights, size);
     const glm::vec4 e = eclipsed_frame.at(32, 32), f = full_frame.at(32, 32);
-    std::printf("Moon's centre: %.4g cd/m^2 eclipsed, %.4g full\n", Y(e), Y(f));
+    std::printf("Moon's centre: %.4g cd/m^2 eclipsed, %.4g full\n", Luminance(e), Luminance(f));
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(e[c] / f[c], umbra[c], 0.02 * umbra[c] + 1e-7) << c;
     }

@@ -14,6 +14,7 @@
 #include <ostream>
 #include <string>
 
+#include "luminance.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
@@ -23,6 +24,8 @@
 
 namespace zenith::sky {
 namespace {
+
+using test::Luminance;
 
 namespace fs = std::filesystem;
 
@@ -82,8 +85,6 @@ void PrintTo(const Scene& scene, std::ostream* os) { *os << scene.name; }
 fs::path GoldenPath(const Scene& s) {
     return fs::path(ZENITH_SOURCE_DIR) / "tests" / "golden" / (std::string(s.name) + ".exr");
 }
-
-double Luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 class GoldenFrames : public ::testing::TestWithParam<Scene> {
   protected:

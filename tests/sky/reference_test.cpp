@@ -11,10 +11,13 @@
 #include <numbers>
 #include <vector>
 
+#include "luminance.h"
 #include "zenith/sky/reference/path_tracer.h"
 
 namespace zenith::sky::reference {
 namespace {
+
+using test::Luminance;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -24,10 +27,6 @@ constexpr std::int64_t kPathScale = 4;
 #else
 constexpr std::int64_t kPathScale = 1;
 #endif
-
-double Luminance(const glm::dvec3& rgb) {
-    return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b;  // Rec.709 (atmosphere.h)
-}
 
 glm::dvec3 SunAt(double elevation) { return {std::cos(elevation), std::sin(elevation), 0.0}; }
 

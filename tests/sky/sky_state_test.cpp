@@ -1,5 +1,6 @@
 #include "zenith/sky/sky_state.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "error_matchers.h"
 #include "zenith/base/error.h"
 #include "zenith/geo/planets.h"
 #include "zenith/geo/stars.h"
@@ -136,17 +138,14 @@ TEST(SkyFrame, BuildsTheSameFrameAsMakeSkyStateAndChecksTheProjection) {
 
     for (const double fov_deg : {0.0, 180.0, -10.0, std::nan("")}) {
         setup.vertical_fov = glm::radians(fov_deg);
-        try {
-            BuildSkyFrame(geo::Ephemeris(), setup, earth);
-            ADD_FAILURE() << fov_deg << " deg was accepted";
-        } catch (const ArgumentError& e) {
-            EXPECT_EQ(e.field(), "fov_deg");
-            EXPECT_NE(std::string(e.what()).find("(0, 180) deg"), std::string::npos) << e.what();
-        }
+        EXPECT_THAT([&] { BuildSkyFrame(geo::Ephemeris(), setup, earth); },
+                    test::ThrowsArgumentError("fov_deg", ::testing::HasSubstr("(0, 180) deg")))
+            << fov_deg;
     }
     setup.vertical_fov = 1.0;
     setup.aspect = 0.0;
-    EXPECT_THROW(BuildSkyFrame(geo::Ephemeris(), setup, earth), ArgumentError);
+    EXPECT_THAT([&] { BuildSkyFrame(geo::Ephemeris(), setup, earth); },
+                test::ThrowsArgumentError("aspect", ::testing::HasSubstr("aspect = 0")));
 }
 
 }  // namespace
