@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <functional>
 #include <string>
 
@@ -18,6 +19,13 @@ Command AddRenderCommand(CLI::App& app);     // render_command.cpp
 Command AddReplayCommand(CLI::App& app);     // replay_command.cpp
 Command AddInfoCommand(CLI::App& app);       // info_command.cpp
 Command AddLiveCommand(CLI::App& app);       // live_command.cpp
+
+// Long runs (replay, live) stop after the frame in progress on Ctrl-C or a scheduler's SIGTERM:
+// StopOnSignals installs the handlers and returns the flag the run polls; once it has stopped,
+// StoppedExitCode is the shell's convention, 128 + the signal (130 for SIGINT, 143 for
+// SIGTERM). stop_signal.cpp.
+const std::atomic<bool>& StopOnSignals();
+int StoppedExitCode();
 
 // The command-line option of a library field named in an ArgumentError ("" if none).
 std::string FlagForField(const std::string& field);

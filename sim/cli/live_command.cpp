@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <atomic>
-#include <csignal>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,16 +13,6 @@
 #include "zenith/sim/render_frame.h"
 
 namespace zenith::cli {
-namespace {
-
-std::atomic<bool> g_stop{false};
-std::atomic<int> g_signal{0};
-extern "C" void OnLiveInterrupt(int signal) {
-    g_signal.store(signal);
-    g_stop.store(true);
-}
-
-}  // namespace
 
 Command AddLiveCommand(CLI::App& app) {
     struct Args {
@@ -98,9 +87,8 @@ Command AddLiveCommand(CLI::App& app) {
             request.duration_s = args->duration;
             // Ctrl-C or SIGTERM: stop after the frame in progress (every written frame is
             // whole); exit 128 + the signal, as `zenith replay` does.
-            std::signal(SIGINT, OnLiveInterrupt);
-            std::signal(SIGTERM, OnLiveInterrupt);
-            const sim::LiveResult result = sim::RunLive(request, g_stop, [&](int port) {
+            const std::atomic<bool>& stop = StopOnSignals();
+            const sim::LiveResult result = sim::RunLive(request, stop, [&](int port) {
                 fmt::print(stderr, "zenith live: listening for {} on udp {}:{}\n",
                            track::LiveProtocolName(request.protocol), request.bind_address, port);
             });
@@ -121,7 +109,7 @@ Command AddLiveCommand(CLI::App& app) {
             }
             if (result.interrupted) {
                 fmt::print(stderr, "zenith live: stopped; every written frame is complete\n");
-                return 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
+                return StoppedExitCode();
             }
             return 0;
         }};

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <csignal>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,13 +15,6 @@
 
 namespace zenith::cli {
 namespace {
-
-std::atomic<bool> g_stop{false};
-std::atomic<int> g_signal{0};
-extern "C" void OnInterrupt(int signal) {
-    g_signal.store(signal);
-    g_stop.store(true);
-}
 
 int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
                      const std::string& exposure, const std::string& format,
@@ -42,8 +34,7 @@ int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
         request.shard = *from_slurm;
     }
     // Ctrl-C (or a scheduler's SIGTERM) stops after the frame in progress; rerun to resume.
-    std::signal(SIGINT, OnInterrupt);
-    std::signal(SIGTERM, OnInterrupt);
+    const std::atomic<bool>& stop = StopOnSignals();
     const bool tty = isatty(STDERR_FILENO) != 0;
     std::size_t last_line = 0;
     auto on_progress = [&](const sim::ReplayProgress& p) {
@@ -67,7 +58,7 @@ int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
     };
     fmt::print(stderr, "zenith replay: {} (shard {}/{})\n", request.flight.string(),
                request.shard.index, request.shard.count);
-    const sim::ReplayResult result = sim::RunReplay(request, g_stop, on_progress);
+    const sim::ReplayResult result = sim::RunReplay(request, stop, on_progress);
     if (tty) fmt::print(stderr, "\n");
     fmt::print(stderr, "{}\n", result.log_summary);
     fmt::print(stderr,
@@ -90,7 +81,7 @@ int RunReplayCommand(sim::ReplayRequest request, const std::string& size,
                    "zenith replay: stopped; every written frame is complete; run the same "
                    "command again to resume\n");
         // The shell's convention: 128 + the signal (130 for SIGINT, 143 for SIGTERM).
-        return 128 + (g_signal.load() != 0 ? g_signal.load() : SIGINT);
+        return StoppedExitCode();
     }
     return 0;
 }
