@@ -42,6 +42,8 @@ std::string FlagForField(const std::string& field) {
         {"metar_file", "--metar-file"},
         {"station_elevation", "--station-elevation"},
         {"visibility", "--metar"},
+        {"bortle_class", "--bortle"},
+        {"artificial_zenith_brightness", "--light-pollution"},
     };
     const auto it = kFlags.find(field);
     return it == kFlags.end() ? std::string() : it->second;
