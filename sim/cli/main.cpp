@@ -49,6 +49,8 @@ std::string FlagForField(const std::string& field) {
         {"delay_s", "--delay"},
         {"frames", "--frames"},
         {"duration_s", "--duration"},
+        {"bortle_class", "--bortle"},
+        {"artificial_zenith_brightness", "--light-pollution"},
     };
     const auto it = kFlags.find(field);
     return it == kFlags.end() ? std::string() : it->second;

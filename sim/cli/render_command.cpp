@@ -1,7 +1,9 @@
 // `zenith render`: one frame offscreen to EXR or PNG.
 #include <fmt/format.h>
 
+#include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "commands.h"
@@ -40,6 +42,8 @@ Command AddRenderCommand(CLI::App& app) {
         sim::FrameRequest frame;
         std::string size = "1280x720", exposure = "auto", quality = "pc", out = "zenith.png";
         std::string metar, metar_file;
+        std::optional<int> bortle;
+        std::optional<double> light_pollution;
     };
     const auto args = std::make_shared<Args>();
     sim::FrameRequest& frame = args->frame;
@@ -89,8 +93,28 @@ Command AddRenderCommand(CLI::App& app) {
     render->add_option("--station-elevation", frame.station_elevation_m,
                        "the METAR station's elevation above mean sea level, metres (default: "
                        "the ground under the observer)");
+    auto* bortle = render->add_option(
+        "--bortle", args->bortle,
+        "light pollution as a Bortle class 1..9: the zenith's total brightness is the middle of "
+        "the class's sky-quality-meter range (zenith/sky/night_sky.h)");
+    render
+        ->add_option("--light-pollution", args->light_pollution,
+                     "artificial zenith sky brightness, V mag/arcsec^2 (e.g. 20 for a suburb)")
+        ->excludes(bortle);
+    render->add_flag("!--no-night-sky", frame.night_sky.enabled,
+                     "no airglow, zodiacal light or starlight (the atmosphere's scattering only)");
     return {render, [args] {
                 sim::FrameRequest request = args->frame;
+                if (args->bortle) {
+                    request.night_sky.artificial_zenith_brightness =
+                        sky::ArtificialZenithBrightness(sky::BortleZenithBrightness(*args->bortle));
+                    if (std::isinf(*request.night_sky.artificial_zenith_brightness)) {
+                        request.night_sky.artificial_zenith_brightness.reset();  // class 1
+                    }
+                }
+                if (args->light_pollution) {
+                    request.night_sky.artificial_zenith_brightness = *args->light_pollution;
+                }
                 if (!args->metar.empty()) request.metar = weather::DecodeMetar(args->metar);
                 if (!args->metar_file.empty()) {
                     const weather::MetarFile file = weather::ReadMetarLines(args->metar_file);

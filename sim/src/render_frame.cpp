@@ -40,6 +40,7 @@ void ValidateFrameRequest(const FrameRequest& r) {
     Require("roll_deg", r.roll_deg, "deg", Range::Closed(-180.0, 180.0));
     ParseFrameSize(fmt::format("{}x{}", r.size.x, r.size.y));
     sky::ValidateProjection(Radians(r.fov_deg), static_cast<double>(r.size.x) / r.size.y);
+    r.night_sky.Validate();
     const std::string extension = r.out.extension().string();
     if (extension != ".exr" && extension != ".png" && extension != ".EXR" && extension != ".PNG") {
         throw ArgumentError("out", fmt::format("out = {} has no image extension (expected a file "
@@ -106,6 +107,17 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
     const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
     sky::AtmosphereRenderer renderer(atmosphere, request.lut_settings);
     renderer.SetWeather(weather, request.clouds);
+    frame.scene.night_sky.settings = request.night_sky;
+    try {
+        // The catalogue down to its own end (V = 8) for the stars not drawn one by one.
+        frame.scene.night_sky.starlight =
+            std::make_shared<const sky::StarlightMap>(sky::StarlightMap::FromCatalog(
+                geo::StarCatalog::Load(std::max(8.0, request.star_magnitude_limit)),
+                request.star_magnitude_limit));
+    } catch (const geo::CatalogError&) {
+        frame.scene.night_sky.starlight =
+            std::make_shared<const sky::StarlightMap>(sky::StarlightMap::ModelOnly());
+    }
     renderer.Update(frame.scene, frame.view);
     const int passes = weather.layers.empty() ? 1 : request.cloud_passes;
     for (int i = 0; i < passes; ++i) renderer.Render(sky::RenderTarget::Offscreen(request.size));

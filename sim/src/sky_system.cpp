@@ -64,6 +64,7 @@ struct SkySystem::Impl {
     std::optional<double> visibility_m;
     bool visibility_is_fog = false;
     std::optional<geo::StarCatalog> catalog;
+    std::shared_ptr<const sky::StarlightMap> starlight;  // the night sky's integrated starlight
     std::unique_ptr<sky::AtmosphereRenderer> renderer;
     sky::LutImage ground_irradiance;
 
@@ -119,6 +120,15 @@ struct SkySystem::Impl {
         } catch (const geo::CatalogError& e) {
             // Everything else works without stars; the host hears why they are missing.
             Notify(std::string("no stars: ") + e.what());
+        }
+        s.night_sky.Validate();
+        try {
+            // The catalogue down to its own end (V = 8) for the stars not drawn one by one.
+            starlight = std::make_shared<const sky::StarlightMap>(sky::StarlightMap::FromCatalog(
+                geo::StarCatalog::Load(std::max(8.0, s.star_magnitude_limit), s.star_directory),
+                s.star_magnitude_limit));
+        } catch (const geo::CatalogError&) {
+            starlight = std::make_shared<const sky::StarlightMap>(sky::StarlightMap::ModelOnly());
         }
         calculator.emplace(catalog ? &*catalog : nullptr, s.star_refresh_s);
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
@@ -217,6 +227,11 @@ void SkySystem::SetAtmosphere(const sky::Atmosphere& atmosphere) {
     d.preset_atmosphere = atmosphere;
     d.ground_irradiance = sky::Inspect(*d.renderer).ReadGroundIrradiance();
     for (std::string& note : notes) d.Notify(std::move(note));
+}
+
+void SkySystem::SetNightSky(const sky::NightSkySettings& night_sky) {
+    night_sky.Validate();
+    impl_->settings.night_sky = night_sky;
 }
 
 void SkySystem::SetVisibility(std::optional<double> visibility_m, bool fog) {
@@ -332,6 +347,8 @@ void SkySystem::Update() {
         sky::WeatherFrame(d.observer, d.weather_origin->x, d.weather_origin->y);
     clouds.reset_history = d.reset_history;
     d.reset_history = false;  // the renderer applies it to this frame's first Render
+    d.frame.scene.night_sky.settings = d.settings.night_sky;
+    d.frame.scene.night_sky.starlight = d.starlight;
     d.renderer->Update(d.frame.scene, d.frame.view);
 
     const sky::Lights& lights = d.frame.scene.lights;

@@ -46,6 +46,7 @@ const int kCloudHistoryUnit = 15;
 const int kDisplayInputUnit = 16;  // display/*: the linear frame (cd/m^2) to display
 const int kCloudShadowMapUnit = 17;
 const int kCloudGroundShadowUnit = 18;
+const int kNightSkyUnit = 19;  // atmosphere/render.frag: the night sky's light (night_sky.h)
 
 // Image units.
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write

@@ -12,6 +12,7 @@
 #include "gl/draw.h"
 #include "gl/shader_library.h"
 #include "gl/textures.h"
+#include "night_sky_map.h"
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
 #include "renderer_programs.h"
@@ -178,6 +179,7 @@ AtmospherePasses::AtmospherePasses(const Atmosphere& atmosphere, const LutSettin
     irradiance_ = gl::CreateTexture2D(s.irradiance_size);
     sky_view_ = gl::CreateTexture2D(s.sky_view_size, GL_RGBA32F, GL_REPEAT);  // azimuth wraps
     aerial_perspective_ = gl::CreateTexture3D(s.aerial_perspective_size);
+    night_sky_ = gl::CreateTexture2D(kNightSkyMapSize, GL_RGBA32F, GL_REPEAT);
     glCreateQueries(GL_TIME_ELAPSED, static_cast<GLsizei>(queries_.size()), queries_.data());
     glCreateFramebuffers(1, &framebuffer_);
     glCreateVertexArrays(1, &vertex_array_);  // core profile draws need one, even empty
@@ -205,7 +207,7 @@ AtmospherePasses::~AtmospherePasses() {
     glDeleteFramebuffers(1, &framebuffer_);
     glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
     for (GLuint t : {transmittance_, multiple_scattering_, irradiance_, sky_view_,
-                     aerial_perspective_, frame_, stars_}) {
+                     aerial_perspective_, frame_, stars_, night_sky_}) {
         if (t != 0) glDeleteTextures(1, &t);
     }
     glDeleteBuffers(static_cast<GLsizei>(buffers_.size()), buffers_.data());
@@ -230,6 +232,7 @@ void AtmospherePasses::BindInputs() const {
     glBindTextureUnit(kSkyViewUnit, sky_view_);
     glBindTextureUnit(kStarUnit, stars_ != 0 ? stars_ : transmittance_);  // unused when no stars
     glBindTextureUnit(kAerialPerspectiveUnit, aerial_perspective_);
+    glBindTextureUnit(kNightSkyUnit, night_sky_);
 }
 
 // Runs one compute pass writing `output` (bound as kOutputImageUnit), timed by a query.
@@ -287,6 +290,8 @@ void AtmospherePasses::BuildStaticLuts() {
 
 void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     const Camera& camera = view.camera;
+    const bool night_sky = scene.night_sky.enabled && scene.night_sky.settings.enabled;
+    if (night_sky) scene.night_sky.settings.Validate();
     const auto lights = MakeLightSet<gl::LightUniforms>(scene.lights, camera.position);
     glNamedBufferSubData(buffers_[1], 0, sizeof(lights), &lights);
     light_count_ = lights.count;
@@ -315,6 +320,16 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     u.cos_moon_radius = static_cast<float>(std::cos(scene.moon.angular_radius));
     u.camera_altitude_km =
         static_cast<float>((glm::length(camera.position) - atmosphere_.bottom_radius) / kKm);
+    // The night sky's light along the Sky-View LUT's directions, through the atmosphere.
+    u.night_sky_enabled = night_sky ? 1 : 0;
+    u.star_visibility = scene.star_visibility ? 1 : 0;
+    if (night_sky) {
+        FillNightSkyMap(scene.night_sky, atmosphere_, transmittance_cpu_, camera.position / kKm,
+                        (glm::length(camera.position) - atmosphere_.bottom_radius) / kKm,
+                        scene.lights.sun_direction, kNightSkyMapSize, night_sky_pixels_);
+        glTextureSubImage2D(night_sky_, 0, 0, 0, kNightSkyMapSize.x, kNightSkyMapSize.y, GL_RGBA,
+                            GL_FLOAT, night_sky_pixels_.data());
+    }
     glNamedBufferSubData(buffers_[3], 0, sizeof(u), &u);
 }
 

@@ -22,6 +22,10 @@ namespace zenith::sky {
 
 class CloudPasses;
 
+// The night sky's map (zenith/sky/night_sky.h) in the Sky-View LUT's parameterisation: 2.8 deg
+// in azimuth, finer toward the horizon.
+inline constexpr glm::ivec2 kNightSkyMapSize{128, 64};
+
 class AtmospherePasses {
   public:
     enum Pass : std::size_t {
@@ -100,9 +104,10 @@ class AtmospherePasses {
     std::vector<gl::Program> cloud_composites_;  // BuildCloudComposites
     std::array<GLuint, 4> buffers_{};            // atmosphere, lights, settings, frame
     GLuint transmittance_ = 0, multiple_scattering_ = 0, irradiance_ = 0, sky_view_ = 0,
-           aerial_perspective_ = 0, frame_ = 0, stars_ = 0;
+           aerial_perspective_ = 0, frame_ = 0, stars_ = 0, night_sky_ = 0;
     GLuint framebuffer_ = 0, vertex_array_ = 0;  // the composite draws a triangle into frame_
     std::vector<glm::vec4> star_pixels_;
+    std::vector<glm::vec4> night_sky_pixels_;      // the night sky's map, filled on the CPU
     ref::TransmittanceTexture transmittance_cpu_;  // for the stars' extinction
     glm::ivec2 frame_size_{0, 0};
     std::array<GLuint, kQueryCount> queries_{};

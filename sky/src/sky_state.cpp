@@ -7,6 +7,7 @@
 
 #include "zenith/base/error.h"
 #include "zenith/base/units.h"
+#include "zenith/geo/earth_orientation.h"
 #include "zenith/geo/eclipse.h"
 #include "zenith/geo/moon.h"
 #include "zenith/geo/planets.h"
@@ -71,6 +72,16 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     s.lights.moon_illuminance = s.lights.sun_illuminance *
                                 LambertSphereIlluminanceFactor(
                                     s.moon.albedo, e.moon_phase.phase_angle, s.moon.angular_radius);
+
+    // The night sky's frames: world (the observer's ENU) to TOD through ECEF, then to the
+    // ecliptic of date and to ICRS (precession-nutation undone; polar motion is ignored).
+    const glm::dmat3 tod_from_world =
+        glm::transpose(geo::EcefFromTod(e.time)) * observer.ecef_from_enu();
+    s.night_sky.enabled = true;
+    s.night_sky.ecliptic_from_world =
+        glm::transpose(geo::TodFromEclipticOfDate(e.time.jd_tt)) * tod_from_world;
+    s.night_sky.icrs_from_world = glm::transpose(geo::TodFromGcrs(e.time.jd_tt)) * tod_from_world;
+    s.night_sky.sun_ecliptic_longitude = geo::SunApparentEcliptic(e.time.jd_tt).longitude;
 
     // A solar eclipse: the camera's sunlight is what the Moon leaves of the limb-darkened disk;
     // the air elsewhere gets its own share and the disk pass draws the crescent (Lights).

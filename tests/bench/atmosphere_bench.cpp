@@ -4,7 +4,11 @@
 #include <benchmark/benchmark.h>
 #include <glad/gl.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <memory>
+#include <vector>
 
 #include "daytime_frame.h"
 #include "zenith/sky/atmosphere_renderer.h"
@@ -139,6 +143,37 @@ void BM_FullFrame720pSolarEclipse(benchmark::State& state) { FullFrameOf(state, 
 BENCHMARK(BM_FullFrame720pBesideEclipse)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FullFrame720pSolarEclipse)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// Night (the Sun 30 deg down) with 4,000 stars, as before issue 18 §3 (every star drawn whole,
+// no diffuse light), and with the night sky: the CPU's map of airglow, zodiacal light,
+// starlight and light pollution (128 x 64 directions through the transmittance LUT), its upload,
+// one more texture read per pixel and the stars' visibility against the sky. Their ratio to
+// BM_FullFrame720p is the night sky's per-frame cost.
+SkyScene NightScene(const SkyScene& day, bool night_sky) {
+    SkyScene night = day;
+    night.lights.sun_direction = glm::normalize(glm::dvec3(0.87, 0.0, -0.5));
+    for (int i = 0; i < 4000; ++i) {  // a golden-angle spiral over the sphere
+        const double z = 1.0 - (i + 0.5) / 2000.0;
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.399963229728653 * i;
+        night.stars.push_back({{r * std::cos(phi), r * std::sin(phi), z}, glm::dvec3(2e-8)});
+    }
+    night.star_visibility = night_sky;
+    night.night_sky.enabled = night_sky;
+    night.night_sky.starlight = std::make_shared<const StarlightMap>(StarlightMap::ModelOnly());
+    night.night_sky.settings.artificial_zenith_brightness = 20.0;
+    return night;
+}
+
+void FullFrameAtNight(benchmark::State& state, bool night_sky) {
+    Fixture& f = Shared();
+    const SkyScene night = NightScene(f.scene, night_sky);
+    for (auto _ : state) {
+        f.renderer.Update(night, f.view);
+        f.renderer.Render(f.target);
+        glFinish();
+    }
+    ReportPassTimes(state, Inspect(f.renderer).LastPassTimes());
+}
+
 // MakeSkyState (CPU, per frame) at the eclipse's maximum and a day later (no eclipse: the
 // overlap test only); no stars, no planets.
 void MakeSkyStateAt(benchmark::State& state, const char* utc) {
@@ -163,6 +198,42 @@ void BM_MakeSkyStateLunarEclipse(benchmark::State& state) {
 BENCHMARK(BM_MakeSkyStateNoEclipse)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MakeSkyStateSolarEclipse)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MakeSkyStateLunarEclipse)->Unit(benchmark::kMicrosecond);
+
+void BM_FullFrame720pNightStars(benchmark::State& state) { FullFrameAtNight(state, false); }
+BENCHMARK(BM_FullFrame720pNightStars)->Unit(benchmark::kMillisecond)->UseRealTime();
+void BM_FullFrame720pNightSky(benchmark::State& state) { FullFrameAtNight(state, true); }
+BENCHMARK(BM_FullFrame720pNightSky)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The three frames interleaved in every iteration (the clear daytime frame, the night as before,
+// the night with the night sky), so that a machine whose load drifts slows all three alike: the
+// medians of the per-iteration ratios are the night sky's cost.
+void BM_NightSkyInterleaved(benchmark::State& state) {
+    Fixture& f = Shared();
+    const SkyScene before = NightScene(f.scene, false), after = NightScene(f.scene, true);
+    const auto frame_ms = [&](const SkyScene& scene) {
+        const auto start = std::chrono::steady_clock::now();
+        f.renderer.Update(scene, f.view);
+        f.renderer.Render(f.target);
+        glFinish();
+        return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count();
+    };
+    std::vector<double> to_clear, to_before, clear_ms;
+    for (auto _ : state) {
+        const double clear = frame_ms(f.scene), old = frame_ms(before), night = frame_ms(after);
+        to_clear.push_back(night / clear);
+        to_before.push_back(night / old);
+        clear_ms.push_back(clear);
+    }
+    const auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.empty() ? 0.0 : v[v.size() / 2];
+    };
+    state.counters["night_sky_over_clear"] = median(to_clear);
+    state.counters["night_sky_over_night_before"] = median(to_before);
+    state.counters["clear_ms"] = median(clear_ms);
+}
+BENCHMARK(BM_NightSkyInterleaved)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 
 }  // namespace
 

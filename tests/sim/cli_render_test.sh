@@ -22,6 +22,16 @@ check "message names --out and the allowed extensions" grep -q "\-\-out.*\.exr.*
 err=$("$zenith" render --pitch 100 --out "$work/p.png" 2>&1); rc=$?
 check "pitch 100 names --pitch, the value and its range" \
     exited_saying 2 '--pitch: pitch_deg = 100 deg is out of range (expected \[-90, 90\] deg)'
+"$zenith" render --size 64x36 --utc 2024-08-04T23:00:00Z --lat 28.76 --lon -17.88 --bortle 6 \
+    --out "$work/bortle.exr" >/dev/null 2>&1
+check "a night under Bortle 6" test -s "$work/bortle.exr"
+err=$("$zenith" render --bortle 12 --out "$work/b.png" 2>&1); rc=$?
+check "Bortle 12 names --bortle, the value and its range" \
+    exited_saying 2 '--bortle: bortle_class = 12 is out of range (expected 1..9)'
+check "nothing written for a bad Bortle class" test ! -e "$work/b.png"
+err=$("$zenith" render --light-pollution 5 --out "$work/l.png" 2>&1); rc=$?
+check "light pollution 5 names --light-pollution and its range" \
+    exited_saying 2 '--light-pollution: artificial_zenith_brightness = 5' '\[10, 30\]'
 err=$("$zenith" render --size 0x10 --out "$work/s.png" 2>&1)
 check "size 0x10 names --size" grep -q -- "--size" <<<"$err"
 err=$("$zenith" render --preset nowhere --out "$work/n.png" 2>&1)

@@ -275,5 +275,49 @@ TEST_F(SkySystemTest, VisibilityAndMetarReachTheAtmosphereAndTheClouds) {
     EXPECT_EQ(sky_->atmosphere(), preset);  // 10 km or more: the preset's own air
 }
 
+// The night sky's settings are checked and reach the frame: a moonless dark-site zenith, and
+// light pollution's brighter one.
+TEST_F(SkySystemTest, NightSkySettingsAreCheckedAndKept) {
+    sky::NightSkySettings bad;
+    bad.airglow_zenith_brightness = 40.0;
+    try {
+        sky_->SetNightSky(bad);
+        ADD_FAILURE() << "no throw";
+    } catch (const ArgumentError& e) {
+        EXPECT_NE(std::string(e.what()).find("airglow_zenith_brightness"), std::string::npos)
+            << e.what();
+    }
+    // A moonless night at La Palma looking up: the dark site, then Bortle 7.
+    sky_->SetTime(geo::TimeFromIso8601("2024-04-08T01:00:00Z"));
+    sky_->SetGeodetic(28.7606, -17.8816, 2396.0);
+    sky_->SetAttitude(0.0, glm::radians(90.0), 0.0);
+    sky_->SetProjection(glm::radians(2.0), 1.0);
+    const auto zenith = [&] {
+        sky_->Update();
+        const sky::LutImage frame = sky_->RenderOffscreen({8, 8});
+        const glm::vec4 c = frame.at(4, 4);
+        return sky::SurfaceBrightnessFromLuminance(0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z);
+    };
+    const double dark = zenith();
+    sky::NightSkySettings polluted;
+    polluted.artificial_zenith_brightness =
+        sky::ArtificialZenithBrightness(sky::BortleZenithBrightness(7));
+    sky_->SetNightSky(polluted);
+    const double mountain = zenith();
+    // The artificial brightness is the ground's (height 0): 2.4 km up, less air scatters it.
+    sky_->SetGeodetic(28.7606, -17.8816, 0.0);
+    const double bortle7 = zenith();
+    sky_->SetNightSky({});
+    std::printf(
+        "SkySystem zenith at La Palma: %.2f mag/arcsec^2 dark, %.2f under Bortle 7 at "
+        "2396 m, %.2f at the ground (the class's middle: %.2f)\n",
+        dark, mountain, bortle7, sky::BortleZenithBrightness(7));
+    EXPECT_GT(dark, 21.5);
+    EXPECT_LT(dark, 22.0);
+    EXPECT_GT(mountain, bortle7 + 0.1);
+    // The natural part is dimmed by the air's extinction; the class's range is 18.0-18.5.
+    EXPECT_NEAR(bortle7, sky::BortleZenithBrightness(7), 0.05);
+}
+
 }  // namespace
 }  // namespace zenith::sim

@@ -176,7 +176,11 @@ void AddFrame(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, scene_depth_slope);
     ZENITH_SAME(S, scene_depth_reversed);
     ZENITH_SAME(S, moon_sunlight);
+    ZENITH_SAME(S, night_sky_enabled);
+    ZENITH_SAME(S, star_visibility);
     ZENITH_SAME(S, frame_padding0);
+    ZENITH_SAME(S, frame_padding1);
+    ZENITH_SAME(S, frame_padding2);
 }
 
 void AddCloudLayer(Layout& layout, const std::string& prefix, std::size_t base) {
@@ -320,6 +324,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"irradiance_texture", kIrradianceUnit},
         {"sky_view_texture", kSkyViewUnit},
         {"star_texture", kStarUnit},
+        {"night_sky_texture", kNightSkyUnit},
         {"scene_depth_texture", kSceneDepthUnit},
         {"aerial_perspective_texture", kAerialPerspectiveUnit},
         {"shape_noise", kShapeNoiseUnit},

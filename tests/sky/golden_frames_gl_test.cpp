@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <glm/gtc/constants.hpp>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -134,7 +135,18 @@ Image Render(const Scene& scene, AtmosphereRenderer& renderer, const geo::StarCa
     setup.attitude.pitch_rad = glm::radians(scene.pitch_deg);
     setup.vertical_fov = glm::radians(90.0);
     setup.aspect = double(kSize.x) / kSize.y;
-    const SkyFrame frame = BuildSkyFrame(calculator, setup, renderer.atmosphere());
+    SkyFrame frame = BuildSkyFrame(calculator, setup, renderer.atmosphere());
+    // The night sky's diffuse light, with the catalogue's stars past the drawn V = 6.5 (to its
+    // V = 8 end) in the integrated starlight when it is installed.
+    static const std::shared_ptr<const StarlightMap> starlight = [] {
+        try {
+            return std::make_shared<const StarlightMap>(
+                StarlightMap::FromCatalog(geo::StarCatalog::Load(8.0), 6.5));
+        } catch (const geo::CatalogError&) {
+            return std::make_shared<const StarlightMap>(StarlightMap::ModelOnly());
+        }
+    }();
+    frame.scene.night_sky.starlight = starlight;
     renderer.Update(frame.scene, frame.view);
     renderer.Render(RenderTarget::Offscreen(kSize));
     return ImageFromFrame(Inspect(renderer).ReadFrame());

@@ -964,3 +964,27 @@ vec4 AdvanceAerialPerspective(IN(AtmosphereParameters) atmosphere,
     vec3 t = accumulated.transmittance;
     return vec4(accumulated.luminance, (t.x + t.y + t.z) / 3.0);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Point-source visibility against the sky (zenith/sky/night_sky.h has the model and sources).
+
+// Threshold illuminance (lux) of a point source against a background of luminance `background`
+// (cd/m^2): Hecht (1947) after Schaefer (1990, Eqs. 2-3), I = c1 (1 + sqrt(c2 B))^2 with I in
+// foot-candles (10.7639 lux) and B in nanolamberts (1e-5 / pi cd/m^2); the smaller of the night
+// (c1 = 10^-9.8, c2 = 10^-1.9) and day (c1 = 10^-8.35, c2 = 10^-5.9) branches.
+Number StarThresholdIlluminance(Number background) {
+    Number b = max(background, 0.0) * (kPi * 1e5);
+    Number night = 1.5848931924611e-10 * (1.0 + sqrt(0.012589254117942 * b)) *
+                   (1.0 + sqrt(0.012589254117942 * b));
+    Number day = 4.4668359215096e-9 * (1.0 + sqrt(1.2589254117942e-6 * b)) *
+                 (1.0 + sqrt(1.2589254117942e-6 * b));
+    return min(night, day) * 10.763910416709722;
+}
+
+// Share of a point source of `illuminance` (lux) that is seen: 0 at or under the threshold, 1
+// from one magnitude (2.512x) above it, linear in magnitude between.
+Number StarVisibility(Number illuminance, Number background) {
+    Number threshold = StarThresholdIlluminance(background);
+    if (!(illuminance > threshold)) return 0.0;
+    return min(1.0857362047581294 * log(illuminance / threshold), 1.0);  // 2.5 log10(ratio)
+}

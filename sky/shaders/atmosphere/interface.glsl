@@ -54,7 +54,14 @@ layout(std140, binding = kFrameBlockBinding) uniform FrameBlock {
     float scene_depth_slope;
     int scene_depth_reversed;
     vec3 moon_sunlight;  // MoonDisk::sunlight: the Sun's light reaching the Moon (lunar eclipse)
-    float frame_padding0;
+    // The night sky's light (zenith/sky/night_sky.h): a map in the Sky-View LUT's
+    // parameterisation and frame, added to the sky when night_sky_enabled; star_visibility
+    // draws each pixel's stars in the share the eye sees against that sky (StarVisibility).
+    int night_sky_enabled;
+    int star_visibility;
+    int frame_padding0;  // std140 rounds the block up to 16 bytes
+    int frame_padding1;
+    int frame_padding2;
 };
 
 // Units and bindings: bindings.glsl.
@@ -65,6 +72,7 @@ layout(binding = kSkyViewUnit) uniform sampler2D sky_view_texture;
 layout(binding = kStarUnit) uniform sampler2D star_texture;  // point sources, frame-sized
 layout(binding = kSceneDepthUnit) uniform sampler2D scene_depth_texture;  // the host's (0..1)
 layout(binding = kAerialPerspectiveUnit) uniform sampler3D aerial_perspective_texture;
+layout(binding = kNightSkyUnit) uniform sampler2D night_sky_texture;
 
 // World direction through the centre of pixel/cell `cell` of a grid of `grid` cells covering the
 // view (NDC y up, so row 0 is the bottom row, as in GL textures).

@@ -101,9 +101,27 @@ void main() {
     vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_up,
                                           sky_view_x, horizon_zenith, direction);
   #endif
+    // The night sky's diffuse light, through the atmosphere (computed on the CPU per frame).
+    if (night_sky_enabled != 0) {
+        luminance += SampleSkyViewInFrame(night_sky_texture, sky_view_up,
+                                          sky_view_x, horizon_zenith, direction);
+    }
     // Stars (and a Sun narrower than a pixel): luminance already attenuated on the CPU by the
-    // same TransmittanceToSpace.
-    if (stars_enabled != 0) luminance += texelFetch(star_texture, pixel, 0).rgb;
+    // same TransmittanceToSpace. Seen only as far as they stand out of the sky behind them: the
+    // pixel's illuminance is its luminance times its solid angle (SplatPoints' measure).
+    if (stars_enabled != 0) {
+        vec3 stars = texelFetch(star_texture, pixel, 0).rgb;
+        if (star_visibility != 0) {
+            vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
+            vec2 t = vec2(ndc.x * tan_half_fov * aspect, ndc.y * tan_half_fov);
+            float solid_angle = 4.0 * tan_half_fov * tan_half_fov * aspect /
+                                (float(output_size.x) * float(output_size.y)) /
+                                pow(1.0 + dot(t, t), 1.5);
+            vec3 y = vec3(0.2126, 0.7152, 0.0722);  // linear sRGB luminance
+            stars *= StarVisibility(dot(stars, y) * solid_angle, dot(luminance, y));
+        }
+        luminance += stars;
+    }
   #if ZENITH_CLOUDS
     vec4 clouds = texelFetch(cloud_history, pixel, 0);  // (L, T), premultiplied
   #endif

@@ -116,10 +116,15 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     float scene_depth_slope;
     int scene_depth_reversed;
     glm::vec3 moon_sunlight;
-    float frame_padding0;
+    int night_sky_enabled;
+    int star_visibility;
+    int frame_padding0;
+    int frame_padding1;
+    int frame_padding2;
 };
-static_assert(sizeof(FrameUniforms) == 192);
+static_assert(sizeof(FrameUniforms) == 208);
 static_assert(offsetof(FrameUniforms, moon_sunlight) == 176);
+static_assert(offsetof(FrameUniforms, night_sky_enabled) == 188);
 static_assert(offsetof(FrameUniforms, scene_near_m) == 160);
 static_assert(offsetof(FrameUniforms, moon_direction) == 96);
 static_assert(offsetof(FrameUniforms, stars_enabled) == 116);

@@ -37,6 +37,9 @@ struct FrameRequest {
     sky::Exposure exposure;        // "auto" unless given (PNG only)
     std::filesystem::path out = "zenith.png";
     double star_magnitude_limit = 6.5;
+    // Airglow, zodiacal light, starlight beyond the drawn stars, light pollution
+    // (zenith/sky/night_sky.h).
+    sky::NightSkySettings night_sky;
     bool force_ray_march = false;
     sky::LutSettings lut_settings;
     // Clouds: a built-in weather preset (clear, scattered_cumulus, broken, overcast_stratus,

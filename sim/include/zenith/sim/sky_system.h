@@ -49,6 +49,9 @@ struct SkySystemSettings {
     std::string preset = "earth";   // built-in preset name or JSON file
     sky::LutSettings lut_settings;  // LUT sizes and step counts
     double star_magnitude_limit = 6.5;
+    // The night sky's diffuse light and light pollution (zenith/sky/night_sky.h); the stars
+    // fainter than star_magnitude_limit in the catalogue (to V = 8) are part of it.
+    sky::NightSkySettings night_sky;
     // Where the star catalogue is read from; empty: geo::DefaultStarDirectory() ($ZENITH_STAR_DIR
     // or /usr/share/kstars). Without it the sky has no stars and a notice says why.
     std::filesystem::path star_directory;
@@ -194,6 +197,11 @@ class SkySystem {
     // carries the visibility below 1 km and the air gives 1 km. nullopt: the preset's own air.
     // For hosts with their own weather engine. Throws zenith::ArgumentError unless 0 < V <= 1e6.
     void SetVisibility(std::optional<double> visibility_m, bool fog = false);
+    // The night sky's settings from the next frame on: airglow, zodiacal light, starlight, and
+    // light pollution (NightSkySettings::artificial_zenith_brightness, or from a Bortle class
+    // with sky::ArtificialZenithBrightness(sky::BortleZenithBrightness(n))). Throws
+    // zenith::ArgumentError for a field out of range.
+    void SetNightSky(const sky::NightSkySettings& night_sky);
     // The weather of a METAR report (weather::DecodeMetar): its layers through SetWeather (bases
     // above station_elevation_m, metres above the ellipsoid) and its visibility through
     // SetVisibility. Returns the decoder's warnings and the choices the mapping made.

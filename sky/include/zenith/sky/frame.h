@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "zenith/sky/lut.h"
+#include "zenith/sky/night_sky.h"
 
 namespace zenith::sky {
 
@@ -61,7 +62,15 @@ struct SkyScene {
     bool draw_sun_disk = true;  // drawn as a point (energy-conserving) when below a pixel
     MoonDisk moon;
     std::vector<StarPoint> stars;  // splatted into the pixel holding each, as E / pixel solid angle
-    CloudView clouds;              // used when the renderer has weather (SetWeather)
+    // Each pixel's stars are drawn in the share the eye sees against the sky behind them
+    // (StarVisibility in zenith/sky/night_sky.h: none under the threshold, all from one
+    // magnitude above it); false draws them all (a sensor's view, and energy tests).
+    bool star_visibility = true;
+    // The diffuse night light (airglow, zodiacal light, starlight, light pollution), added to
+    // the sky through the atmosphere; MakeSkyState fills it (enabled, no starlight map). Off by
+    // default.
+    NightSky night_sky;
+    CloudView clouds;  // used when the renderer has weather (SetWeather)
 };
 
 // Where the sky is seen from, and how finely it is marched.
