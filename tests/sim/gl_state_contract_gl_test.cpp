@@ -22,12 +22,15 @@
 #include <utility>
 #include <vector>
 
+#include "luminance.h"
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/weather/cloud_weather.h"
 
 namespace zenith::sim {
 namespace {
+
+using zenith::test::Luminance;
 
 constexpr int kWidth = 64, kHeight = 48;
 constexpr GLuint kUnits = 20;  // zenith uses texture units 0-18; one more for good measure
@@ -484,7 +487,7 @@ void ApplyDefaultState() {
 
 double MeanLuminance(const std::vector<glm::vec4>& pixels) {
     double sum = 0.0;
-    for (const glm::vec4& p : pixels) sum += 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
+    for (const glm::vec4& p : pixels) sum += Luminance(p);
     return sum / static_cast<double>(pixels.size());
 }
 

@@ -296,7 +296,7 @@ TEST_F(SkySystemTest, NightSkySettingsAreCheckedAndKept) {
         sky_->Update();
         const sky::LutImage frame = sky_->RenderOffscreen({8, 8});
         const glm::vec4 c = frame.at(4, 4);
-        return sky::SurfaceBrightnessFromLuminance(0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z);
+        return sky::SurfaceBrightnessFromLuminance(Luminance(c));
     };
     const double dark = zenith();
     sky::NightSkySettings polluted;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "luminance.h"
 #include "reference/atmosphere_functions.h"
 #include "shader_parameters.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
@@ -12,6 +13,8 @@
 
 namespace zenith::sky {
 namespace {
+
+using zenith::test::Luminance;
 
 using reference::AtmosphereReference;
 
@@ -205,8 +208,8 @@ TEST(AtmosphereLuts, SkyViewMatchesPerPixelRayMarching) {
                 const glm::dvec3 lut =
                     reference.SampleSkyView(sky_view, camera, lights.sun_direction, d);
                 const glm::dvec3 marched = reference.RayMarch(camera, d, lights, 200);
-                const double y_lut = 0.2126 * lut.x + 0.7152 * lut.y + 0.0722 * lut.z;
-                const double y_ref = 0.2126 * marched.x + 0.7152 * marched.y + 0.0722 * marched.z;
+                const double y_lut = Luminance(lut);
+                const double y_ref = Luminance(marched);
                 sum_sq += (y_lut - y_ref) * (y_lut - y_ref);
                 sum_ref += y_ref;
                 ++n;
@@ -228,9 +231,6 @@ TEST(AtmosphereLuts, MoonIsDroppedOnlyWhereItsSkyIsNegligible) {
     const glm::dvec3 camera(0.0, 0.0, 6360e3 + 1500.0);
     const double moon_radius = 0.5 * 0.5181 * ref::kPi / 180.0;
     const double full_moon = LambertSphereIlluminanceFactor(0.12, 0.0, moon_radius);
-    const auto luminance = [](const glm::vec4& v) {
-        return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z;
-    };
     double worst = 0.0;
     for (double sun_elevation_deg : {0.25, 5.0}) {
         const double e = sun_elevation_deg * ref::kPi / 180.0;
@@ -252,7 +252,7 @@ TEST(AtmosphereLuts, MoonIsDroppedOnlyWhereItsSkyIsNegligible) {
             for (int y = 0; y < sun_sky.size.y; ++y) {
                 for (int x = 0; x < sun_sky.size.x; ++x) {
                     worst =
-                        std::max(worst, luminance(moon_sky.at(x, y)) / luminance(sun_sky.at(x, y)));
+                        std::max(worst, Luminance(moon_sky.at(x, y)) / Luminance(sun_sky.at(x, y)));
                 }
             }
         }

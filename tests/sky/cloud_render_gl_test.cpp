@@ -16,6 +16,7 @@
 #include "colour_target.h"
 #include "draw_frame.h"
 #include "gl_test_support.h"
+#include "luminance.h"
 #include "reference/cloud_trace.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/atmosphere_renderer.h"
@@ -23,6 +24,8 @@
 
 namespace zenith::sky {
 namespace {
+
+using zenith::test::Luminance;
 
 constexpr double kKm = 1000.0;
 
@@ -440,8 +443,8 @@ TEST_F(CloudRenderGlTest, CloudShadowAndShadeReachOurGround) {
                 const glm::dvec3 expected =
                     march.luminance + weight * (shadow - scene.lights.cloud_direct) * direct;
                 const glm::dvec3 actual(frame.at(x, y));
-                const double y_expected = glm::dot(expected, glm::dvec3(0.2126, 0.7152, 0.0722));
-                const double y_actual = glm::dot(actual, glm::dvec3(0.2126, 0.7152, 0.0722));
+                const double y_expected = Luminance(expected);
+                const double y_actual = Luminance(actual);
                 error += std::abs(y_actual - y_expected);
                 reference += y_expected;
                 ++n;
@@ -593,7 +596,7 @@ TEST_F(CloudRenderGlTest, OvercastStratusFromAboveIsBrighterThanTheGround) {
         DrawFrames(renderer, camera, noon, options);
         const LutImage frame = Inspect(renderer).ReadFrame();
         double sum = 0.0;
-        for (const glm::vec4& t : frame.texels) sum += 0.2126 * t.r + 0.7152 * t.g + 0.0722 * t.b;
+        for (const glm::vec4& t : frame.texels) sum += Luminance(t);
         return sum / static_cast<double>(frame.texels.size());
     };
     const double deck = frame_luminance(clouds::LoadWeather("overcast_stratus"));

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "gl_test_support.h"
+#include "luminance.h"
 #include "night_sky_map.h"
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
@@ -21,10 +22,9 @@
 namespace zenith::sky {
 namespace {
 
-class NightSkyGlTest : public gl::test::HeadlessGlTest {};
+using zenith::test::Luminance;
 
-double Y(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-double Y(const glm::vec4& c) { return Y(glm::dvec3(c.x, c.y, c.z)); }
+class NightSkyGlTest : public gl::test::HeadlessGlTest {};
 
 // Roque de los Muchachos, La Palma (2396 m), 2024-04-08 01:00 UTC: new Moon (below the
 // horizon), the Sun 56 deg down, the zenith 2 deg from the north galactic pole.
@@ -68,26 +68,26 @@ TEST_F(NightSkyGlTest, DarkSiteZenithIsTwentyTwoMagnitudes) {
     scene.night_sky.starlight = std::make_shared<const StarlightMap>(StarlightMap::ModelOnly());
     const Frames f = Render(renderer, scene, state.view, size);
     const glm::vec4 centre = f.with.at(size.x / 2, size.y / 2);
-    const double mag = SurfaceBrightnessFromLuminance(Y(centre));
+    const double mag = SurfaceBrightnessFromLuminance(Luminance(centre));
     // The CPU twin at the same direction, over the renderer's transmittance LUT.
     const glm::dvec3 direction = state.view.camera.Direction(1.0 / size.x, 1.0 / size.y);
     const glm::dvec3 camera_km = state.view.camera.position / 1000.0;
     const glm::dvec3 twin = NightSkyLuminance(
         scene.night_sky, atmosphere, ref::FromImage(Inspect(renderer).ReadTransmittance()),
         camera_km, glm::length(camera_km) - atmosphere.bottom_radius / 1000.0, direction);
-    const double scattered = Y(f.without.at(size.x / 2, size.y / 2));
+    const double scattered = Luminance(f.without.at(size.x / 2, size.y / 2));
     const NightSkyComponents c = NightSkySources(scene.night_sky, atmosphere.bottom_radius,
                                                  state.view.camera.position, direction);
     std::printf(
         "dark-site zenith: %.3f V mag/arcsec^2 (%.3g cd/m^2; airglow %.2f, zodiacal %.2f, "
         "starlight %.2f mag/arcsec^2 above the air); CPU twin %.3g, sky without it %.3g\n",
-        mag, Y(centre), SurfaceBrightnessFromLuminance(Y(c.airglow)),
-        SurfaceBrightnessFromLuminance(Y(c.zodiacal)),
-        SurfaceBrightnessFromLuminance(Y(c.starlight)), Y(twin), scattered);
+        mag, Luminance(centre), SurfaceBrightnessFromLuminance(Luminance(c.airglow)),
+        SurfaceBrightnessFromLuminance(Luminance(c.zodiacal)),
+        SurfaceBrightnessFromLuminance(Luminance(c.starlight)), Luminance(twin), scattered);
     EXPECT_GT(mag, 21.5);
     EXPECT_LT(mag, 22.0);
-    EXPECT_NEAR((Y(centre) - scattered) / Y(twin), 1.0, 0.01);
-    EXPECT_LT(scattered, 1e-3 * Y(centre));  // the Sun's and the Moon's light is gone
+    EXPECT_NEAR((Luminance(centre) - scattered) / Luminance(twin), 1.0, 0.01);
+    EXPECT_LT(scattered, 1e-3 * Luminance(centre));  // the Sun's and the Moon's light is gone
 }
 
 TEST_F(NightSkyGlTest, HorizonAgainstCpuTwin) {
@@ -107,12 +107,12 @@ TEST_F(NightSkyGlTest, HorizonAgainstCpuTwin) {
         SkyScene scene = state.scene;
         if (polluted) scene.night_sky.settings.artificial_zenith_brightness = 20.0;
         const Frames f = Render(renderer, scene, state.view, size);
-        const double rendered =
-            Y(f.with.at(size.x / 2, size.y / 2)) - Y(f.without.at(size.x / 2, size.y / 2));
-        const double twin = Y(NightSkyLuminance(scene.night_sky, atmosphere, transmittance,
-                                                camera_km, altitude, direction));
-        const double at_zenith = Y(NightSkyLuminance(scene.night_sky, atmosphere, transmittance,
-                                                     camera_km, altitude, zenith));
+        const double rendered = Luminance(f.with.at(size.x / 2, size.y / 2)) -
+                                Luminance(f.without.at(size.x / 2, size.y / 2));
+        const double twin = Luminance(NightSkyLuminance(scene.night_sky, atmosphere, transmittance,
+                                                        camera_km, altitude, direction));
+        const double at_zenith = Luminance(NightSkyLuminance(
+            scene.night_sky, atmosphere, transmittance, camera_km, altitude, zenith));
         std::printf("%s: 5 deg elevation %.3f mag/arcsec^2 (CPU twin %.3f), %.2fx the zenith\n",
                     polluted ? "light pollution 20 mag/arcsec^2" : "dark site",
                     SurfaceBrightnessFromLuminance(rendered), SurfaceBrightnessFromLuminance(twin),
@@ -145,10 +145,10 @@ TEST_F(NightSkyGlTest, StarsAppearAcrossTheThreshold) {
     for (int i = 0; i < 3; ++i) {
         const glm::dvec2 ndc = 2.0 * (glm::dvec2(pixels[i]) + 0.5) / glm::dvec2(size) - 1.0;
         const glm::dvec3 direction = state.view.camera.Direction(ndc.x, ndc.y);
-        const double t =
-            Y(ref::TransmittanceToSpace(MakeShaderParameters<ref::AtmosphereParameters>(atmosphere),
-                                        transmittance, camera_km, altitude, direction));
-        const double background = Y(sky.at(pixels[i].x, pixels[i].y));
+        const double t = Luminance(
+            ref::TransmittanceToSpace(MakeShaderParameters<ref::AtmosphereParameters>(atmosphere),
+                                      transmittance, camera_km, altitude, direction));
+        const double background = Luminance(sky.at(pixels[i].x, pixels[i].y));
         star_lux[i] = factors[i] * StarThresholdIlluminance(background);
         scene.stars.push_back({direction, glm::dvec3(star_lux[i] / t)});
     }
@@ -159,9 +159,9 @@ TEST_F(NightSkyGlTest, StarsAppearAcrossTheThreshold) {
                            (pixels[i].y + 0.5) / size.y * 2.0 - 1.0);
         const double solid_angle =
             dx * dy / std::pow(1.0 + std::pow(t.x * tan_x, 2) + std::pow(t.y * tan_y, 2), 1.5);
-        const double seen =
-            (Y(frame.at(pixels[i].x, pixels[i].y)) - Y(sky.at(pixels[i].x, pixels[i].y))) *
-            solid_angle / star_lux[i];
+        const double seen = (Luminance(frame.at(pixels[i].x, pixels[i].y)) -
+                             Luminance(sky.at(pixels[i].x, pixels[i].y))) *
+                            solid_angle / star_lux[i];
         std::printf("star at %.2fx the threshold: %.3f of it seen\n", factors[i], seen);
         EXPECT_NEAR(seen, expected_share[i], 0.01);
     }
@@ -181,7 +181,7 @@ TEST_F(NightSkyGlTest, DaytimeFrameIsUnchanged) {
     const Frames f = Render(renderer, scene, state.view, size);
     double worst = 0.0;
     for (std::size_t i = 0; i < f.with.texels.size(); ++i) {
-        const double a = Y(f.with.texels[i]), b = Y(f.without.texels[i]);
+        const double a = Luminance(f.with.texels[i]), b = Luminance(f.without.texels[i]);
         worst = std::max(worst, std::abs(a - b) / b);
     }
     std::printf("daytime frame with / without the night sky: largest relative change %.2g\n",

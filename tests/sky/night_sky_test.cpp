@@ -8,11 +8,14 @@
 #include <cstdio>
 #include <optional>
 
+#include "luminance.h"
 #include "zenith/base/error.h"
 #include "zenith/geo/stars.h"
 
 namespace zenith::sky {
 namespace {
+
+using zenith::test::Luminance;
 
 constexpr double kArcsec2 = 2.3504430539097885e-11;  // sr
 
@@ -115,7 +118,6 @@ TEST(StarVisibilityThreshold, SchaefersLimitingMagnitudes) {
 TEST(StarlightMap, ModelFollowsGalacticLatitude) {
     const StarlightMap map = StarlightMap::ModelOnly();
     const double s10 = LuminanceFromSurfaceBrightness(kS10Magnitude);
-    const auto y = [](const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
     // The north galactic pole (RA 192.859 deg, Dec 27.128 deg) and the galactic centre
     // (RA 266.405, Dec -28.936): 20 and 150 S10 (bilinear over 2 deg texels).
     const auto icrs = [](double ra_deg, double dec_deg) {
@@ -123,8 +125,8 @@ TEST(StarlightMap, ModelFollowsGalacticLatitude) {
         return glm::dvec3(std::cos(dec) * std::cos(ra), std::cos(dec) * std::sin(ra),
                           std::sin(dec));
     };
-    EXPECT_NEAR(y(map.Sample(icrs(192.859, 27.128))) / s10, 20.0, 0.5);
-    EXPECT_NEAR(y(map.Sample(icrs(266.405, -28.936))) / s10, 150.0, 15.0);
+    EXPECT_NEAR(Luminance(map.Sample(icrs(192.859, 27.128))) / s10, 20.0, 0.5);
+    EXPECT_NEAR(Luminance(map.Sample(icrs(266.405, -28.936))) / s10, 150.0, 15.0);
 }
 
 TEST(StarlightMap, CatalogueStarsKeepTheirLight) {
@@ -145,7 +147,7 @@ TEST(StarlightMap, CatalogueStarsKeepTheirLight) {
         for (int i = 0; i < map.width; ++i) {
             const std::size_t k = static_cast<std::size_t>(j * map.width + i);
             const glm::dvec3 d = map.texels[k] - model.texels[k];
-            binned += (0.2126 * d.x + 0.7152 * d.y + 0.0722 * d.z) * solid_angle;
+            binned += (Luminance(d)) * solid_angle;
         }
     }
     std::size_t count = 0;

@@ -7,6 +7,7 @@
 namespace zenith::test {
 
 inline double Luminance(const glm::dvec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+inline double Luminance(const glm::vec3& c) { return Luminance(glm::dvec3(c)); }
 inline double Luminance(const glm::vec4& c) { return Luminance(glm::dvec3(c.r, c.g, c.b)); }
 
 }  // namespace zenith::test
