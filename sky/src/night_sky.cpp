@@ -9,6 +9,7 @@
 #include "reference/atmosphere_functions.h"
 #include "shader_parameters.h"
 #include "zenith/geo/stars.h"
+#include "zenith/sky/sky_state.h"
 
 namespace zenith::sky {
 namespace {
@@ -73,19 +74,6 @@ std::pair<std::size_t, double> GridCell(const std::array<double, N>& grid, doubl
     std::size_t i = 0;
     while (i + 2 < N && x > grid[i + 1]) ++i;
     return {i, (x - grid[i]) / (grid[i + 1] - grid[i])};
-}
-
-// Colour cache by B-V (as MakeSkyState's): geo::ColourFromBMinusV integrates a black body.
-glm::dvec3 CachedColour(double b_minus_v) {
-    static const std::array<glm::dvec3, 441> table = [] {
-        std::array<glm::dvec3, 441> t{};
-        for (std::size_t i = 0; i < t.size(); ++i) {
-            t[i] = geo::ColourFromBMinusV(-0.40 + 0.01 * static_cast<double>(i));
-        }
-        return t;
-    }();
-    const double index = std::round((b_minus_v + 0.40) / 0.01);
-    return table[static_cast<std::size_t>(std::clamp(index, 0.0, 440.0))];
 }
 
 // Mean colour of the integrated starlight: B-V = 0.8 (a G8 star's), about what the summed
@@ -170,8 +158,8 @@ glm::dvec3 AirglowColour() {
     return 0.5 * line + 0.5 * glm::dvec3(1.0);
 }
 
-glm::dvec3 ZodiacalColour() { return CachedColour(0.65); }
-glm::dvec3 LightPollutionColour() { return CachedColour(2.2); }
+glm::dvec3 ZodiacalColour() { return StarColour(0.65); }
+glm::dvec3 LightPollutionColour() { return StarColour(2.2); }
 
 double ZodiacalTable(double delta_longitude_deg, double latitude_deg) {
     double dl = std::fmod(std::abs(delta_longitude_deg), 360.0);
@@ -203,7 +191,7 @@ StarlightMap StarlightMap::ModelOnly(int width, int height) {
     map.width = width;
     map.height = height;
     map.texels.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-    const glm::dvec3 colour = CachedColour(kStarlightBMinusV);
+    const glm::dvec3 colour = StarColour(kStarlightBMinusV);
     const double s10 = LuminanceFromSurfaceBrightness(kS10Magnitude);
     for (int j = 0; j < height; ++j) {
         const double dec = (-90.0 + (j + 0.5) * 180.0 / height) * kDeg;
@@ -234,7 +222,7 @@ StarlightMap StarlightMap::FromCatalog(const geo::StarCatalog& catalog, double d
             2.0 * ref::kPi / width * (std::sin(dec_high) - std::sin(dec_low));
         map.texels[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) +
                    static_cast<std::size_t>(i)] += geo::IlluminanceFromMagnitude(star.magnitude_v) *
-                                                   CachedColour(star.b_minus_v) / solid_angle;
+                                                   StarColour(star.b_minus_v) / solid_angle;
     }
     return map;
 }

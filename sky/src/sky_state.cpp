@@ -18,9 +18,15 @@
 namespace zenith::sky {
 namespace {
 
-// Colour of B-V in steps of 0.01 from -0.40 to 4.00 (the catalogue's resolution and
-// geo::ColourFromBMinusV's clamp), computed once: the black-body integral costs ~4 us a call.
+// Mean B-V colour indices of the planets (Allen's Astrophysical Quantities, 4th ed., Table 12.x
+// "Photometry of the planets"), in geo::Planet order; the Earth's entry is unused.
+constexpr std::array<double, 8> kPlanetBMinusV = {0.93, 0.82, 0.0, 1.36, 0.83, 1.04, 0.56, 0.41};
+
+}  // namespace
+
 glm::dvec3 StarColour(double b_minus_v) {
+    // Steps of 0.01 from -0.40 to 4.00 (the catalogue's resolution and
+    // geo::ColourFromBMinusV's clamp), computed once: the black-body integral costs ~4 us a call.
     static const std::array<glm::dvec3, 441> table = [] {
         std::array<glm::dvec3, 441> t{};
         for (std::size_t i = 0; i < t.size(); ++i) {
@@ -31,12 +37,6 @@ glm::dvec3 StarColour(double b_minus_v) {
     const double index = std::round((b_minus_v + 0.40) / 0.01);
     return table[static_cast<std::size_t>(std::clamp(index, 0.0, 440.0))];
 }
-
-// Mean B-V colour indices of the planets (Allen's Astrophysical Quantities, 4th ed., Table 12.x
-// "Photometry of the planets"), in geo::Planet order; the Earth's entry is unused.
-constexpr std::array<double, 8> kPlanetBMinusV = {0.93, 0.82, 0.0, 1.36, 0.83, 1.04, 0.56, 0.41};
-
-}  // namespace
 
 double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double angular_radius) {
     // Integral of A cos(i) / pi over the visible lit part of a Lambertian sphere:

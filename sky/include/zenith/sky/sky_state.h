@@ -31,6 +31,10 @@ struct SkyState {
     double sun_elevation = 0.0;  // rad, geometric, for exposure and day/night decisions
 };
 
+// The colour (RGB of unit luminance) of a star of colour index B-V, a black body's
+// (geo::ColourFromBMinusV) in steps of 0.01 mag, cached.
+glm::dvec3 StarColour(double b_minus_v);
+
 // Lambertian sphere of `albedo` at phase angle `phase_angle` (rad): the illuminance it sends to
 // the observer per unit solar illuminance, times the solid angle it subtends (Moon as a light).
 double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double angular_radius);
