@@ -148,8 +148,8 @@ TEST(FlightGearNative, ClockNotSetGivesNoTime) {
 }
 
 std::vector<std::byte> Text(const std::string& s) {
-    std::vector<std::byte> b(s.size());
-    std::memcpy(b.data(), s.data(), s.size());
+    std::vector<std::byte> b;
+    for (const char c : s) b.push_back(static_cast<std::byte>(c));
     return b;
 }
 

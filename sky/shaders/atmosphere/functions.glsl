@@ -875,6 +875,7 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
     unit_sun.cloud_sky = 1.0;
     unit_sun.cloud_luminance = vec3(0.0);
     unit_sun.padding0 = 0.0;
+    unit_sun.eclipse = 0;  // a whole Sun (the other eclipse members are read only with it)
     vec3 origin = vec3(0.0, 0.0, atmosphere.bottom_radius);
     // Upper hemisphere in equal-solid-angle strata: cos(theta) uniform in (0, 1].
     vec3 irradiance = vec3(0.0);
