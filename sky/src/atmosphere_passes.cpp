@@ -26,7 +26,7 @@ using Pass = AtmospherePasses::Pass;
 using enum AtmospherePasses::Pass;
 constexpr double kKm = 1000.0;
 
-constexpr std::array<std::string_view, kPassCount> kPassFiles = {
+constexpr std::array<std::string_view, AtmospherePasses::kPassCount> kPassFiles = {
     "atmosphere/transmittance.comp",
     "atmosphere/multiple_scattering.comp",
     "atmosphere/irradiance.comp",
@@ -58,7 +58,7 @@ gl::Program CompositeProgram(Pass pass, bool clouds) {
                                  clouds ? CloudShaderParts() : std::span<const std::string_view>{});
 }
 
-std::array<gl::Program, kPassCount> BuildPrograms() {
+std::array<gl::Program, AtmospherePasses::kPassCount> BuildPrograms() {
     return {gl::ComputeProgram(kPassFiles[0]), gl::ComputeProgram(kPassFiles[1]),
             gl::ComputeProgram(kPassFiles[2]), gl::ComputeProgram(kPassFiles[3]),
             gl::ComputeProgram(kPassFiles[4]),
@@ -74,7 +74,7 @@ std::array<gl::Program, kPassCount> BuildPrograms() {
 // The six composites again, laying the clouds over the sky and the disks.
 std::vector<gl::Program> CloudComposites() {
     std::vector<gl::Program> programs;
-    for (std::size_t pass = kRenderPass; pass < kPassCount; ++pass) {
+    for (std::size_t pass = kRenderPass; pass < AtmospherePasses::kPassCount; ++pass) {
         programs.push_back(CompositeProgram(static_cast<Pass>(pass), true));
     }
     return programs;
