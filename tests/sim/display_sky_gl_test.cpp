@@ -59,7 +59,7 @@ Look LookOf(const std::vector<std::uint8_t>& rgba) {
 class DisplaySkyTest : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
-        context_ = sky::gl::CreateHeadlessContext(sky::gl::ContextKind::kOsMesa).release();
+        context_ = sky::gl::CreateHeadlessContextFromEnvironment().release();
     }
     static void TearDownTestSuite() {
         delete context_;

@@ -515,7 +515,7 @@ std::string GlErrors() {
 class GlStateContractTest : public ::testing::Test {
   protected:
     static void SetUpTestSuite() {
-        context_ = sky::gl::CreateHeadlessContext(sky::gl::ContextKind::kOsMesa).release();
+        context_ = sky::gl::CreateHeadlessContextFromEnvironment().release();
     }
     static void TearDownTestSuite() {
         delete context_;

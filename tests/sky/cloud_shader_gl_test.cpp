@@ -65,8 +65,11 @@ ref::CloudScatteringParameters Scattering() {
 }
 
 void SetUniform(GLuint program, const std::string& name, float value) {
+    // -1: inactive. A compiler may drop a uniform the pass never reads (NVIDIA's does, Mesa's
+    // keeps struct members); one the pass reads but misnamed here stays 0 and the comparison
+    // below fails.
     const GLint location = glGetUniformLocation(program, name.c_str());
-    ASSERT_GE(location, 0) << name;
+    if (location < 0) return;
     glProgramUniform1f(program, location, value);
 }
 
@@ -88,7 +91,7 @@ GLuint Texture3D(const clouds::NoiseVolume& v) {
 }
 
 TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
-    const auto context = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa);
+    const auto context = gl::CreateHeadlessContextFromEnvironment();
     const std::string source =
         "#version 450 core\n" + std::string(gl::EmbeddedShaderFile("common/definitions.glsl")) +
         "\n" + std::string(gl::EmbeddedShaderFile("clouds/definitions.glsl")) + "\n" +

@@ -1,5 +1,6 @@
-// A headless OSMesa context shared by every test of a suite (made once: llvmpipe's start-up
-// costs more than many of the tests).
+// A headless context shared by every test of a suite (made once: llvmpipe's start-up costs more
+// than many of the tests). ZENITH_GL chooses it (OSMesa by default; ZENITH_GL=egl runs the GL
+// tests on a GPU through EGL, e.g. ZENITH_EGL_PLATFORM=device on a headless NVIDIA machine).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -12,7 +13,7 @@ namespace zenith::sky::gl::test {
 
 class HeadlessGlTest : public ::testing::Test {
   protected:
-    static void SetUpTestSuite() { context_ = CreateHeadlessContext(ContextKind::kOsMesa); }
+    static void SetUpTestSuite() { context_ = CreateHeadlessContextFromEnvironment(); }
     static void TearDownTestSuite() { context_.reset(); }
     static inline std::unique_ptr<HeadlessContext> context_;
 };

@@ -90,7 +90,7 @@ fs::path GoldenPath(const Scene& s) {
 class GoldenFrames : public ::testing::TestWithParam<Scene> {
   protected:
     static void SetUpTestSuite() {
-        context_ = gl::CreateHeadlessContext(gl::ContextKind::kOsMesa).release();
+        context_ = gl::CreateHeadlessContextFromEnvironment().release();
         renderer_ = new AtmosphereRenderer(Atmosphere{});
         try {
             catalog_ = new geo::StarCatalog(geo::StarCatalog::Load(6.5));
