@@ -47,6 +47,8 @@ const int kDisplayInputUnit = 16;  // display/*: the linear frame (cd/m^2) to di
 const int kCloudShadowMapUnit = 17;
 const int kCloudGroundShadowUnit = 18;
 const int kNightSkyUnit = 19;  // atmosphere/render.frag: the night sky's light (night_sky.h)
+const int kCloudAirShadowUnit = 20;  // clouds/light_shafts.frag's output
+const int kTextureUnitCount = 21;    // units 0 .. kTextureUnitCount - 1 are zenith's
 
 // Image units.
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
@@ -57,6 +59,9 @@ const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
 const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations
 const int kIrradianceGroupSize = 64;  // the irradiance LUT: 64 x 1
 const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
+
+// The light shafts are worked out once per kCloudLightShaftCell^2 trace cells.
+const int kCloudLightShaftCell = 2;
 
 // The display pass (zenith/sky/display.h): the meter's histogram of log2 luminance has
 // kDisplayHistogramBins bins over [kDisplayHistogramMinLog2, kDisplayHistogramMaxLog2) (1e-6 to

@@ -369,6 +369,7 @@ PassTimes RendererInspection::LastPassTimes() const {
         times.cloud_trace = clouds[2];
         times.cloud_reconstruct = clouds[3];
         times.cloud_ground_shadow = clouds[4];
+        times.cloud_light_shafts = clouds[5];
     }
     return times;
 }

@@ -92,11 +92,39 @@ void BM_Frame720p(benchmark::State& state) {
     state.counters["cloud_trace_ms"] = t.cloud_trace;
     state.counters["cloud_reconstruct_ms"] = t.cloud_reconstruct;
     state.counters["cloud_ground_shadow_ms"] = t.cloud_ground_shadow;
+    state.counters["cloud_light_shafts_ms"] = t.cloud_light_shafts;
     state.SetLabel(std::string(view.name) +
                    (block == 0 ? " clear" : " block " + std::to_string(block)));
 }
 BENCHMARK(BM_Frame720p)
     ->ArgsProduct({{0, 1, 2}, {0, 4, 8, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+// The light shafts' cost (CloudSettings::light_shaft_steps, 0 = none): whole frames at block 4
+// from the ground and from 12 km, with the shafts' pass timed on its own. args: view, shaft steps
+void BM_LightShafts720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    const View& view = kViews[state.range(0)];
+    CloudSettings settings = Settings(4);
+    settings.light_shaft_steps = static_cast<int>(state.range(1));
+    f.renderer.SetWeather(f.weather, settings);
+    const Camera camera = f.CameraFor(view);
+    const FrameOptions options;
+    Frame(f, camera, options);
+    glFinish();
+    for (auto _ : state) {
+        Frame(f, camera, options);
+        glFinish();
+    }
+    const PassTimes t = Inspect(f.renderer).LastPassTimes();
+    state.counters["light_shafts_ms"] = t.cloud_light_shafts;
+    state.counters["cloud_trace_ms"] = t.cloud_trace;
+    state.SetLabel(std::string(view.name) + ", " + std::to_string(state.range(1)) + " steps");
+}
+BENCHMARK(BM_LightShafts720p)
+    ->ArgsProduct({{0, 2}, {0, 24}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

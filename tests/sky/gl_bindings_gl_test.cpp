@@ -224,7 +224,7 @@ void AddCloudMarch(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, min_transmittance);
     ZENITH_SAME(S, max_distance);
     ZENITH_SAME(S, oriented_slabs);
-    ZENITH_SAME(S, padding1);
+    ZENITH_SAME(S, light_shaft_steps);
 }
 
 void AddCloud(Layout& layout, const std::string& prefix, std::size_t base) {
@@ -335,6 +335,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"cloud_history", kCloudHistoryUnit},
         {"cloud_shadow_map", kCloudShadowMapUnit},
         {"cloud_ground_shadow", kCloudGroundShadowUnit},
+        {"cloud_air_shadow", kCloudAirShadowUnit},
         {"display_input", kDisplayInputUnit},
         {"display_scene_depth", kSceneDepthUnit},
         // Images.
@@ -565,8 +566,8 @@ std::string Join(const std::vector<std::string>& lines) {
 }
 
 TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
-    // 5 LUT passes, 6 composites, the 6 again with clouds, 6 cloud programs, 3 display programs.
-    ASSERT_EQ(programs_.size(), 26u);
+    // 5 LUT passes, 6 composites, the 6 again with clouds, 7 cloud programs, 3 display programs.
+    ASSERT_EQ(programs_.size(), 27u);
     const std::map<std::string, BlockMirror> mirrors = Mirrors();
     std::set<std::string> seen;
     std::vector<std::string> errors;

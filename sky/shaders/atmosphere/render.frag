@@ -153,7 +153,11 @@ void main() {
     bool ground = RaySphereDistance(r, dot(camera_km, direction) / r, camera_altitude_km,
                                     atmosphere.bottom_radius) >= 0.0;
     if (ground) luminance += CloudGroundShadow(pixel);
-    luminance = clouds.rgb + clouds.a * luminance;
+    // The light shafts lie below the clouds' base: in front of the clouds from a camera below
+    // it, behind them (seen through their gaps) from a camera above it.
+    vec3 shafts = CloudLightShafts(pixel);
+    luminance = clouds.rgb + clouds.a * luminance +
+                (camera_altitude_km < lights.cloud_base ? shafts : clouds.a * shafts);
   #endif
   #if ZENITH_SCENE_DEPTH
     out_luminance = vec4(luminance, 0.0);

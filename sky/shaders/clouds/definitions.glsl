@@ -5,4 +5,5 @@
 // RepeatTexture2D). Noise is read with common/definitions.glsl's SampleTexture3D.
 #define CloudNoiseTexture sampler3D
 #define WeatherTexture sampler2D
+#define CloudShadowMapTexture sampler2D
 vec4 SampleRepeat2D(sampler2D t, vec2 uv) { return textureLod(t, uv, 0.0); }

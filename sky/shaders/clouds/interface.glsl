@@ -38,12 +38,13 @@ layout(binding = kDetailNoiseUnit) uniform sampler3D detail_noise;
 layout(binding = kWeatherMapsUnit) uniform sampler2D weather_maps[kCloudMaxLayers];
 // cloud_trace: rgb luminance, a transmittance; cloud_trace_depth: r, mean depth (km), -1 for
 // none; cloud_shadow_map: r, transmittance to the light; cloud_ground_shadow: rgb,
-// ground_shadow.frag's values, one per trace cell.
+// ground_shadow.frag's values, one per trace cell; cloud_air_shadow: rgb, light_shafts.frag's.
 layout(binding = kCloudTraceUnit) uniform sampler2D cloud_trace;
 layout(binding = kCloudTraceDepthUnit) uniform sampler2D cloud_trace_depth;
 layout(binding = kCloudHistoryUnit) uniform sampler2D cloud_history;
 layout(binding = kCloudShadowMapUnit) uniform sampler2D cloud_shadow_map;
 layout(binding = kCloudGroundShadowUnit) uniform sampler2D cloud_ground_shadow;
+layout(binding = kCloudAirShadowUnit) uniform sampler2D cloud_air_shadow;
 
 // The clouds' mean depth (km, -1 for none) at a full-resolution pixel: its trace cell's own, the
 // depth to reproject with and to test against a host's geometry (a bilinear one would mix clouds
@@ -57,6 +58,15 @@ float CloudTraceDepth(ivec2 pixel) {
 vec3 CloudGroundShadow(ivec2 pixel) {
     vec2 uv = (vec2(pixel) + 0.5) / (float(block) * vec2(trace_size));
     return texture(cloud_ground_shadow, uv).rgb;
+}
+
+// The light shafts at a full-resolution pixel: light_shafts.frag's values, one per cell of
+// kCloudLightShaftCell x kCloudLightShaftCell trace cells at its centre, filtered.
+vec3 CloudLightShafts(ivec2 pixel) {
+    if (!(cloud_march.light_shaft_steps >= 1.0)) return vec3(0.0);  // the pass did not run
+    vec2 cells = vec2(textureSize(cloud_air_shadow, 0));
+    vec2 uv = (vec2(pixel) + 0.5) / (float(kCloudLightShaftCell * block) * cells);
+    return texture(cloud_air_shadow, uv).rgb;
 }
 
 mat3 WeatherFromFrame() {
@@ -122,4 +132,15 @@ vec3 GroundShadowCorrection(vec3 view) {
     return weight * (shadow - lights.cloud_direct) * direct * atmosphere.ground_albedo / kPi *
            TransmittanceToGround(atmosphere, transmittance_texture, camera_km,
                                  camera_altitude_km, view, t);
+}
+
+// Light shafts along `view` (CloudAirShadowCorrection): the air below the clouds lit where the
+// shadow map lets the main light through, shaded where it does not. `jitter` places the samples.
+vec3 CloudAirShadow(vec3 view, float jitter) {
+    if (!(cloud_march.light_shaft_steps >= 1.0) || cloud_light_count == 0) return vec3(0.0);
+    vec3 map_light = transpose(WeatherFromFrame()) * cloud_lights.light[0].direction;
+    return CloudAirShadowCorrection(atmosphere, transmittance_texture, cloud_shadow_map, lights,
+                                    map_light, lights.cloud_base, shadow_map_extent_km, camera_km,
+                                    camera_altitude_km, view, 1e9,
+                                    int(cloud_march.light_shaft_steps), jitter);
 }

@@ -24,7 +24,7 @@ struct CloudMarchParameters {
     Number min_transmittance;      // the march stops below this (H16 §6.2 early exit)
     Number max_distance;           // km marched in one layer at most (from where the ray enters it)
     Number oriented_slabs;  // 1: the diffuse slab follows the clouds' surface; 0: horizontal
-    Number padding1;
+    Number light_shaft_steps;  // samples of CloudAirShadowCorrection per ray, 0: no shafts
 };
 
 // A step of more optical depth than this is lit where its light comes from (MarchCloudLayer),
@@ -363,6 +363,106 @@ vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 gro
     Number arc = atan(s, dot(n, up)) * bottom_radius;
     vec2 offset = s > 0.0 ? tangent * (arc / s) : vec2(0.0);
     return offset / extent + vec2(0.5);
+}
+
+// Light shafts (issue 15 §4): the change of the light scattered once toward the camera along
+// `view` in the air below the lowest cloud base (`base` km), where the shadow map gives each
+// point its own share of the light through the clouds instead of the map's mean, which the LUTs
+// and the composite assume there (LightSet.cloud_direct):
+//   sum over the lights of  integral T(camera, x) sigma_s p(nu) E T_light(x) (S(x) - mean) dt
+// over the part of [0, t_limit] km below the base. S(x) is the map at the ground point that the
+// map's light (`map_light`, its direction in this frame) reaches through x; every cloud is above
+// x, so the light's path from there through x meets the same clouds. Like the ground's shadow,
+// the map's light stands for every light, and it fades out over the map's outer 5 %. `steps`
+// samples, dense near the camera where a shaft is widest on screen (t ~ u^2), each shifted by
+// `jitter` in [0, 1) of its stratum: an unbiased estimate whatever the jitter's value where the
+// points the samples are lit from lie within half a texel of the map of each other. Farther
+// apart they would alias the map's pattern into noise: there the map's value fades into its mean
+// (no correction) by 1.5 texels apart. Looking along the light (crepuscular and anticrepuscular
+// rays) those points barely move and the whole ray keeps its shafts; across it, the part near
+// the camera does.
+vec3 CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
+                              IN(TransmittanceTexture) transmittance_texture,
+                              IN(CloudShadowMapTexture) shadow_map, IN(LightSet) lights,
+                              vec3 map_light, Number base, Number extent, vec3 camera,
+                              Number camera_altitude, vec3 view, Number t_limit, int steps,
+                              Number jitter) {
+    Number R = atmosphere.bottom_radius;
+    Number r = length(camera);
+    Number mu = dot(camera, view) / r;
+    // Where the ray is below the base: inside the sphere of radius R + base.
+    Number rb = R + base;
+    Number discriminant = r * r * (mu * mu - 1.0) + rb * rb;
+    if (!(discriminant > 0.0) || !(base > 0.0)) return vec3(0.0);
+    Number t_begin = max(-r * mu - sqrt(discriminant), 0.0);
+    Number t_end = min(-r * mu + sqrt(discriminant), t_limit);
+    Number t_ground = RaySphereDistance(r, mu, camera_altitude, R);
+    if (t_ground >= 0.0) t_end = min(t_end, t_ground);
+    // Beyond the map's half diagonal (plus the light's slant from the base) nothing is shadowed.
+    t_end = min(t_end, t_begin + extent + 4.0 * base);
+    if (!(t_end > t_begin)) return vec3(0.0);
+
+    Number span = t_end - t_begin;
+    Number c0 = camera_altitude * (2.0 * R + camera_altitude);
+    Number b0 = r * mu;
+    // The air's optical depth from the camera to where the shafts begin (a camera above the
+    // base looking down), 8 midpoints, then on to each sample.
+    vec3 optical_depth = vec3(0.0);
+    for (int j = 0; j < (t_begin > 0.0 ? 8 : 0); ++j) {
+        Number t = t_begin * (Number(j) + 0.5) / 8.0;
+        Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
+        Number altitude = excess / (sqrt(R * R + excess) + R);
+        optical_depth += SampleMedium(atmosphere, altitude).extinction * (t_begin / 8.0);
+    }
+    Number t_previous = t_begin;
+    // Each light's phase functions: the same for every point of the ray.
+    vec2 phase[kMaxLights];
+    for (int l = 0; l < lights.count; ++l) {
+        Number nu = dot(view, lights.light[l].direction);
+        phase[l] = vec2(RayleighPhase(nu), CornetteShanksPhase(atmosphere.mie_g, nu));
+    }
+    // How fast the samples' ground points cross the map: km of map per km of ray (flat ground:
+    // moving dt along the ray moves the point the light lights it from by view - light
+    // dt_up / light_up). Samples whose points lie more than half a texel apart fade out by 1.5.
+    Number texel = extent / Number(TextureSize(shadow_map).x);
+    vec3 up = camera / r;
+    Number map_speed =
+        length(view - map_light * (dot(view, up) / max(dot(map_light, up), 0.05)));
+    vec3 correction = vec3(0.0);
+    for (int i = 0; i < steps; ++i) {
+        Number u = (Number(i) + jitter) / Number(steps);
+        Number t = t_begin + span * u * u;
+        Number dt = span * 2.0 * u / Number(steps);  // dt/du du: the estimator's weight
+        vec3 p = camera + view * t;
+        Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
+        Number r_p = sqrt(R * R + excess);
+        Number altitude = excess / (r_p + R);
+        MediumSample s = SampleMedium(atmosphere, altitude);
+        // The extinction from the previous sample to this one, taken at this one.
+        optical_depth += s.extinction * (t - t_previous);
+        t_previous = t;
+        // The ground point lit through p by the map's light, and the map there.
+        Number pl = dot(p, map_light);
+        Number d = pl * pl - excess;
+        if (!(pl > 0.0 && d >= 0.0)) continue;
+        vec3 ground = p - map_light * (pl - sqrt(d));
+        vec2 uv = CloudShadowMapUv(camera, R, extent, ground);
+        Number weight = clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0) *
+                        clamp((1.5 * texel - dt * map_speed) / texel, 0.0, 1.0);
+        if (!(weight > 0.0)) continue;
+        Number shadow = SampleTexture2D(shadow_map, uv).r - lights.cloud_direct;
+        vec3 scattered = vec3(0.0);
+        for (int l = 0; l < lights.count; ++l) {
+            vec3 light = lights.light[l].direction;
+            vec3 phase_scattering =
+                s.rayleigh_scattering * phase[l].x + s.mie_scattering * phase[l].y;
+            scattered += LightIlluminanceAt(lights, l, p) * phase_scattering *
+                         GetTransmittanceToSun(atmosphere, transmittance_texture, r_p,
+                                               dot(p, light) / r_p);
+        }
+        correction += exp(-optical_depth) * scattered * (weight * shadow * dt);
+    }
+    return correction;
 }
 
 // Optical depth of one layer from `origin` (cloud frame, `altitude` km above the ground, exact)

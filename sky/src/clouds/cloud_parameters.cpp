@@ -50,6 +50,8 @@ void CloudSettings::Validate() const {
             "0 < m <= 10000 km");
     Require(aerial_perspective_steps >= 1 && aerial_perspective_steps <= 256,
             "aerial_perspective_steps", aerial_perspective_steps, "1..256");
+    Require(light_shaft_steps >= 0 && light_shaft_steps <= 256, "light_shaft_steps",
+            light_shaft_steps, "0..256");
     Require(block >= 1 && block <= 8, "block", block, "1..8");
     Require(history_weight >= 0.0 && history_weight < 1.0, "history_weight", history_weight,
             "[0, 1)");

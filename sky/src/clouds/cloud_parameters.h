@@ -70,6 +70,7 @@ Parameters MakeCloudMarchParameters(const CloudSettings& s) {
     p.oriented_slabs = Scalar(s.oriented_slabs ? 1.0 : 0.0);
     p.min_transmittance = Scalar(s.min_transmittance);
     p.max_distance = Scalar(s.max_distance / kKm);
+    p.light_shaft_steps = Scalar(s.light_shaft_steps);
     return p;
 }
 

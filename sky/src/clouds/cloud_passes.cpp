@@ -26,7 +26,8 @@ enum Query : std::size_t {
     kShadeQuery,
     kTraceQuery,
     kReconstructQuery,
-    kGroundShadowQuery
+    kGroundShadowQuery,
+    kLightShaftQuery
 };
 
 constexpr std::array<std::string_view, 4> kCloudParts = {
@@ -123,6 +124,7 @@ enum CloudProgram : std::size_t {
     kShadeTraceProgram,
     kShadeProgram,
     kGroundShadowProgram,
+    kLightShaftProgram,
     kCloudProgramCount
 };
 
@@ -140,6 +142,8 @@ gl::Program BuildCloudProgram(CloudProgram program) {
             return gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts);
         case kGroundShadowProgram:
             return gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts);
+        case kLightShaftProgram:
+            return gl::FullscreenProgram("clouds/light_shafts.frag", {}, kCloudParts);
         case kCloudProgramCount:
             break;
     }
@@ -169,6 +173,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
       shade_trace_pass_(BuildCloudProgram(kShadeTraceProgram)),
       shade_pass_(BuildCloudProgram(kShadeProgram)),
       ground_shadow_(BuildCloudProgram(kGroundShadowProgram)),
+      light_shafts_(BuildCloudProgram(kLightShaftProgram)),
       cloud_tops_(tops) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(kCloudMaxLayers)) {
@@ -194,19 +199,20 @@ CloudPasses::~CloudPasses() {
     glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
     glDeleteVertexArrays(1, &vertex_array_);
     DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1],
-                        &shade_framebuffer_, &ground_shadow_framebuffer_});
+                        &shade_framebuffer_, &ground_shadow_framebuffer_, &shaft_framebuffer_});
     DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &ground_shadow_color_,
-                    &history_color_[0], &history_color_[1], &shadow_map_, &shade_directions_});
+                    &air_shadow_color_, &history_color_[0], &history_color_[1], &shadow_map_,
+                    &shade_directions_});
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
     glDeleteBuffers(1, &uniforms_);
     glDeleteBuffers(1, &shade_);
 }
 
 void CloudPasses::Resize(glm::ivec2 size) {
-    DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_, &history_framebuffer_[0],
-                        &history_framebuffer_[1]});
-    DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &history_color_[0],
-                    &history_color_[1]});
+    DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_, &shaft_framebuffer_,
+                        &history_framebuffer_[0], &history_framebuffer_[1]});
+    DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &air_shadow_color_,
+                    &history_color_[0], &history_color_[1]});
     size_ = size;
     const int block = settings_.block;
     trace_size_ = (size + block - 1) / block;
@@ -215,6 +221,9 @@ void CloudPasses::Resize(glm::ivec2 size) {
     trace_framebuffer_ = CreateFramebuffer({trace_color_, trace_depth_});
     ground_shadow_color_ = gl::CreateTexture2D(trace_size_);
     ground_shadow_framebuffer_ = CreateFramebuffer({ground_shadow_color_});
+    shaft_size_ = (trace_size_ + kCloudLightShaftCell - 1) / kCloudLightShaftCell;
+    air_shadow_color_ = gl::CreateTexture2D(shaft_size_);
+    shaft_framebuffer_ = CreateFramebuffer({air_shadow_color_});
     for (std::size_t i = 0; i < 2; ++i) {
         history_color_[i] = gl::CreateTexture2D(size);
         history_framebuffer_[i] = CreateFramebuffer({history_color_[i]});
@@ -362,6 +371,12 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
                        glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace,
                        queries_[kGroundShadowQuery]);
     query_used_[kGroundShadowQuery] = true;
+    if (settings_.light_shaft_steps > 0) {
+        gl::DrawFullscreen(light_shafts_, vertex_array_, shaft_framebuffer_,
+                           glm::ivec4(0, 0, shaft_size_), gl::Blend::kReplace,
+                           queries_[kLightShaftQuery]);
+        query_used_[kLightShaftQuery] = true;
+    }
 
     previous_ = Previous{camera, view.weather_from_world};
     ++frame_index_;
@@ -372,6 +387,7 @@ void CloudPasses::BindForComposite() const {
     glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
     glBindTextureUnit(kCloudHistoryUnit, history_color_[current_]);
     glBindTextureUnit(kCloudGroundShadowUnit, ground_shadow_color_);
+    glBindTextureUnit(kCloudAirShadowUnit, air_shadow_color_);
 }
 
 LutImage CloudPasses::ReadClouds() const {

@@ -62,7 +62,7 @@ class CloudPasses {
 
     // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, the ground's
     // shadow.
-    static constexpr std::size_t kPassCount = 5;
+    static constexpr std::size_t kPassCount = 6;
     std::array<double, kPassCount> LastPassTimes() const;
 
   private:
@@ -73,13 +73,17 @@ class CloudPasses {
 
     clouds::Weather weather_;
     CloudSettings settings_;
-    gl::Program trace_, reconstruct_, shadow_pass_, shade_trace_pass_, shade_pass_, ground_shadow_;
+    gl::Program trace_, reconstruct_, shadow_pass_, shade_trace_pass_, shade_pass_, ground_shadow_,
+        light_shafts_;
     GLuint uniforms_ = 0;
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;
     std::vector<double> cloud_tops_;  // clouds::CloudTopFraction of each map
     GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
     GLuint ground_shadow_color_ = 0, ground_shadow_framebuffer_ = 0;  // per trace cell
+    // The light shafts, per kCloudLightShaftCell^2 trace cells (clouds/light_shafts.frag).
+    GLuint air_shadow_color_ = 0, shaft_framebuffer_ = 0;
+    glm::ivec2 shaft_size_{0, 0};
     std::array<GLuint, 2> history_color_{}, history_framebuffer_{};
     GLuint shadow_map_ = 0;
     GLuint shade_directions_ = 0;  // (L, T) of the clouds along each sky-shade direction

@@ -50,7 +50,7 @@ struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float min_transmittance;
     float max_distance;
     float oriented_slabs;
-    float padding1;
+    float light_shaft_steps;
 };
 static_assert(sizeof(CloudMarchUniforms) == 48);
 

@@ -21,7 +21,7 @@ class StateGuard {
   public:
     // Texture units 0..18, uniform blocks 0..4, storage block 1 and image units 0..1: every one
     // the passes bind (sky/shaders/bindings.glsl).
-    static constexpr int kTextureUnits = kNightSkyUnit + 1;
+    static constexpr int kTextureUnits = kTextureUnitCount;
     static constexpr int kUniformBindings = kCloudBlockBinding + 1;
     static constexpr int kImageUnits = kShadowMapImageUnit + 1;
     static constexpr int kMaxDrawBuffers = 8;  // GL 4.5's minimum; more are left alone

@@ -33,6 +33,8 @@ class RepeatTexture2D {
 // Noise volumes are Texture3D with wrap = true (GL_REPEAT on every axis).
 using CloudNoiseTexture = Texture3D;
 using WeatherTexture = RepeatTexture2D;
+// The ground shadow map: clamped at its edges (GL_CLAMP_TO_EDGE), linear.
+using CloudShadowMapTexture = Texture2D;
 
 inline vec4 SampleRepeat2D(const RepeatTexture2D& t, vec2 uv) { return t.Sample(uv); }
 

@@ -56,6 +56,10 @@ struct CloudSettings {
     double min_transmittance = 0.01;   // early exit
     double max_distance = 250000.0;    // m marched in one layer at most, from where a ray enters
     int aerial_perspective_steps = 8;  // atmosphere between the camera and the clouds
+    // Light shafts: samples per ray of the clouds' shadow in the air below their base (the
+    // single scattering where the shadow map puts light or shade, instead of its mean), one ray
+    // per trace cell; 0 draws the air under the clouds evenly dimmed, as before.
+    int light_shaft_steps = 24;
     // Reconstruction (H16 §6.1): each frame traces one pixel of every block x block (a Bayer
     // order over block^2 frames) and reprojects the rest from the previous frames. 1 traces
     // every pixel every frame (the reference, and single still frames).

@@ -24,6 +24,7 @@ struct PassTimes {
     double cloud_trace = 0.0;
     double cloud_reconstruct = 0.0;
     double cloud_ground_shadow = 0.0;  // per trace cell, which the composite interpolates
+    double cloud_light_shafts = 0.0;   // per 2x2 trace cells, likewise
 };
 
 // A view of one renderer (which must outlive it); cheap to make, e.g. Inspect(renderer).
