@@ -82,11 +82,10 @@ struct IsolatedCumulusCase {
     std::size_t cloud_pixels = 0;
 };
 
-std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& settings,
-                                                        const clouds::CloudNoise& noise,
-                                                        const std::filesystem::path& scratch,
-                                                        std::int64_t samples, int threads,
-                                                        std::uint64_t seed) {
+// One cumulus 3.2 km wide over ground (0, 0) of a 16 km weather tile (repeating), base 1.5 km,
+// top 4 km: its weather map is written to `scratch`/cumulus.exr, which the caller removes once
+// the maps are built.
+clouds::Weather IsolatedCumulusWeather(const std::filesystem::path& scratch) {
     const int n = 64;
     const double period_m = 16000.0, radius_m = 1600.0;
     Image image(n, n);
@@ -111,6 +110,16 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
     layer.map.kind = clouds::WeatherMapSource::Kind::kFile;
     layer.map.file = scratch / "cumulus.exr";
     weather.layers = {layer};
+    return weather;
+}
+
+std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& settings,
+                                                        const clouds::CloudNoise& noise,
+                                                        const std::filesystem::path& scratch,
+                                                        std::int64_t samples, int threads,
+                                                        std::uint64_t seed) {
+    const clouds::Weather weather = IsolatedCumulusWeather(scratch);
+    const clouds::CloudLayer& layer = weather.layers[0];
     const double bottom_m = kR * 1000.0;
     const reference::CloudField field(weather, settings, noise, bottom_m);
     const clouds::WeatherMap weather_map = clouds::BuildWeatherMap(layer);

@@ -179,7 +179,7 @@ TEST(LightShafts, ResolvedNearTheCameraAndFreeOfAliasingNoiseBeyond) {
         near.y, near_fine.y, mean, 100.0 * noise);
     EXPECT_NE(near_fine.y, 0.0);
     EXPECT_LT(Relative(near, near_fine), 0.02);
-    EXPECT_LT(noise, 0.015);  // 0.4 % measured; 4.7 % with every sample kept
+    EXPECT_LT(noise, 0.015);  // 0.6 % measured; 4.7 % with every sample kept
 }
 
 }  // namespace

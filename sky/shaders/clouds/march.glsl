@@ -373,14 +373,13 @@ vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 gro
 // over the part of [0, t_limit] km below the base. S(x) is the map at the ground point that the
 // map's light (`map_light`, its direction in this frame) reaches through x; every cloud is above
 // x, so the light's path from there through x meets the same clouds. Like the ground's shadow,
-// the map's light stands for every light, and it fades out over the map's outer 5 %. `steps`
-// samples, dense near the camera where a shaft is widest on screen (t ~ u^2), each shifted by
-// `jitter` in [0, 1) of its stratum: an unbiased estimate whatever the jitter's value where the
-// points the samples are lit from lie within half a texel of the map of each other. Farther
-// apart they would alias the map's pattern into noise: there the map's value fades into its mean
-// (no correction) by 1.5 texels apart. Looking along the light (crepuscular and anticrepuscular
-// rays) those points barely move and the whole ray keeps its shafts; across it, the part near
-// the camera does.
+// the map's light stands for every light, and it fades out over the map's outer 5 %.
+// `steps` samples, each shifted by `jitter` in [0, 1) of its stratum: an unbiased estimate
+// whatever the jitter's value where the points the samples are lit from lie within a texel of
+// the map of each other. Farther apart they would alias the map's pattern into noise: there the
+// map's value fades into its mean (no correction) by 2 texels apart. Looking along the light
+// (crepuscular and anticrepuscular rays) those points barely move and a whole ray keeps its
+// shafts; across it, a long ray keeps those near the camera.
 vec3 CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
                               IN(TransmittanceTexture) transmittance_texture,
                               IN(CloudShadowMapTexture) shadow_map, IN(LightSet) lights,
@@ -423,16 +422,21 @@ vec3 CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
     }
     // How fast the samples' ground points cross the map: km of map per km of ray (flat ground:
     // moving dt along the ray moves the point the light lights it from by view - light
-    // dt_up / light_up). Samples whose points lie more than half a texel apart fade out by 1.5.
+    // dt_up / light_up).
     Number texel = extent / Number(TextureSize(shadow_map).x);
     vec3 up = camera / r;
     Number map_speed =
         length(view - map_light * (dot(view, up) / max(dot(map_light, up), 0.05)));
+    // Samples evenly spaced (warp 1) while they stay within half a texel of the map of each
+    // other, then denser near the camera (t ~ u^warp, up to u^2 for rays many texels long),
+    // where a shaft is widest on screen.
+    Number warp = clamp(1.0 + log2(max(span * map_speed / (0.5 * texel * Number(steps)), 1e-6)),
+                        1.0, 2.0);
     vec3 correction = vec3(0.0);
     for (int i = 0; i < steps; ++i) {
-        Number u = (Number(i) + jitter) / Number(steps);
-        Number t = t_begin + span * u * u;
-        Number dt = span * 2.0 * u / Number(steps);  // dt/du du: the estimator's weight
+        Number u = max((Number(i) + jitter) / Number(steps), 1e-6);  // GLSL's pow(0, y): undefined
+        Number t = t_begin + span * pow(u, warp);
+        Number dt = span * warp * pow(u, warp - 1.0) / Number(steps);  // dt/du du: the weight
         vec3 p = camera + view * t;
         Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
         Number r_p = sqrt(R * R + excess);
@@ -448,7 +452,7 @@ vec3 CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
         vec3 ground = p - map_light * (pl - sqrt(d));
         vec2 uv = CloudShadowMapUv(camera, R, extent, ground);
         Number weight = clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0) *
-                        clamp((1.5 * texel - dt * map_speed) / texel, 0.0, 1.0);
+                        clamp((2.0 * texel - dt * map_speed) / texel, 0.0, 1.0);
         if (!(weight > 0.0)) continue;
         Number shadow = SampleTexture2D(shadow_map, uv).r - lights.cloud_direct;
         vec3 scattered = vec3(0.0);
