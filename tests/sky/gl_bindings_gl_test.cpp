@@ -335,7 +335,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"cloud_history", kCloudHistoryUnit},
         {"cloud_shadow_map", kCloudShadowMapUnit},
         {"cloud_ground_shadow", kCloudGroundShadowUnit},
-        {"cloud_air_shadow", kCloudAirShadowUnit},
+        {"cloud_air_shadow[0]", kCloudAirShadowUnit},  // and the next 3
         {"display_input", kDisplayInputUnit},
         {"display_scene_depth", kSceneDepthUnit},
         // Images.

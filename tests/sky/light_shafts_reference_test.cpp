@@ -109,9 +109,11 @@ TEST(LightShaftsReference, TheShadowedAirMatchesThePathTracer) {
                     set.cloud_direct * dt;
             depth += s.extinction * (0.5 * dt);
         }
-        const vec3 shafts = CloudAirShadowCorrection(
-            a, scene.transmittance, shadow_map, set, light, set.cloud_base, extent_km, camera_km,
-            altitude_km, view, 1e9, settings.light_shaft_steps, 0.5);
+        const vec3 shafts =
+            vec3(CloudAirShadowCorrection(a, scene.transmittance, shadow_map, set, light,
+                                          set.cloud_base, extent_km, camera_km, altitude_km, view,
+                                          1e9, settings.light_shaft_steps, 0.5)
+                     .part[3]);
         const reference::CloudPathTraceResult pt =
             reference::CloudPathTrace(traced, camera.position, view, options);
         const double with = Y(mean + shafts), without = Y(mean);

@@ -49,9 +49,11 @@ struct Scene {
 
     vec3 Shafts(double altitude, vec3 view, int steps, double jitter = 0.5,
                 double t_limit = 1e9) const {
-        return CloudAirShadowCorrection(
-            atmosphere, transmittance, map, lights, lights.light[0].direction, lights.cloud_base,
-            kExtent, Camera(altitude), altitude, normalize(view), t_limit, steps, jitter);
+        return vec3(CloudAirShadowCorrection(atmosphere, transmittance, map, lights,
+                                             lights.light[0].direction, lights.cloud_base, kExtent,
+                                             Camera(altitude), altitude, normalize(view), t_limit,
+                                             steps, jitter)
+                        .part[3]);
     }
 
     // The reference: sum over [t0, t1] of T(camera, x) sigma_s p(nu) E (S(x) - mean) dt by the

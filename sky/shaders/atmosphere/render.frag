@@ -142,7 +142,10 @@ void main() {
         // Only the clouds in front of the geometry.
         float cloud_depth = CloudTraceDepth(pixel);
         if (!(cloud_depth > 0.0 && cloud_depth < distance_km)) clouds = vec4(0.0, 0.0, 0.0, 1.0);
-        air = vec4(clouds.rgb + clouds.a * air.rgb, clouds.a * air.a);
+        // The light shafts up to the geometry: in front of those clouds from below the base.
+        vec3 shafts = CloudLightShaftsTo(pixel, direction, distance_km);
+        float behind = camera_altitude_km < lights.cloud_base ? 1.0 : clouds.a;
+        air = vec4(clouds.rgb + clouds.a * air.rgb + behind * shafts, clouds.a * air.a);
     #endif
         out_luminance = air;
         return;

@@ -38,13 +38,14 @@ layout(binding = kDetailNoiseUnit) uniform sampler3D detail_noise;
 layout(binding = kWeatherMapsUnit) uniform sampler2D weather_maps[kCloudMaxLayers];
 // cloud_trace: rgb luminance, a transmittance; cloud_trace_depth: r, mean depth (km), -1 for
 // none; cloud_shadow_map: r, transmittance to the light; cloud_ground_shadow: rgb,
-// ground_shadow.frag's values, one per trace cell; cloud_air_shadow: rgb, light_shafts.frag's.
+// ground_shadow.frag's values, one per trace cell; cloud_air_shadow: light_shafts.frag's
+// CloudShaftProfile, one texture per part.
 layout(binding = kCloudTraceUnit) uniform sampler2D cloud_trace;
 layout(binding = kCloudTraceDepthUnit) uniform sampler2D cloud_trace_depth;
 layout(binding = kCloudHistoryUnit) uniform sampler2D cloud_history;
 layout(binding = kCloudShadowMapUnit) uniform sampler2D cloud_shadow_map;
 layout(binding = kCloudGroundShadowUnit) uniform sampler2D cloud_ground_shadow;
-layout(binding = kCloudAirShadowUnit) uniform sampler2D cloud_air_shadow;
+layout(binding = kCloudAirShadowUnit) uniform sampler2D cloud_air_shadow[4];
 
 // The clouds' mean depth (km, -1 for none) at a full-resolution pixel: its trace cell's own, the
 // depth to reproject with and to test against a host's geometry (a bilinear one would mix clouds
@@ -61,12 +62,37 @@ vec3 CloudGroundShadow(ivec2 pixel) {
 }
 
 // The light shafts at a full-resolution pixel: light_shafts.frag's values, one per cell of
-// kCloudLightShaftCell x kCloudLightShaftCell trace cells at its centre, filtered.
+// kCloudLightShaftCell x kCloudLightShaftCell trace cells at its centre, filtered: the whole ray.
+vec2 CloudLightShaftUv(ivec2 pixel) {
+    vec2 cells = vec2(textureSize(cloud_air_shadow[0], 0));
+    return (vec2(pixel) + 0.5) / (float(kCloudLightShaftCell * block) * cells);
+}
+
 vec3 CloudLightShafts(ivec2 pixel) {
     if (!(cloud_march.light_shaft_steps >= 1.0)) return vec3(0.0);  // the pass did not run
-    vec2 cells = vec2(textureSize(cloud_air_shadow, 0));
-    vec2 uv = (vec2(pixel) + 0.5) / (float(kCloudLightShaftCell * block) * cells);
-    return texture(cloud_air_shadow, uv).rgb;
+    return texture(cloud_air_shadow[3], CloudLightShaftUv(pixel)).rgb;
+}
+
+// ...and up to `distance` km along `view` (a host's geometry there): piecewise linear between
+// where the ray goes below the base and the profile's parts.
+vec3 CloudLightShaftsTo(ivec2 pixel, vec3 view, float distance) {
+    if (!(cloud_march.light_shaft_steps >= 1.0)) return vec3(0.0);
+    float r = length(camera_km);
+    float mu = dot(camera_km, view) / r;
+    float rb = atmosphere.bottom_radius + lights.cloud_base;
+    float discriminant = r * r * (mu * mu - 1.0) + rb * rb;
+    if (!(discriminant > 0.0)) return vec3(0.0);
+    vec2 uv = CloudLightShaftUv(pixel);
+    vec4 previous = vec4(0.0, 0.0, 0.0, max(-r * mu - sqrt(discriminant), 0.0));
+    for (int k = 0; k < 4; ++k) {
+        vec4 part = texture(cloud_air_shadow[k], uv);
+        if (distance <= part.a) {
+            float f = clamp((distance - previous.a) / max(part.a - previous.a, 1e-6), 0.0, 1.0);
+            return mix(previous.rgb, part.rgb, f);
+        }
+        previous = part;
+    }
+    return previous.rgb;
 }
 
 mat3 WeatherFromFrame() {
@@ -136,8 +162,12 @@ vec3 GroundShadowCorrection(vec3 view) {
 
 // Light shafts along `view` (CloudAirShadowCorrection): the air below the clouds lit where the
 // shadow map lets the main light through, shaded where it does not. `jitter` places the samples.
-vec3 CloudAirShadow(vec3 view, float jitter) {
-    if (!(cloud_march.light_shaft_steps >= 1.0) || cloud_light_count == 0) return vec3(0.0);
+CloudShaftProfile CloudAirShadow(vec3 view, float jitter) {
+    if (!(cloud_march.light_shaft_steps >= 1.0) || cloud_light_count == 0) {
+        CloudShaftProfile none;
+        for (int k = 0; k < 4; ++k) none.part[k] = vec4(0.0);
+        return none;
+    }
     vec3 map_light = transpose(WeatherFromFrame()) * cloud_lights.light[0].direction;
     return CloudAirShadowCorrection(atmosphere, transmittance_texture, cloud_shadow_map, lights,
                                     map_light, lights.cloud_base, shadow_map_extent_km, camera_km,

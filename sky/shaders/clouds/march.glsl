@@ -379,27 +379,35 @@ vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 gro
 // the map of each other. Farther apart they would alias the map's pattern into noise: there the
 // map's value fades into its mean (no correction) by 2 texels apart. Looking along the light
 // (crepuscular and anticrepuscular rays) those points barely move and a whole ray keeps its
-// shafts; across it, a long ray keeps those near the camera.
-vec3 CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
+// shafts; across it, a long ray keeps those near the camera. Returns the correction accumulated
+// up to a quarter, half, three quarters of the samples' strata and the whole, each with the
+// distance it reaches (km): the part in front of a host's geometry interpolates between them.
+struct CloudShaftProfile {
+    vec4 part[4];  // (rgb: correction from the camera to t, a: t km)
+};
+
+CloudShaftProfile CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
                               IN(TransmittanceTexture) transmittance_texture,
                               IN(CloudShadowMapTexture) shadow_map, IN(LightSet) lights,
                               vec3 map_light, Number base, Number extent, vec3 camera,
                               Number camera_altitude, vec3 view, Number t_limit, int steps,
                               Number jitter) {
+    CloudShaftProfile profile;
+    for (int k = 0; k < 4; ++k) profile.part[k] = vec4(0.0);
     Number R = atmosphere.bottom_radius;
     Number r = length(camera);
     Number mu = dot(camera, view) / r;
     // Where the ray is below the base: inside the sphere of radius R + base.
     Number rb = R + base;
     Number discriminant = r * r * (mu * mu - 1.0) + rb * rb;
-    if (!(discriminant > 0.0) || !(base > 0.0)) return vec3(0.0);
+    if (!(discriminant > 0.0) || !(base > 0.0)) return profile;
     Number t_begin = max(-r * mu - sqrt(discriminant), 0.0);
     Number t_end = min(-r * mu + sqrt(discriminant), t_limit);
     Number t_ground = RaySphereDistance(r, mu, camera_altitude, R);
     if (t_ground >= 0.0) t_end = min(t_end, t_ground);
     // Beyond the map's half diagonal (plus the light's slant from the base) nothing is shadowed.
     t_end = min(t_end, t_begin + extent + 4.0 * base);
-    if (!(t_end > t_begin)) return vec3(0.0);
+    if (!(t_end > t_begin)) return profile;
 
     Number span = t_end - t_begin;
     Number c0 = camera_altitude * (2.0 * R + camera_altitude);
@@ -434,6 +442,13 @@ vec3 CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
                         1.0, 2.0);
     vec3 correction = vec3(0.0);
     for (int i = 0; i < steps; ++i) {
+        // What the strata before this one gathered, at a quarter, half, three quarters.
+        for (int k = 1; k < 4; ++k) {
+            if (i == (k * steps) / 4) {
+                Number boundary = max(Number(i) / Number(steps), 1e-6);
+                profile.part[k - 1] = vec4(correction, t_begin + span * pow(boundary, warp));
+            }
+        }
         Number u = max((Number(i) + jitter) / Number(steps), 1e-6);  // GLSL's pow(0, y): undefined
         Number t = t_begin + span * pow(u, warp);
         Number dt = span * warp * pow(u, warp - 1.0) / Number(steps);  // dt/du du: the weight
@@ -466,7 +481,8 @@ vec3 CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
         }
         correction += exp(-optical_depth) * scattered * (weight * shadow * dt);
     }
-    return correction;
+    profile.part[3] = vec4(correction, t_end);
+    return profile;
 }
 
 // Optical depth of one layer from `origin` (cloud frame, `altitude` km above the ground, exact)

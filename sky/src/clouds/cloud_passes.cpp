@@ -201,8 +201,8 @@ CloudPasses::~CloudPasses() {
     DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1],
                         &shade_framebuffer_, &ground_shadow_framebuffer_, &shaft_framebuffer_});
     DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &ground_shadow_color_,
-                    &air_shadow_color_, &history_color_[0], &history_color_[1], &shadow_map_,
-                    &shade_directions_});
+                    &history_color_[0], &history_color_[1], &shadow_map_, &shade_directions_});
+    glDeleteTextures(static_cast<GLsizei>(air_shadow_color_.size()), air_shadow_color_.data());
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
     glDeleteBuffers(1, &uniforms_);
     glDeleteBuffers(1, &shade_);
@@ -211,8 +211,9 @@ CloudPasses::~CloudPasses() {
 void CloudPasses::Resize(glm::ivec2 size) {
     DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_, &shaft_framebuffer_,
                         &history_framebuffer_[0], &history_framebuffer_[1]});
-    DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &air_shadow_color_,
-                    &history_color_[0], &history_color_[1]});
+    DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &history_color_[0],
+                    &history_color_[1]});
+    glDeleteTextures(static_cast<GLsizei>(air_shadow_color_.size()), air_shadow_color_.data());
     size_ = size;
     const int block = settings_.block;
     trace_size_ = (size + block - 1) / block;
@@ -222,8 +223,9 @@ void CloudPasses::Resize(glm::ivec2 size) {
     ground_shadow_color_ = gl::CreateTexture2D(trace_size_);
     ground_shadow_framebuffer_ = CreateFramebuffer({ground_shadow_color_});
     shaft_size_ = (trace_size_ + kCloudLightShaftCell - 1) / kCloudLightShaftCell;
-    air_shadow_color_ = gl::CreateTexture2D(shaft_size_);
-    shaft_framebuffer_ = CreateFramebuffer({air_shadow_color_});
+    for (GLuint& texture : air_shadow_color_) texture = gl::CreateTexture2D(shaft_size_);
+    shaft_framebuffer_ = CreateFramebuffer(
+        {air_shadow_color_[0], air_shadow_color_[1], air_shadow_color_[2], air_shadow_color_[3]});
     for (std::size_t i = 0; i < 2; ++i) {
         history_color_[i] = gl::CreateTexture2D(size);
         history_framebuffer_[i] = CreateFramebuffer({history_color_[i]});
@@ -387,7 +389,9 @@ void CloudPasses::BindForComposite() const {
     glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
     glBindTextureUnit(kCloudHistoryUnit, history_color_[current_]);
     glBindTextureUnit(kCloudGroundShadowUnit, ground_shadow_color_);
-    glBindTextureUnit(kCloudAirShadowUnit, air_shadow_color_);
+    for (std::size_t k = 0; k < air_shadow_color_.size(); ++k) {
+        glBindTextureUnit(kCloudAirShadowUnit + static_cast<GLuint>(k), air_shadow_color_[k]);
+    }
 }
 
 LutImage CloudPasses::ReadClouds() const {

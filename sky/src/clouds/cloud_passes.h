@@ -81,8 +81,10 @@ class CloudPasses {
     std::vector<double> cloud_tops_;  // clouds::CloudTopFraction of each map
     GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
     GLuint ground_shadow_color_ = 0, ground_shadow_framebuffer_ = 0;  // per trace cell
-    // The light shafts, per kCloudLightShaftCell^2 trace cells (clouds/light_shafts.frag).
-    GLuint air_shadow_color_ = 0, shaft_framebuffer_ = 0;
+    // The light shafts, per kCloudLightShaftCell^2 trace cells (clouds/light_shafts.frag): the
+    // parts of each cell's CloudShaftProfile.
+    std::array<GLuint, 4> air_shadow_color_{};
+    GLuint shaft_framebuffer_ = 0;
     glm::ivec2 shaft_size_{0, 0};
     std::array<GLuint, 2> history_color_{}, history_framebuffer_{};
     GLuint shadow_map_ = 0;
