@@ -372,10 +372,22 @@ void SkySystem::Update() {
         if (illuminance == glm::dvec3(0.0)) return 1.0;
         return d.renderer->CloudTransmittance(d.frame.view.camera.position, direction, clouds);
     };
+    l.venus_illuminance = glm::dvec3(0.0);
+    for (const geo::PlanetPosition& planet : d.frame.ephemeris.planets) {
+        if (planet.planet != geo::Planet::kVenus) continue;
+        l.venus_direction_enu = planet.topocentric.horizontal.direction_enu;
+        l.venus_direction_ecef = ecef_from_enu * l.venus_direction_enu;
+        l.venus_illuminance =
+            sky::PlanetIlluminance(planet) *
+            sky::TransmittanceToLight(d.atmosphere, height, l.venus_direction_enu.z,
+                                      0.5 * glm::radians(planet.angular_diameter_arcsec / 3600.0));
+    }
     l.sun_cloud_transmittance = through_clouds(l.sun_illuminance, l.sun_direction_enu);
     l.moon_cloud_transmittance = through_clouds(l.moon_illuminance, l.moon_direction_enu);
+    l.venus_cloud_transmittance = through_clouds(l.venus_illuminance, l.venus_direction_enu);
     l.sun_illuminance *= l.sun_cloud_transmittance;
     l.moon_illuminance *= l.moon_cloud_transmittance;
+    l.venus_illuminance *= l.venus_cloud_transmittance;
     l.sky_irradiance = lights.sun_illuminance *
                            sky::SampleGroundIrradiance(d.ground_irradiance, l.sun_direction_enu.z) +
                        lights.moon_illuminance *

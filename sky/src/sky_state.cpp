@@ -24,6 +24,11 @@ constexpr std::array<double, 8> kPlanetBMinusV = {0.93, 0.82, 0.0, 1.36, 0.83, 1
 
 }  // namespace
 
+glm::dvec3 PlanetIlluminance(const geo::PlanetPosition& planet) {
+    return geo::IlluminanceFromMagnitude(planet.magnitude_v) *
+           StarColour(kPlanetBMinusV[static_cast<std::size_t>(planet.planet)]);
+}
+
 glm::dvec3 StarColour(double b_minus_v) {
     // Steps of 0.01 from -0.40 to 4.00 (the catalogue's resolution and
     // geo::ColourFromBMinusV's clamp), computed once: the black-body integral costs ~4 us a call.
@@ -121,10 +126,7 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     const double min_elevation = MinStarElevation(atmosphere.bottom_radius, observer.height_m());
     for (const geo::PlanetPosition& planet : e.planets) {
         if (planet.topocentric.horizontal.elevation < min_elevation) continue;
-        const double b_minus_v = kPlanetBMinusV[static_cast<std::size_t>(planet.planet)];
-        s.stars.push_back(
-            {planet.topocentric.horizontal.direction_enu,
-             geo::IlluminanceFromMagnitude(planet.magnitude_v) * StarColour(b_minus_v)});
+        s.stars.push_back({planet.topocentric.horizontal.direction_enu, PlanetIlluminance(planet)});
     }
     return state;
 }

@@ -104,6 +104,52 @@ TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
     EXPECT_LT(Luminance(night.moon_illuminance), 0.4);
 }
 
+// Venus at its greatest brilliancy (-4.75 mag, 2020-04-28), 20 deg up in the west after dusk:
+// its top-of-atmosphere light is the magnitude's (1 lux at -14.18, Allen), its direction the
+// ephemeris's, and what reaches the aircraft is dimmed by the air's extinction at 20 deg
+// (~0.2-0.3 mag at 420 m) and, under an overcast deck, by the clouds like the Moon's light.
+TEST_F(SkySystemTest, VenusIsALightLikeTheMoon) {
+    sky_->SetTime(geo::TimeFromIso8601("2020-04-28T20:00:00Z"));
+    sky_->SetGeodetic(47.45, 8.56, 420.0);
+    sky_->SetAttitude(glm::radians(290.0), 0.1, 0.0);
+    sky_->SetProjection(1.0, 16.0 / 9.0);
+    sky_->Update();
+    const SkyLighting clear = sky_->lighting();
+    const double top = std::pow(10.0, -0.4 * (-4.75 + 14.18));  // lux
+    const double elevation = std::asin(clear.venus_direction_enu.z);
+    const double azimuth = std::atan2(clear.venus_direction_enu.x, clear.venus_direction_enu.y);
+    const double extinction_mag = -2.5 * std::log10(Luminance(clear.venus_illuminance) / top);
+    std::printf(
+        "Venus: azimuth %.2f deg, elevation %.2f deg, %.3g lux at 420 m (%.3g at the top; "
+        "%.2f mag of extinction)\n",
+        glm::degrees(azimuth) + 360.0, glm::degrees(elevation), Luminance(clear.venus_illuminance),
+        top, extinction_mag);
+    EXPECT_NEAR(glm::degrees(elevation), 20.55, 0.05);  // zenith ephemeris: 289.01, 20.55
+    EXPECT_NEAR(glm::degrees(azimuth) + 360.0, 289.01, 0.05);
+    EXPECT_NEAR(glm::length(clear.venus_direction_ecef), 1.0, 1e-12);
+    EXPECT_GT(extinction_mag, 0.1);
+    EXPECT_LT(extinction_mag, 0.5);
+    EXPECT_EQ(clear.venus_cloud_transmittance, 1.0);
+
+    sky::CloudSettings settings;
+    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    sky_->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
+    sky_->SetWeatherOrigin(47.45, 8.56);
+    sky_->Update();
+    const SkyLighting under = sky_->lighting();
+    sky_->SetWeather(sky::clouds::Weather{});
+    EXPECT_LT(under.venus_cloud_transmittance, 0.1);
+    EXPECT_NEAR(Luminance(under.venus_illuminance),
+                Luminance(clear.venus_illuminance) * under.venus_cloud_transmittance,
+                1e-9 * Luminance(clear.venus_illuminance));
+
+    // Below the horizon (02:00 UTC, hours after Venus set): none.
+    sky_->SetTime(geo::TimeFromIso8601("2020-04-28T02:00:00Z"));
+    sky_->Update();
+    EXPECT_LT(sky_->lighting().venus_direction_enu.z, 0.0);
+    EXPECT_EQ(Luminance(sky_->lighting().venus_illuminance), 0.0);
+}
+
 // Under an overcast deck the Sun reaching the aircraft is what the clouds let through: the
 // same lighting as the clear sky times sun_cloud_transmittance, which is small below the deck
 // and 1 above it.

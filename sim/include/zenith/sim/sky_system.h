@@ -99,6 +99,13 @@ struct SkyLighting {
     // (sky::AtmosphereRenderer::CloudTransmittance; 1 without weather or below the horizon).
     double sun_cloud_transmittance = 1.0;
     double moon_cloud_transmittance = 1.0;
+    // Venus, the one planet bright enough to cast shadows (to -4.9 mag, ~2e-4 lux, against the
+    // quarter Moon's ~0.01 lux): its light after the atmosphere and the clouds like the Moon's
+    // (0 below the horizon, or outside 1950-2100 where the planets are not computed).
+    glm::dvec3 venus_direction_enu{0.0, 0.0, 1.0};
+    glm::dvec3 venus_direction_ecef{0.0, 0.0, 1.0};
+    glm::dvec3 venus_illuminance{0.0};
+    double venus_cloud_transmittance = 1.0;
     // Sky (not Sun or Moon) illuminance on a horizontal surface (lux, RGB), from the
     // ground-irradiance LUT: exact at the ground, an overestimate at altitude. Below the clouds'
     // base it is the clear sky's times the clouds' sky transmittance plus their own light

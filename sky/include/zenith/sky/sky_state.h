@@ -35,6 +35,10 @@ struct SkyState {
 // (geo::ColourFromBMinusV) in steps of 0.01 mag, cached.
 glm::dvec3 StarColour(double b_minus_v);
 
+// A planet's light at the top of the atmosphere (lux, RGB): its V magnitude as illuminance, its
+// colour from its mean B-V (Allen's Astrophysical Quantities). What the renderer draws it with.
+glm::dvec3 PlanetIlluminance(const geo::PlanetPosition& planet);
+
 // Lambertian sphere of `albedo` at phase angle `phase_angle` (rad): the illuminance it sends to
 // the observer per unit solar illuminance, times the solid angle it subtends (Moon as a light).
 double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double angular_radius);
