@@ -22,6 +22,12 @@ namespace zenith::sky {
 
 class CloudPasses;
 
+// One point source as atmosphere/stars.vert draws it.
+struct StarVertex {
+    glm::vec2 ndc;        // its pixel's centre
+    glm::vec3 luminance;  // cd/m^2 over that pixel
+};
+
 // The night sky's map (zenith/sky/night_sky.h) in the Sky-View LUT's parameterisation: 2.8 deg
 // in azimuth, finer toward the horizon.
 inline constexpr glm::ivec2 kNightSkyMapSize{128, 64};
@@ -97,6 +103,7 @@ class AtmospherePasses {
     void BuildStaticLuts();
     void ResizeFrame(glm::ivec2 size);
     bool SunDiskResolved(const SkyView& view, glm::ivec2 size) const;
+    void DrawPoints(glm::ivec2 size);
 
     Atmosphere atmosphere_;
     LutSettings settings_;
@@ -106,7 +113,10 @@ class AtmospherePasses {
     GLuint transmittance_ = 0, multiple_scattering_ = 0, irradiance_ = 0, sky_view_ = 0,
            aerial_perspective_ = 0, frame_ = 0, stars_ = 0, night_sky_ = 0;
     GLuint framebuffer_ = 0, vertex_array_ = 0;  // the composite draws a triangle into frame_
-    std::vector<glm::vec4> star_pixels_;
+    // The stars as points into stars_ (DrawPoints).
+    gl::Program star_program_;
+    GLuint star_framebuffer_ = 0, star_buffer_ = 0, star_vertex_array_ = 0;
+    std::vector<StarVertex> star_vertices_;
     std::vector<glm::vec4> night_sky_pixels_;      // the night sky's map, filled on the CPU
     ref::TransmittanceTexture transmittance_cpu_;  // for the stars' extinction
     glm::ivec2 frame_size_{0, 0};

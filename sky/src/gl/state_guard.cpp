@@ -9,7 +9,7 @@ namespace {
 // removed the full-screen triangle), depth and stencil tests, rasterizer discard and the
 // multisample coverage operations would drop fragments; sRGB encoding, logic ops and dithering
 // would alter the values written (zenith writes linear luminance as computed).
-constexpr std::array<GLenum, 13> kCapabilities = {GL_CULL_FACE,
+constexpr std::array<GLenum, 14> kCapabilities = {GL_CULL_FACE,
                                                   GL_DEPTH_TEST,
                                                   GL_STENCIL_TEST,
                                                   GL_FRAMEBUFFER_SRGB,
@@ -21,7 +21,8 @@ constexpr std::array<GLenum, 13> kCapabilities = {GL_CULL_FACE,
                                                   GL_SAMPLE_MASK,
                                                   GL_SAMPLE_SHADING,
                                                   GL_POLYGON_SMOOTH,
-                                                  GL_DITHER};
+                                                  GL_DITHER,
+                                                  GL_PROGRAM_POINT_SIZE};
 
 // Pixel store parameters of uploads (the stars, the noise, the weather maps) and read-backs
 // (RenderOffscreen, the LUTs), with GL's initial values.
@@ -83,6 +84,7 @@ void StateGuard::Establish(int draw_buffers, int clip_distances) {
     for (GLenum capability : kCapabilities) glDisable(capability);
     for (int i = 0; i < clip_distances; ++i) glDisable(GL_CLIP_DISTANCE0 + static_cast<GLenum>(i));
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glPointSize(1.0f);  // the stars: a pixel each (GL_PROGRAM_POINT_SIZE is off, above)
     // The upper-left origin would flip the frame; the depth mode is set for completeness (the
     // full-screen triangle lies at z = 0, inside either clip volume).
     glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
@@ -109,6 +111,7 @@ void StateGuard::Save() {
             glIsEnabled(GL_CLIP_DISTANCE0 + static_cast<GLenum>(i));
     }
     glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
+    glGetFloatv(GL_POINT_SIZE, &point_size_);
     glGetIntegerv(GL_CLIP_ORIGIN, &clip_origin_);
     glGetIntegerv(GL_CLIP_DEPTH_MODE, &clip_depth_mode_);
     for (int i = 0; i < draw_buffers_; ++i) {
@@ -184,6 +187,7 @@ void StateGuard::Restore() const {
                    clip_distance_[static_cast<std::size_t>(i)]);
     }
     glPolygonMode(GL_FRONT_AND_BACK, E(polygon_mode_[0]));
+    glPointSize(point_size_);
     glClipControl(E(clip_origin_), E(clip_depth_mode_));
     for (int i = 0; i < draw_buffers_; ++i) {
         const GLuint index = static_cast<GLuint>(i);

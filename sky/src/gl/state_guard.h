@@ -19,7 +19,7 @@ namespace zenith::sky::gl {
 
 class StateGuard {
   public:
-    // Texture units 0..18, uniform blocks 0..4, storage block 1 and image units 0..1: every one
+    // Texture units 0..23, uniform blocks 0..4, storage block 1 and image units 0..1: every one
     // the passes bind (sky/shaders/bindings.glsl).
     static constexpr int kTextureUnits = kTextureUnitCount;
     static constexpr int kUniformBindings = kCloudBlockBinding + 1;
@@ -42,9 +42,10 @@ class StateGuard {
     int clip_distances_ = 0;  // min(GL_MAX_CLIP_DISTANCES, kMaxClipDistances)
 
     // Capabilities (glIsEnabled), in the order of state_guard.cpp's kCapabilities.
-    std::array<GLboolean, 13> capabilities_{};
+    std::array<GLboolean, 14> capabilities_{};
     std::array<GLboolean, kMaxClipDistances> clip_distance_{};
     GLint polygon_mode_[2] = {};
+    GLfloat point_size_ = 1.0f;
     GLint clip_origin_ = 0, clip_depth_mode_ = 0;
 
     // Per draw buffer: blending and colour writes.

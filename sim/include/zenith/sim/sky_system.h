@@ -124,7 +124,8 @@ struct SkyLighting {
 // same members of sky::AtmosphereRenderer).
 //
 // A host may leave any of this in any state; zenith sets what it needs before its passes:
-//   face culling (so the front face does not matter), polygon mode, clip control (origin and depth
+//   face culling (so the front face does not matter), polygon mode, point size (and
+//   GL_PROGRAM_POINT_SIZE), clip control (origin and depth
 //   mode), depth and stencil tests, colour masks and blending (enables, functions, equations; every
 //   draw buffer), scissor test and box, viewport, GL_FRAMEBUFFER_SRGB, rasterizer discard, logic
 //   op, alpha-to-coverage / alpha-to-one / sample coverage / sample mask / sample shading, polygon
