@@ -70,21 +70,26 @@ void Frame(Fixture& f, const Camera& camera, const FrameOptions& options) {
     zenith::test::DrawFrames(f.renderer, camera, f.lights, options);
 }
 
+// A first frame (noise upload, history), then one each iteration, each waited for; the last
+// frame's pass times.
+PassTimes TimeFrames(benchmark::State& state, Fixture& f, const Camera& camera) {
+    const FrameOptions options;
+    Frame(f, camera, options);
+    glFinish();
+    for (auto _ : state) {
+        Frame(f, camera, options);
+        glFinish();
+    }
+    return Inspect(f.renderer).LastPassTimes();
+}
+
 // args: view, block (0: no clouds, the baseline)
 void BM_Frame720p(benchmark::State& state) {
     Fixture& f = Shared();
     const View& view = kViews[state.range(0)];
     const int block = static_cast<int>(state.range(1));
     f.renderer.SetWeather(block == 0 ? clouds::Weather{} : f.weather, Settings(std::max(block, 1)));
-    const Camera camera = f.CameraFor(view);
-    const FrameOptions options;
-    Frame(f, camera, options);  // first frame: noise upload, history
-    glFinish();
-    for (auto _ : state) {
-        Frame(f, camera, options);
-        glFinish();
-    }
-    const PassTimes t = Inspect(f.renderer).LastPassTimes();
+    const PassTimes t = TimeFrames(state, f, f.CameraFor(view));
     state.counters["sky_view_ms"] = t.sky_view;
     state.counters["composite_ms"] = t.render;
     state.counters["cloud_shadow_ms"] = t.cloud_shadow_map;
@@ -110,15 +115,7 @@ void BM_LightShafts720p(benchmark::State& state) {
     CloudSettings settings = Settings(4);
     settings.light_shaft_steps = static_cast<int>(state.range(1));
     f.renderer.SetWeather(f.weather, settings);
-    const Camera camera = f.CameraFor(view);
-    const FrameOptions options;
-    Frame(f, camera, options);
-    glFinish();
-    for (auto _ : state) {
-        Frame(f, camera, options);
-        glFinish();
-    }
-    const PassTimes t = Inspect(f.renderer).LastPassTimes();
+    const PassTimes t = TimeFrames(state, f, f.CameraFor(view));
     state.counters["light_shafts_ms"] = t.cloud_light_shafts;
     state.counters["cloud_trace_ms"] = t.cloud_trace;
     state.SetLabel(std::string(view.name) + ", " + std::to_string(state.range(1)) + " steps");
