@@ -1,6 +1,6 @@
 // The light shafts (CloudAirShadow), one profile per cell of 2 x 2 trace cells at its centre,
 // which the composite interpolates (CloudLightShafts, CloudLightShaftsTo): they vary over the
-// shadow map's texels, hundreds of metres, and cost llvmpipe 41 ms at 720p worked out per trace
+// shadow map's texels, hundreds of metres, and cost llvmpipe 44 ms at 720p worked out per trace
 // cell. The samples keep their place from frame to frame (nothing here averages a moving jitter
 // away).
 layout(location = 0) out vec4 out_quarter;

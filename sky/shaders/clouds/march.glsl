@@ -387,11 +387,11 @@ struct CloudShaftProfile {
 };
 
 CloudShaftProfile CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
-                              IN(TransmittanceTexture) transmittance_texture,
-                              IN(CloudShadowMapTexture) shadow_map, IN(LightSet) lights,
-                              vec3 map_light, Number base, Number extent, vec3 camera,
-                              Number camera_altitude, vec3 view, Number t_limit, int steps,
-                              Number jitter) {
+                                           IN(TransmittanceTexture) transmittance_texture,
+                                           IN(CloudShadowMapTexture) shadow_map,
+                                           IN(LightSet) lights, vec3 map_light, Number base,
+                                           Number extent, vec3 camera, Number camera_altitude,
+                                           vec3 view, Number t_limit, int steps, Number jitter) {
     CloudShaftProfile profile;
     for (int k = 0; k < 4; ++k) profile.part[k] = vec4(0.0);
     Number R = atmosphere.bottom_radius;

@@ -61,7 +61,7 @@ class CloudPasses {
     GLuint shadow_map_texture() const { return shadow_map_; }
 
     // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, the ground's
-    // shadow.
+    // shadow, the light shafts.
     static constexpr std::size_t kPassCount = 6;
     std::array<double, kPassCount> LastPassTimes() const;
 

@@ -24,7 +24,7 @@ constexpr std::array<GLenum, 14> kCapabilities = {GL_CULL_FACE,
                                                   GL_DITHER,
                                                   GL_PROGRAM_POINT_SIZE};
 
-// Pixel store parameters of uploads (the stars, the noise, the weather maps) and read-backs
+// Pixel store parameters of uploads (the noise, the weather maps, the night sky) and read-backs
 // (RenderOffscreen, the LUTs), with GL's initial values.
 struct PixelStore {
     GLenum name;

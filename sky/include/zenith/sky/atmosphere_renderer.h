@@ -58,7 +58,8 @@ struct CloudSettings {
     int aerial_perspective_steps = 8;  // atmosphere between the camera and the clouds
     // Light shafts: samples per ray of the clouds' shadow in the air below their base (the
     // single scattering where the shadow map puts light or shade, instead of its mean), one ray
-    // per trace cell; 0 draws the air under the clouds evenly dimmed, as before.
+    // per 2x2 trace cells; 0 draws the air under the clouds evenly dimmed (the shadow map's
+    // mean), as before.
     int light_shaft_steps = 24;
     // Reconstruction (H16 §6.1): each frame traces one pixel of every block x block (a Bayer
     // order over block^2 frames) and reprojects the rest from the previous frames. 1 traces
