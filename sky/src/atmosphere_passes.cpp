@@ -246,6 +246,7 @@ AtmospherePasses::~AtmospherePasses() {
 void AtmospherePasses::SetAtmosphere(const Atmosphere& atmosphere) {
     atmosphere_ = atmosphere;
     BuildStaticLuts();
+    night_sky_map_for_.reset();  // its extinction was the old atmosphere's
 }
 
 void AtmospherePasses::BuildCloudComposites() {
@@ -318,6 +319,33 @@ void AtmospherePasses::BuildStaticLuts() {
         ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
 }
 
+// The night sky's map changes with the sky's turning (0.004 deg/s), the Sun's place and the
+// camera's, a few hundredths of one of its 2.8 x 2.8 deg texels a second: filling it on the CPU
+// (~2 ms) is the night frame's largest cost on a GPU. The last one holds while the sky, the Sun
+// and the camera's vertical have turned by less than kNightSkyMapTolerance rad (0.006 deg: 1/500
+// of a texel), the camera has moved by less than 10 m, and the settings, the starlight and the
+// atmosphere are the same.
+bool AtmospherePasses::NightSkyMapHolds(const SkyScene& scene,
+                                        const glm::dvec3& camera_position) const {
+    constexpr double kNightSkyMapTolerance = 1e-4;  // rad
+    if (!night_sky_map_for_) return false;
+    const NightSkyMapInputs& last = *night_sky_map_for_;
+    const NightSky& now = scene.night_sky;
+    const auto turned = [](const glm::dmat3& a, const glm::dmat3& b) {
+        double largest = 0.0;
+        for (int c = 0; c < 3; ++c) largest = std::max(largest, glm::length(a[c] - b[c]));
+        return largest;
+    };
+    return now.settings == last.night.settings && now.starlight == last.night.starlight &&
+           turned(now.ecliptic_from_world, last.night.ecliptic_from_world) <
+               kNightSkyMapTolerance &&
+           turned(now.icrs_from_world, last.night.icrs_from_world) < kNightSkyMapTolerance &&
+           std::abs(now.sun_ecliptic_longitude - last.night.sun_ecliptic_longitude) <
+               kNightSkyMapTolerance &&
+           glm::length(scene.lights.sun_direction - last.sun_direction) < kNightSkyMapTolerance &&
+           glm::length(camera_position - last.camera_position) < 10.0;
+}
+
 void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     const Camera& camera = view.camera;
     const bool night_sky = scene.night_sky.enabled && scene.night_sky.settings.enabled;
@@ -353,12 +381,14 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     // The night sky's light along the Sky-View LUT's directions, through the atmosphere.
     u.night_sky_enabled = night_sky ? 1 : 0;
     u.star_visibility = scene.star_visibility ? 1 : 0;
-    if (night_sky) {
+    if (night_sky && !NightSkyMapHolds(scene, camera.position)) {
         FillNightSkyMap(scene.night_sky, atmosphere_, transmittance_cpu_, camera.position / kKm,
                         (glm::length(camera.position) - atmosphere_.bottom_radius) / kKm,
                         scene.lights.sun_direction, kNightSkyMapSize, night_sky_pixels_);
         glTextureSubImage2D(night_sky_, 0, 0, 0, kNightSkyMapSize.x, kNightSkyMapSize.y, GL_RGBA,
                             GL_FLOAT, night_sky_pixels_.data());
+        night_sky_map_for_ =
+            NightSkyMapInputs{scene.night_sky, scene.lights.sun_direction, camera.position};
     }
     glNamedBufferSubData(buffers_[3], 0, sizeof(u), &u);
 }

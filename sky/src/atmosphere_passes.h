@@ -103,6 +103,7 @@ class AtmospherePasses {
     void BuildStaticLuts();
     void ResizeFrame(glm::ivec2 size);
     bool SunDiskResolved(const SkyView& view, glm::ivec2 size) const;
+    bool NightSkyMapHolds(const SkyScene& scene, const glm::dvec3& camera_position) const;
     void DrawPoints(glm::ivec2 size);
 
     Atmosphere atmosphere_;
@@ -117,7 +118,13 @@ class AtmospherePasses {
     gl::Program star_program_;
     GLuint star_framebuffer_ = 0, star_buffer_ = 0, star_vertex_array_ = 0;
     std::vector<StarVertex> star_vertices_;
-    std::vector<glm::vec4> night_sky_pixels_;      // the night sky's map, filled on the CPU
+    std::vector<glm::vec4> night_sky_pixels_;  // the night sky's map, filled on the CPU...
+    struct NightSkyMapInputs {                 // ...for these (NightSkyMapHolds)
+        NightSky night;
+        glm::dvec3 sun_direction;
+        glm::dvec3 camera_position;
+    };
+    std::optional<NightSkyMapInputs> night_sky_map_for_;
     ref::TransmittanceTexture transmittance_cpu_;  // for the stars' extinction
     glm::ivec2 frame_size_{0, 0};
     std::array<GLuint, kQueryCount> queries_{};

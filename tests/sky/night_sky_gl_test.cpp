@@ -3,9 +3,11 @@
 // across the visibility threshold, and a daytime frame the night sky does not change.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "gl_test_support.h"
 #include "luminance.h"
@@ -26,12 +28,12 @@ using zenith::test::Luminance;
 
 class NightSkyGlTest : public gl::test::HeadlessGlTest {};
 
-// Roque de los Muchachos, La Palma (2396 m), 2024-04-08 01:00 UTC: new Moon (below the
-// horizon), the Sun 56 deg down, the zenith 2 deg from the north galactic pole.
-SkyState DarkSite(double pitch_deg, const Atmosphere& atmosphere, glm::ivec2 size) {
+// Roque de los Muchachos, La Palma (2396 m), 2024-04-08 01:00 UTC (or `utc`): new Moon (below
+// the horizon), the Sun 56 deg down, the zenith 2 deg from the north galactic pole.
+SkyState DarkSite(double pitch_deg, const Atmosphere& atmosphere, glm::ivec2 size,
+                  const char* utc = "2024-04-08T01:00:00Z") {
     const geo::Observer observer(28.7606, -17.8816, 2396.0);
-    const geo::SkyEphemeris e =
-        geo::Ephemeris().Compute(geo::TimeFromIso8601("2024-04-08T01:00:00Z"), observer);
+    const geo::SkyEphemeris e = geo::Ephemeris().Compute(geo::TimeFromIso8601(utc), observer);
     EXPECT_LT(e.sun.topocentric.horizontal.elevation, -18.0 * M_PI / 180.0);
     EXPECT_LT(e.moon.topocentric.horizontal.elevation, 0.0);
     const geo::Attitude attitude{0.0, pitch_deg * M_PI / 180.0, 0.0};
@@ -119,6 +121,43 @@ TEST_F(NightSkyGlTest, HorizonAgainstCpuTwin) {
                     twin / at_zenith);
         EXPECT_NEAR(rendered / twin, 1.0, 0.02);
         EXPECT_GT(twin / at_zenith, 1.3);  // brighter toward the horizon
+    }
+}
+
+// The night sky's map is filled on the CPU only when the sky, the Sun or the camera has turned
+// or moved enough to show: half a second later (the sky turned 0.002 deg) the kept map draws
+// what a new one would to 1e-4; two minutes later (0.5 deg) it has been filled again, and the
+// frame is a new renderer's.
+TEST_F(NightSkyGlTest, TheMapIsKeptWhileTheSkyHardlyTurns) {
+    const Atmosphere atmosphere;
+    const glm::ivec2 size(32, 16);
+    const auto with_starlight = [](SkyState state) {
+        state.scene.night_sky.starlight =
+            std::make_shared<const StarlightMap>(StarlightMap::ModelOnly());
+        return state;
+    };
+    AtmosphereRenderer kept(atmosphere);
+    const SkyState first = with_starlight(DarkSite(20.0, atmosphere, size));
+    Draw(kept, first.scene, first.view, size);
+    for (const double seconds : {0.5, 120.0}) {
+        const std::string utc = seconds < 1.0 ? "2024-04-08T01:00:00.5Z" : "2024-04-08T01:02:00Z";
+        SkyState later = with_starlight(DarkSite(20.0, atmosphere, size, utc.c_str()));
+        later.scene.night_sky.starlight = first.scene.night_sky.starlight;  // the same map
+        const LutImage reused = Draw(kept, later.scene, later.view, size);
+        AtmosphereRenderer fresh(atmosphere);
+        const LutImage filled = Draw(fresh, later.scene, later.view, size);
+        double largest = 0.0;
+        for (std::size_t i = 0; i < filled.texels.size(); ++i) {
+            const double y = Luminance(filled.texels[i]);
+            largest = std::max(largest, std::abs(Luminance(reused.texels[i]) - y) / y);
+        }
+        std::printf("%.1f s later: the kept map's frame within %.2g of a new renderer's\n", seconds,
+                    largest);
+        if (seconds < 1.0) {
+            EXPECT_LT(largest, 1e-4);
+        } else {
+            EXPECT_EQ(largest, 0.0);
+        }
     }
 }
 

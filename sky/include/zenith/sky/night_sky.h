@@ -69,6 +69,7 @@ struct NightSkySettings {
 
     // Throws ArgumentError naming the field, its value and the expected range.
     void Validate() const;
+    bool operator==(const NightSkySettings&) const = default;
 };
 
 // Integrated light of the stars that are not drawn one by one: an equirectangular map in ICRS
