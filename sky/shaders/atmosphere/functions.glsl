@@ -599,6 +599,16 @@ vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
     return transmittance * phase_scattering * direct + psi_ms * s.scattering * sky;
 }
 
+// The altitude t km along a ray, and in `r` its radius: r(t)^2 - R^2 = c0 + t (2 b0 + t) with
+// c0 = h0 (2R + h0) and b0 = r0 mu0 at the ray's origin (altitude h0, exact), so it follows from
+// the exact altitude without cancellation (in float, |origin + t d| - R is quantised to 0.5 m,
+// which is all there is of a few metres' ray from a runway).
+Number AltitudeAlongRay(Number bottom_radius, Number c0, Number b0, Number t, OUT(Number) r) {
+    Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
+    r = sqrt(bottom_radius * bottom_radius + excess);
+    return excess / (r + bottom_radius);
+}
+
 // Marches from `origin` (km, planet-centred; `origin_altitude` its altitude above the ground, exact)
 // along unit `direction` over [t_begin, t_limit] km (clipped to the atmosphere) with `steps`
 // steps. If `include_ground`, a ray that ends on the ground adds
@@ -652,9 +662,7 @@ ScatteringResult IntegrateScatteredLuminance(
     // steps). A ray entering from space, or a later segment (aerial perspective), is uniform.
     int spacing = t_start > 0.0 ? 0 : (ends_on_ground ? 2 : 1);
     Number span = t_end - t_start;
-    // r(t)^2 - R^2 = c0 + t (2 b0 + t) with c0 = h0 (2R + h0): each sample's altitude follows
-    // from the exact origin altitude without cancellation (in float, |origin + t d| - R is
-    // quantised to 0.5 m, which is all there is of a few metres' ray from a runway).
+    // Each sample's altitude from the exact origin altitude (AltitudeAlongRay).
     Number c0 = origin_altitude * (2.0 * atmosphere.bottom_radius + origin_altitude);
     Number b0 = r0 * mu0;
     for (int i = 0; i < steps; ++i) {
@@ -674,9 +682,8 @@ ScatteringResult IntegrateScatteredLuminance(
         // code samples 0.3 of the way into each step).
         Number t = 0.5 * (t0 + t1);
         vec3 p = origin + direction * t;  // for light directions only
-        Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
-        Number r_p = sqrt(atmosphere.bottom_radius * atmosphere.bottom_radius + excess);
-        Number altitude = excess / (r_p + atmosphere.bottom_radius);
+        Number r_p;
+        Number altitude = AltitudeAlongRay(atmosphere.bottom_radius, c0, b0, t, r_p);
         MediumSample s = SampleMedium(atmosphere, altitude);
         // Under the clouds: the lights dimmed, the clouds' light scattered isotropically
         // (1/4 pi over the 2 pi sr of the hemisphere: half their mean luminance).

@@ -78,12 +78,11 @@ vec3 CloudLightShafts(ivec2 pixel) {
 vec3 CloudLightShaftsTo(ivec2 pixel, vec3 view, float distance) {
     if (!(cloud_march.light_shaft_steps >= 1.0)) return vec3(0.0);
     float r = length(camera_km);
-    float mu = dot(camera_km, view) / r;
-    float rb = atmosphere.bottom_radius + lights.cloud_base;
-    float discriminant = r * r * (mu * mu - 1.0) + rb * rb;
-    if (!(discriminant > 0.0)) return vec3(0.0);
+    vec2 below = CloudBelowBase(r, dot(camera_km, view) / r,
+                                atmosphere.bottom_radius + lights.cloud_base);
+    if (!(below.y > below.x)) return vec3(0.0);
     vec2 uv = CloudLightShaftUv(pixel);
-    vec4 previous = vec4(0.0, 0.0, 0.0, max(-r * mu - sqrt(discriminant), 0.0));
+    vec4 previous = vec4(0.0, 0.0, 0.0, below.x);
     for (int k = 0; k < 4; ++k) {
         vec4 part = texture(cloud_air_shadow[k], uv);
         if (distance <= part.a) {
@@ -145,7 +144,7 @@ vec3 GroundShadowCorrection(vec3 view) {
     if (!(t >= 0.0 && lights.cloud_base > 0.0)) return vec3(0.0);
     vec3 ground = camera_km + view * t;
     vec2 uv = CloudShadowMapUv(camera_km, atmosphere.bottom_radius, shadow_map_extent_km, ground);
-    float weight = clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0);
+    float weight = CloudShadowMapEdgeWeight(uv);
     float shadow = texture(cloud_shadow_map, uv).r;
     vec3 n = normalize(ground);
     vec3 direct = vec3(0.0);

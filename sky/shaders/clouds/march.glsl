@@ -365,6 +365,21 @@ vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 gro
     return offset / extent + vec2(0.5);
 }
 
+// How much of a shadow-map texel's own value to take at `uv` rather than the map's mean: faded
+// out over the map's outer 5 % on each side, so its edge does not show.
+Number CloudShadowMapEdgeWeight(vec2 uv) {
+    return clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0);
+}
+
+// The part [x, y] (km) of a ray from radius r (zenith cosine mu) below the clouds' base, the
+// sphere of radius `base_radius`; y < x when it has none.
+vec2 CloudBelowBase(Number r, Number mu, Number base_radius) {
+    Number discriminant = r * r * (mu * mu - 1.0) + base_radius * base_radius;
+    if (!(discriminant > 0.0)) return vec2(0.0, -1.0);
+    Number root = sqrt(discriminant);
+    return vec2(max(-r * mu - root, 0.0), -r * mu + root);
+}
+
 // Light shafts (issue 15 §4): the change of the light scattered once toward the camera along
 // `view` in the air below the lowest cloud base (`base` km), where the shadow map gives each
 // point its own share of the light through the clouds instead of the map's mean, which the LUTs
@@ -373,7 +388,7 @@ vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 gro
 // over the part of [0, t_limit] km below the base. S(x) is the map at the ground point that the
 // map's light (`map_light`, its direction in this frame) reaches through x; every cloud is above
 // x, so the light's path from there through x meets the same clouds. Like the ground's shadow,
-// the map's light stands for every light, and it fades out over the map's outer 5 %.
+// the map's light stands for every light, and it fades out at the map's edge.
 // `steps` samples, each shifted by `jitter` in [0, 1) of its stratum: an unbiased estimate
 // whatever the jitter's value where the points the samples are lit from lie within a texel of
 // the map of each other. Farther apart they would alias the map's pattern into noise: there the
@@ -397,12 +412,10 @@ CloudShaftProfile CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
     Number R = atmosphere.bottom_radius;
     Number r = length(camera);
     Number mu = dot(camera, view) / r;
-    // Where the ray is below the base: inside the sphere of radius R + base.
-    Number rb = R + base;
-    Number discriminant = r * r * (mu * mu - 1.0) + rb * rb;
-    if (!(discriminant > 0.0) || !(base > 0.0)) return profile;
-    Number t_begin = max(-r * mu - sqrt(discriminant), 0.0);
-    Number t_end = min(-r * mu + sqrt(discriminant), t_limit);
+    vec2 below = CloudBelowBase(r, mu, R + base);
+    if (!(below.y > below.x) || !(base > 0.0)) return profile;
+    Number t_begin = below.x;
+    Number t_end = min(below.y, t_limit);
     Number t_ground = RaySphereDistance(r, mu, camera_altitude, R);
     if (t_ground >= 0.0) t_end = min(t_end, t_ground);
     // Beyond the map's half diagonal (plus the light's slant from the base) nothing is shadowed.
@@ -416,9 +429,8 @@ CloudShaftProfile CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
     // base looking down), 8 midpoints, then on to each sample.
     vec3 optical_depth = vec3(0.0);
     for (int j = 0; j < (t_begin > 0.0 ? 8 : 0); ++j) {
-        Number t = t_begin * (Number(j) + 0.5) / 8.0;
-        Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
-        Number altitude = excess / (sqrt(R * R + excess) + R);
+        Number r_j;
+        Number altitude = AltitudeAlongRay(R, c0, b0, t_begin * (Number(j) + 0.5) / 8.0, r_j);
         optical_depth += SampleMedium(atmosphere, altitude).extinction * (t_begin / 8.0);
     }
     Number t_previous = t_begin;
@@ -453,20 +465,20 @@ CloudShaftProfile CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
         Number t = t_begin + span * pow(u, warp);
         Number dt = span * warp * pow(u, warp - 1.0) / Number(steps);  // dt/du du: the weight
         vec3 p = camera + view * t;
-        Number excess = max(c0 + t * (2.0 * b0 + t), 0.0);
-        Number r_p = sqrt(R * R + excess);
-        Number altitude = excess / (r_p + R);
+        Number r_p;
+        Number altitude = AltitudeAlongRay(R, c0, b0, t, r_p);
         MediumSample s = SampleMedium(atmosphere, altitude);
         // The extinction from the previous sample to this one, taken at this one.
         optical_depth += s.extinction * (t - t_previous);
         t_previous = t;
-        // The ground point lit through p by the map's light, and the map there.
+        // The ground point lit through p by the map's light (r_p^2 - R^2 = altitude (r_p + R)),
+        // and the map there.
         Number pl = dot(p, map_light);
-        Number d = pl * pl - excess;
+        Number d = pl * pl - altitude * (r_p + R);
         if (!(pl > 0.0 && d >= 0.0)) continue;
         vec3 ground = p - map_light * (pl - sqrt(d));
         vec2 uv = CloudShadowMapUv(camera, R, extent, ground);
-        Number weight = clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0) *
+        Number weight = CloudShadowMapEdgeWeight(uv) *
                         clamp((2.0 * texel - dt * map_speed) / texel, 0.0, 1.0);
         if (!(weight > 0.0)) continue;
         Number shadow = SampleTexture2D(shadow_map, uv).r - lights.cloud_direct;
