@@ -427,17 +427,13 @@ void AtmospherePasses::ResizeFrame(glm::ivec2 size) {
 // pixel's centre). Uploading the whole texture from the CPU instead cost a 720p night frame
 // ~7 ms on a GPU (14 MB a frame) for a few thousand stars.
 void AtmospherePasses::DrawPoints(glm::ivec2 size) {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, star_framebuffer_);
-    glViewportIndexedf(0, 0.0f, 0.0f, static_cast<GLfloat>(size.x), static_cast<GLfloat>(size.y));
-    glDisablei(GL_SCISSOR_TEST, 0);
+    gl::SetDrawTarget(star_framebuffer_, glm::ivec4(0, 0, size), gl::Blend::kAdd);
     const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(star_framebuffer_, GL_COLOR, 0, zero);
     if (star_vertices_.empty()) return;
     glNamedBufferData(star_buffer_,
                       static_cast<GLsizeiptr>(star_vertices_.size() * sizeof(StarVertex)),
                       star_vertices_.data(), GL_STREAM_DRAW);
-    glEnablei(GL_BLEND, 0);
-    glBlendFunci(0, GL_ONE, GL_ONE);
     star_program_.Use();
     glBindVertexArray(star_vertex_array_);
     glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(star_vertices_.size()));

@@ -16,15 +16,13 @@ enum class Blend {
     kPremultiplied,  // framebuffer = output.rgb + output.a * framebuffer (alpha kept)
 };
 
-// Draws `program` over `viewport` of `target` (optionally scissored to `scissor`, in viewport
-// pixels), timed by `query` when it is not 0. Sets the draw framebuffer, viewport 0, scissor 0
-// and blending of draw buffer 0; the rest of the state it relies on (no culling, filled
-// polygons, no depth or stencil test, ...) and the restoring of the host's are a StateGuard's
-// (gl/state_guard.h), which every renderer entry point holds.
-inline void DrawFullscreen(const Program& program, GLuint vertex_array, GLuint target,
-                           glm::ivec4 viewport, Blend blend, GLuint query = 0,
-                           std::optional<glm::ivec4> scissor = std::nullopt) {
-    program.Use();
+// Makes `target` the draw framebuffer with `viewport`, blending `blend` into draw buffer 0 and
+// scissored to `scissor` (in viewport pixels) or not at all: the state a draw of the renderer's
+// sets; the rest it relies on (no culling, filled polygons, a pixel-wide point, no depth or
+// stencil test, ...) and the restoring of the host's are a StateGuard's (gl/state_guard.h),
+// which every renderer entry point holds.
+inline void SetDrawTarget(GLuint target, glm::ivec4 viewport, Blend blend,
+                          std::optional<glm::ivec4> scissor = std::nullopt) {
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target);
     glViewportIndexedf(0, static_cast<GLfloat>(viewport.x), static_cast<GLfloat>(viewport.y),
                        static_cast<GLfloat>(viewport.z), static_cast<GLfloat>(viewport.w));
@@ -48,6 +46,14 @@ inline void DrawFullscreen(const Program& program, GLuint vertex_array, GLuint t
     } else {
         glDisablei(GL_SCISSOR_TEST, 0);
     }
+}
+
+// Draws `program` over `viewport` of `target` (SetDrawTarget), timed by `query` when it is not 0.
+inline void DrawFullscreen(const Program& program, GLuint vertex_array, GLuint target,
+                           glm::ivec4 viewport, Blend blend, GLuint query = 0,
+                           std::optional<glm::ivec4> scissor = std::nullopt) {
+    program.Use();
+    SetDrawTarget(target, viewport, blend, scissor);
     glBindVertexArray(vertex_array);
     if (query != 0) glBeginQuery(GL_TIME_ELAPSED, query);
     glDrawArrays(GL_TRIANGLES, 0, 3);
