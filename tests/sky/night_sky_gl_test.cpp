@@ -131,18 +131,15 @@ TEST_F(NightSkyGlTest, HorizonAgainstCpuTwin) {
 TEST_F(NightSkyGlTest, TheMapIsKeptWhileTheSkyHardlyTurns) {
     const Atmosphere atmosphere;
     const glm::ivec2 size(32, 16);
-    const auto with_starlight = [](SkyState state) {
-        state.scene.night_sky.starlight =
-            std::make_shared<const StarlightMap>(StarlightMap::ModelOnly());
-        return state;
-    };
+    const auto starlight = std::make_shared<const StarlightMap>(StarlightMap::ModelOnly());
     AtmosphereRenderer kept(atmosphere);
-    const SkyState first = with_starlight(DarkSite(20.0, atmosphere, size));
+    SkyState first = DarkSite(20.0, atmosphere, size);
+    first.scene.night_sky.starlight = starlight;
     Draw(kept, first.scene, first.view, size);
     for (const double seconds : {0.5, 120.0}) {
         const std::string utc = seconds < 1.0 ? "2024-04-08T01:00:00.5Z" : "2024-04-08T01:02:00Z";
-        SkyState later = with_starlight(DarkSite(20.0, atmosphere, size, utc.c_str()));
-        later.scene.night_sky.starlight = first.scene.night_sky.starlight;  // the same map
+        SkyState later = DarkSite(20.0, atmosphere, size, utc.c_str());
+        later.scene.night_sky.starlight = starlight;  // the same map
         const LutImage reused = Draw(kept, later.scene, later.view, size);
         AtmosphereRenderer fresh(atmosphere);
         const LutImage filled = Draw(fresh, later.scene, later.view, size);
