@@ -101,6 +101,13 @@ struct SkySystem::Impl {
         return *display;
     }
 
+    // The newest finished spherical harmonics of the environment into the lighting.
+    void TakeEnvironmentSh() {
+        const std::optional<sky::SphericalHarmonics9> sh = renderer->LatestEnvironmentSh();
+        lighting.sky_radiance_sh = sh.value_or(sky::SphericalHarmonics9{});
+        lighting.sky_radiance_sh_valid = sh.has_value();
+    }
+
     void Notify(std::string message) {
         if (settings.on_notice) {
             settings.on_notice(message);
@@ -135,6 +142,7 @@ struct SkySystem::Impl {
         renderer->set_preserve_gl_state(s.preserve_gl_state);
         ground_irradiance = sky::Inspect(*renderer).ReadGroundIrradiance();
         renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
+        renderer->SetEnvironment(s.environment);
         s.display.Validate();
         if (s.display.output == sky::DisplaySettings::Output::kDisplay) DisplayPassMade();
     }
@@ -402,6 +410,7 @@ void SkySystem::Update() {
     } else {
         l.sky_cloud_transmittance = 1.0;
     }
+    d.TakeEnvironmentSh();
     l.sun_elevation = d.frame.ephemeris.sun.topocentric.horizontal.elevation;
     l.moon_illuminated_fraction = d.frame.ephemeris.moon_phase.illuminated_fraction;
     l.phase = PhaseOf(l.sun_elevation);
@@ -412,8 +421,18 @@ void SkySystem::Prepare(const glm::ivec2& size) {
         throw ArgumentError("Prepare: size " + std::to_string(size.x) + "x" +
                             std::to_string(size.y) + " must be positive");
     }
-    Update();
     Impl& d = *impl_;
+    // A whole round of the environment's faces from face 0 (a cut), so that its lighting is
+    // there from the first frame on.
+    const sky::EnvironmentSettings environment = d.settings.environment;
+    d.reset_history = true;
+    if (environment.enabled()) {
+        sky::EnvironmentSettings all = environment;
+        all.faces_per_frame = 6;
+        d.renderer->SetEnvironment(all);
+    }
+    Update();
+    if (environment.enabled()) d.renderer->SetEnvironment(environment);
     d.renderer->Render(sky::RenderTarget::Offscreen(size));
     if (d.settings.display.output == sky::DisplaySettings::Output::kDisplay) {
         // The display pass over that frame, metered (all three of its programs run; a given
@@ -431,7 +450,8 @@ void SkySystem::Prepare(const glm::ivec2& size) {
         glDeleteTextures(1, &texture);
         d.reset_adaptation = true;  // the next Render meters from its own frame
     }
-    glFinish();  // the driver's compilation happens when the GPU runs the frame
+    glFinish();             // the driver's compilation happens when the GPU runs the frame
+    d.TakeEnvironmentSh();  // the round's, now finished
     d.reset_history = true;
 }
 
@@ -461,6 +481,22 @@ void SkySystem::Render(unsigned framebuffer, const glm::ivec4& viewport) {
 sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
     impl_->renderer->Render(sky::RenderTarget::Offscreen(size));
     return sky::Inspect(*impl_->renderer).ReadFrame();
+}
+
+void SkySystem::SetEnvironment(const sky::EnvironmentSettings& environment) {
+    impl_->renderer->SetEnvironment(environment);
+    impl_->settings.environment = environment;
+}
+unsigned SkySystem::environment_texture() const { return impl_->renderer->environment_texture(); }
+unsigned SkySystem::environment_sh_buffer() const {
+    return impl_->renderer->environment_sh_buffer();
+}
+
+glm::dvec3 SkyLighting::SkyIrradianceEnu(const glm::dvec3& normal_enu) const {
+    return sky::ShIrradiance(sky_radiance_sh, normal_enu);
+}
+glm::dvec3 SkyLighting::SkyIrradianceEcef(const glm::dvec3& normal_ecef) const {
+    return SkyIrradianceEnu(glm::transpose(ecef_from_enu) * normal_ecef);
 }
 
 const SkyLighting& SkySystem::lighting() const { return impl_->lighting; }

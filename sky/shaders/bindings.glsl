@@ -27,6 +27,9 @@ const int kLightStorageBinding = 1;  // clouds/sky_shade.comp: LightStorage (a L
 // display/*: DisplayStorage (the histogram and the exposure). The same binding point as
 // kLightStorageBinding: no pass uses both, and the StateGuard saves only this one.
 const int kDisplayStorageBinding = 1;
+// atmosphere/environment_sh.comp: EnvironmentShStorage (the environment's nine coefficients).
+// The same binding point again, for the same reason.
+const int kEnvironmentStorageBinding = 1;
 
 // Texture units of the samplers. The atmosphere's (0-6) are bound by AtmosphereRenderer before
 // every pass, the clouds' (7-18) by CloudPasses.
@@ -54,11 +57,13 @@ const int kTextureUnitCount = 24;    // units 0 .. kTextureUnitCount - 1 are zen
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
 const int kShadeDirectionsImageUnit = 0;  // clouds/sky_shade.comp reads
 const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
+const int kEnvironmentImageUnit = 0;      // atmosphere/environment_sh.comp reads the atlas
 
 // Compute work-group sizes, which the host's dispatches divide by.
 const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations
 const int kIrradianceGroupSize = 64;  // the irradiance LUT: 64 x 1
 const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
+const int kEnvironmentShGroupSize = 64;  // atmosphere/environment_sh.comp: one group of 64
 
 // The light shafts are worked out once per kCloudLightShaftCell^2 trace cells.
 const int kCloudLightShaftCell = 2;

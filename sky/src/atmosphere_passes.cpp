@@ -8,6 +8,7 @@
 
 #include "bindings.h"
 #include "clouds/cloud_passes.h"
+#include "environment_passes.h"
 #include "gl/display_uniforms.h"
 #include "gl/draw.h"
 #include "gl/shader_library.h"
@@ -174,6 +175,7 @@ std::vector<gl::Program> BuildRendererPrograms() {
     for (gl::Program& p : CloudComposites()) programs.push_back(std::move(p));
     for (gl::Program& p : CloudPasses::BuildPrograms()) programs.push_back(std::move(p));
     for (gl::Program& p : gl::BuildDisplayPrograms()) programs.push_back(std::move(p));
+    for (gl::Program& p : EnvironmentPasses::BuildPrograms()) programs.push_back(std::move(p));
     return programs;
 }
 
@@ -362,6 +364,7 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     for (int i = 0; i < 3; ++i) u.world_from_view[i] = glm::vec4(camera.world_from_view[i], 0.0);
     u.aspect = static_cast<float>(camera.aspect);
     u.ray_march_steps = view.ray_march_steps;
+    u.environment_size = environment_size_;
     u.moon_enabled = scene.moon.enabled ? 1 : 0;
     u.moon_direction = glm::vec3(glm::normalize(scene.moon.direction));
     u.moon_angular_radius = static_cast<float>(scene.moon.angular_radius);

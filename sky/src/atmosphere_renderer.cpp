@@ -2,6 +2,7 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -14,7 +15,9 @@
 #include "atmosphere_passes.h"
 #include "clouds/cloud_parameters.h"
 #include "clouds/cloud_passes.h"
+#include "environment_passes.h"
 #include "gl/atmosphere_uniforms.h"
+#include "gl/fenced_readback.h"
 #include "gl/state_guard.h"
 #include "gl/textures.h"
 #include "reference/cloud_march.h"
@@ -70,85 +73,18 @@ CloudShade ShadeOf(const gl::LightUniforms& u) {
     return shade;
 }
 
-// The light block's cloud shade carried to the CPU without waiting: each Copy goes into one of
-// kSlots parts of a persistently mapped buffer behind a fence; Latest takes the newest part
-// whose fence has signalled. A copy still pending when its part comes round again is dropped.
-class ShadeReadback {
-  public:
-    static constexpr std::size_t kSlots = 3;
-    static constexpr GLsizeiptr kSize = sizeof(gl::LightUniforms);
-
-    ShadeReadback() {
-        constexpr GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-        glCreateBuffers(1, &buffer_);
-        glNamedBufferStorage(buffer_, kSlots * kSize, nullptr, flags);
-        mapped_ = static_cast<const unsigned char*>(
-            glMapNamedBufferRange(buffer_, 0, kSlots * kSize, flags));
-    }
-    ~ShadeReadback() {
-        for (GLsync& fence : fences_) {
-            if (fence != nullptr) glDeleteSync(fence);
-        }
-        glUnmapNamedBuffer(buffer_);
-        glDeleteBuffers(1, &buffer_);
-    }
-    ShadeReadback(const ShadeReadback&) = delete;
-    ShadeReadback& operator=(const ShadeReadback&) = delete;
-
-    void Copy(GLuint light_buffer) {
-        Poll();
-        const std::size_t slot = next_;
-        next_ = (next_ + 1) % kSlots;
-        if (fences_[slot] != nullptr) glDeleteSync(fences_[slot]);
-        // The shade pass wrote the light block from a shader.
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glCopyNamedBufferSubData(light_buffer, buffer_, 0, static_cast<GLintptr>(slot) * kSize,
-                                 kSize);
-        glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
-        fences_[slot] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-        serial_[slot] = ++copies_;
-    }
-
-    std::optional<CloudShade> Latest() {
-        Poll();
-        return latest_;
-    }
-
-  private:
-    void Poll() {
-        for (std::size_t slot = 0; slot < kSlots; ++slot) {
-            if (fences_[slot] == nullptr) continue;
-            // Flushing (not waiting) so that the fence can signal without a later frame's flush.
-            const GLenum state = glClientWaitSync(fences_[slot], GL_SYNC_FLUSH_COMMANDS_BIT, 0);
-            if (state != GL_ALREADY_SIGNALED && state != GL_CONDITION_SATISFIED) continue;
-            glDeleteSync(fences_[slot]);
-            fences_[slot] = nullptr;
-            if (serial_[slot] < latest_serial_) continue;
-            gl::LightUniforms u{};
-            std::memcpy(&u, mapped_ + slot * static_cast<std::size_t>(kSize), sizeof(u));
-            latest_ = ShadeOf(u);
-            latest_serial_ = serial_[slot];
-        }
-    }
-
-    GLuint buffer_ = 0;
-    const unsigned char* mapped_ = nullptr;
-    std::array<GLsync, kSlots> fences_{};
-    std::array<std::uint64_t, kSlots> serial_{};
-    std::uint64_t copies_ = 0, latest_serial_ = 0;
-    std::size_t next_ = 0;
-    std::optional<CloudShade> latest_;
-};
-
 }  // namespace
 
 struct AtmosphereRenderer::Impl {
     AtmospherePasses atmosphere;
-    std::unique_ptr<CloudPasses> clouds;            // with weather that has layers
-    std::unique_ptr<CpuClouds> cpu_clouds;          // the same weather's density, for CPU queries
-    std::unique_ptr<ShadeReadback> shade_readback;  // with clouds: LatestCloudShade
-    clouds::Weather weather;                        // as last set (also when clear)
+    std::unique_ptr<CloudPasses> clouds;    // with weather that has layers
+    std::unique_ptr<CpuClouds> cpu_clouds;  // the same weather's density, for CPU queries
+    // With clouds: the light block's cloud shade for LatestCloudShade.
+    std::unique_ptr<gl::FencedReadback> shade_readback;
+    clouds::Weather weather;  // as last set (also when clear)
     CloudSettings cloud_settings;
+    std::unique_ptr<EnvironmentPasses> environment;  // with SetEnvironment's size > 0
+    EnvironmentSettings environment_settings;
     bool preserve_gl_state = true;  // what each entry point's gl::StateGuard does
     // The last Update's scene and view, which Render draws.
     std::optional<SkyScene> scene;
@@ -201,10 +137,30 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     }
     d.clouds = std::move(passes);
     d.cpu_clouds = std::move(cpu);
-    d.shade_readback = d.clouds ? std::make_unique<ShadeReadback>() : nullptr;
+    d.shade_readback =
+        d.clouds ? std::make_unique<gl::FencedReadback>(sizeof(gl::LightUniforms)) : nullptr;
     d.weather = weather;
     d.cloud_settings = settings;
 }
+void AtmosphereRenderer::SetEnvironment(const EnvironmentSettings& settings) {
+    settings.Validate();
+    Impl& d = *impl_;
+    const gl::StateGuard guard(d.preserve_gl_state);
+    if (!settings.enabled()) {
+        d.environment.reset();
+    } else if (!d.environment || d.environment->settings().size != settings.size) {
+        d.environment.reset();  // its GL objects go before the new ones are made
+        d.environment = std::make_unique<EnvironmentPasses>(settings);
+    } else {
+        d.environment->set_faces_per_frame(settings.faces_per_frame);
+    }
+    d.environment_settings = settings;
+    d.atmosphere.set_environment_size(settings.size);
+}
+const EnvironmentSettings& AtmosphereRenderer::environment_settings() const {
+    return impl_->environment_settings;
+}
+
 const clouds::Weather& AtmosphereRenderer::weather() const { return impl_->weather; }
 const CloudSettings& AtmosphereRenderer::cloud_settings() const { return impl_->cloud_settings; }
 const LutSettings& AtmosphereRenderer::settings() const { return impl_->atmosphere.settings(); }
@@ -221,6 +177,12 @@ void AtmosphereRenderer::Update(const SkyScene& scene, const SkyView& view) {
         d.shade_readback->Copy(d.atmosphere.light_buffer());
     }
     d.atmosphere.UpdateFrameLuts();
+    if (d.environment) {
+        if (scene.clouds.reset_history) d.environment->Restart();
+        const bool inside =
+            glm::length(view.camera.position) < d.atmosphere.atmosphere().top_radius;
+        d.environment->Update(d.atmosphere, d.clouds.get(), !inside || view.force_ray_march);
+    }
     d.scene = scene;
     d.view = view;
 }
@@ -256,7 +218,25 @@ void AtmosphereRenderer::Render(const RenderTarget& target) {
 
 std::optional<CloudShade> AtmosphereRenderer::LatestCloudShade() const {
     if (!impl_->shade_readback) return CloudShade{};
-    return impl_->shade_readback->Latest();
+    const unsigned char* bytes = impl_->shade_readback->Latest();
+    if (bytes == nullptr) return std::nullopt;
+    gl::LightUniforms u{};
+    std::memcpy(&u, bytes, sizeof(u));
+    return ShadeOf(u);
+}
+
+std::optional<SphericalHarmonics9> AtmosphereRenderer::LatestEnvironmentSh() const {
+    if (!impl_->environment) return std::nullopt;
+    return impl_->environment->LatestSh();
+}
+long long AtmosphereRenderer::environment_rounds() const {
+    return impl_->environment ? impl_->environment->rounds() : 0;
+}
+unsigned AtmosphereRenderer::environment_texture() const {
+    return impl_->environment ? impl_->environment->cube() : 0;
+}
+unsigned AtmosphereRenderer::environment_sh_buffer() const {
+    return impl_->environment ? impl_->environment->sh_buffer() : 0;
 }
 
 unsigned AtmosphereRenderer::transmittance_texture() const {
@@ -317,6 +297,27 @@ LutImage RendererInspection::ReadFrame() const {
     if (a.frame() == 0) throw gl::GlError("ReadFrame before any Render");
     return Read(a.frame(), glm::ivec3(a.frame_size(), 1));
 }
+LutImage RendererInspection::ReadEnvironmentAtlas() const {
+    const EnvironmentPasses* environment = renderer_.impl_->environment.get();
+    if (environment == nullptr) {
+        throw std::logic_error("ReadEnvironmentAtlas: the renderer has no environment");
+    }
+    const int n = environment->settings().size;
+    return Read(environment->atlas(), glm::ivec3(n, 6 * n, 1));
+}
+LutImage RendererInspection::ReadEnvironmentCube(int level) const {
+    const EnvironmentPasses* environment = renderer_.impl_->environment.get();
+    if (environment == nullptr) {
+        throw std::logic_error("ReadEnvironmentCube: the renderer has no environment");
+    }
+    const int n = std::max(environment->settings().size >> level, 1);
+    LutImage image(n, 6 * n);
+    const gl::StateGuard guard(renderer_.preserve_gl_state());
+    glGetTextureImage(environment->cube(), level, GL_RGBA, GL_FLOAT,
+                      static_cast<GLsizei>(image.bytes()), image.texels.data());
+    return image;
+}
+
 LutImage RendererInspection::ReadClouds() const {
     const CloudPasses* clouds = renderer_.impl_->clouds.get();
     if (clouds == nullptr) throw std::logic_error("ReadClouds: the renderer has no weather");
@@ -371,6 +372,7 @@ PassTimes RendererInspection::LastPassTimes() const {
         times.cloud_ground_shadow = clouds[4];
         times.cloud_light_shafts = clouds[5];
     }
+    if (d.environment) times.environment = d.environment->LastMilliseconds();
     return times;
 }
 

@@ -628,6 +628,11 @@ TEST_F(GlStateContractTest, CloudsUnderAHostileHostState) {
     sky::CloudSettings settings;
     settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
     sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
+    // With the environment's faces (all six each Update), mip levels, projection and read-back.
+    sky::EnvironmentSettings environment;
+    environment.size = 16;
+    environment.faces_per_frame = 6;
+    sky->SetEnvironment(environment);
     const std::vector<glm::vec4> reference = Reference(*sky, host);
     const sky::LutImage offscreen = ReferenceOffscreen(*sky);
     CheckEveryCall(*sky, host, reference, offscreen);

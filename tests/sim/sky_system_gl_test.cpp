@@ -75,6 +75,47 @@ TEST_F(SkySystemTest, SkyLightUnderTheOvercastIsTheClouds) {
     sky->SetWeather({});
 }
 
+// The environment's harmonics in the lighting (issue 16): there after Prepare's round; the
+// irradiance on a horizontal surface near sky_irradiance in a clear sky (L2 overestimates a
+// sky's by a few percent: tests/sky/environment_gl_test.cpp) and the same normal in ECEF;
+// under an overcast they carry the clouds' light as sky_irradiance does; gone without one.
+TEST_F(SkySystemTest, SkyIrradianceOnAnyNormalFromTheEnvironment) {
+    SkySystem* sky = sky_;
+    sky->SetTime(geo::TimeFromIso8601("2024-06-21T11:30:00Z"));
+    sky->SetGeodetic(47.45, 8.56, 420.0);
+    sky->SetProjection(1.0, 16.0 / 9.0);
+    sky::EnvironmentSettings environment;
+    environment.size = 32;
+    sky->SetEnvironment(environment);
+    EXPECT_NE(sky->environment_texture(), 0u);
+    EXPECT_NE(sky->environment_sh_buffer(), 0u);
+    sky->Prepare({32, 18});
+    const SkyLighting clear = sky->lighting();
+    ASSERT_TRUE(clear.sky_radiance_sh_valid);
+    const glm::dvec3 up(0.0, 0.0, 1.0);
+    const double horizontal = Luminance(clear.SkyIrradianceEnu(up));
+    std::printf("clear noon: sky irradiance from the harmonics %.0f lux, sky_irradiance %.0f lux\n",
+                horizontal, Luminance(clear.sky_irradiance));
+    EXPECT_NEAR(horizontal / Luminance(clear.sky_irradiance), 1.0, 0.08);
+    const glm::dvec3 ecef = clear.SkyIrradianceEcef(clear.ecef_from_enu * up);
+    EXPECT_NEAR(Luminance(ecef), horizontal, 1e-9 * horizontal);
+
+    sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"));
+    sky->Prepare({32, 18});
+    const SkyLighting under = sky->lighting();
+    ASSERT_TRUE(under.sky_radiance_sh_valid);
+    std::printf("under overcast_stratus: from the harmonics %.0f lux, sky_irradiance %.0f lux\n",
+                Luminance(under.SkyIrradianceEnu(up)), Luminance(under.sky_irradiance));
+    EXPECT_GT(Luminance(under.SkyIrradianceEnu(up)), 2.0 * horizontal);
+    EXPECT_NEAR(Luminance(under.SkyIrradianceEnu(up)) / Luminance(under.sky_irradiance), 1.0, 0.15);
+    sky->SetWeather({});
+
+    sky->SetEnvironment({});
+    sky->Update();
+    EXPECT_FALSE(sky->lighting().sky_radiance_sh_valid);
+    EXPECT_EQ(sky->environment_texture(), 0u);
+}
+
 TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
     sky_->SetTime(geo::TimeFromIso8601("2024-06-21T11:30:00Z"));
     sky_->SetGeodetic(47.45, 8.56, 420.0);

@@ -178,7 +178,7 @@ void AddFrame(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, moon_sunlight);
     ZENITH_SAME(S, night_sky_enabled);
     ZENITH_SAME(S, star_visibility);
-    ZENITH_SAME(S, frame_padding0);
+    ZENITH_SAME(S, environment_size);
     ZENITH_SAME(S, frame_padding1);
     ZENITH_SAME(S, frame_padding2);
 }
@@ -268,6 +268,11 @@ void AddDisplayStorage(Layout& layout, const std::string& prefix, std::size_t ba
     ZENITH_MEMBER("display_histogram", S, histogram);
 }
 
+void AddEnvironmentSh(Layout& layout, const std::string& prefix, std::size_t base) {
+    using S = EnvironmentShStorage;
+    ZENITH_SAME(S, environment_sh);
+}
+
 #undef ZENITH_SAME
 #undef ZENITH_MEMBER
 
@@ -313,6 +318,9 @@ std::map<std::string, BlockMirror> Mirrors() {
     m.emplace("DisplayStorage",
               MakeBlock<DisplayStorage>(GL_SHADER_STORAGE_BLOCK, kDisplayStorageBinding,
                                         AddDisplayStorage, ""));
+    m.emplace("EnvironmentShStorage",
+              MakeBlock<EnvironmentShStorage>(GL_SHADER_STORAGE_BLOCK, kEnvironmentStorageBinding,
+                                              AddEnvironmentSh, ""));
     return m;
 }
 
@@ -343,6 +351,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"shadow_map", kOutputImageUnit},
         {"shade_directions", kShadeDirectionsImageUnit},
         {"shadow_map_image", kShadowMapImageUnit},
+        {"environment_atlas", kEnvironmentImageUnit},
     };
     return units;
 }
@@ -357,6 +366,7 @@ const std::map<std::string, glm::ivec3>& ExpectedGroupSizes() {
         {"atmosphere/aerial_perspective.comp", {kLutGroupSize, kLutGroupSize, 1}},
         {"clouds/shadow_map.comp", {kShadowMapGroupSize, kShadowMapGroupSize, 1}},
         {"clouds/sky_shade.comp", {1, 1, 1}},
+        {"atmosphere/environment_sh.comp", {kEnvironmentShGroupSize, 1, 1}},
         {"display/histogram.comp", {kDisplayGroupSize, kDisplayGroupSize, 1}},
         {"display/meter.comp", {1, 1, 1}},
     };
@@ -567,8 +577,9 @@ std::string Join(const std::vector<std::string>& lines) {
 
 TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
     // 5 LUT passes, 6 composites, the stars' points, the 6 composites again with clouds, 7 cloud
-    // programs, 3 display programs.
-    ASSERT_EQ(programs_.size(), 28u);
+    // programs, 3 display programs, 4 environment faces (with and without clouds, ray march) and
+    // its projection.
+    ASSERT_EQ(programs_.size(), 33u);
     const std::map<std::string, BlockMirror> mirrors = Mirrors();
     std::set<std::string> seen;
     std::vector<std::string> errors;

@@ -59,7 +59,8 @@ layout(std140, binding = kFrameBlockBinding) uniform FrameBlock {
     // draws each pixel's stars in the share the eye sees against that sky (StarVisibility).
     int night_sky_enabled;
     int star_visibility;
-    int frame_padding0;  // std140 rounds the block up to 16 bytes
+    int environment_size;  // texels per side of the environment's cube faces (environment.h)
+    // std140 rounds the block up to 16 bytes
     int frame_padding1;
     int frame_padding2;
 };
@@ -81,4 +82,27 @@ vec3 CameraDirection(vec2 cell, vec2 grid) {
     vec3 view = vec3(ndc.x * tan_half_fov * aspect, ndc.y * tan_half_fov, -1.0);
     return normalize(world_from_view[0].xyz * view.x + world_from_view[1].xyz * view.y +
                      world_from_view[2].xyz * view.z);
+}
+
+// The direction through the centre of texel `texel` of the environment's atlas (environment.frag):
+// face texel.y / environment_size, OpenGL's cube map orientation (CubeFaceDirection on the CPU).
+vec3 EnvironmentDirection(ivec2 texel) {
+    int face = texel.y / environment_size;
+    vec2 uv = 2.0 * (vec2(texel.x, texel.y - face * environment_size) + 0.5) /
+                  float(environment_size) - 1.0;
+    vec3 d;
+    if (face == 0) {
+        d = vec3(1.0, -uv.y, -uv.x);
+    } else if (face == 1) {
+        d = vec3(-1.0, -uv.y, uv.x);
+    } else if (face == 2) {
+        d = vec3(uv.x, 1.0, uv.y);
+    } else if (face == 3) {
+        d = vec3(uv.x, -1.0, -uv.y);
+    } else if (face == 4) {
+        d = vec3(uv.x, -uv.y, 1.0);
+    } else {
+        d = vec3(-uv.x, -uv.y, -1.0);
+    }
+    return normalize(d);
 }

@@ -394,6 +394,11 @@ void CloudPasses::BindForComposite() const {
     }
 }
 
+void CloudPasses::BindForTrace() const {
+    BindTextures();
+    glBindTextureUnit(kCloudShadowMapUnit, shadow_map_);
+}
+
 LutImage CloudPasses::ReadClouds() const {
     if (size_.x == 0) throw gl::GlError("ReadClouds before any Render with weather");
     return gl::ReadTexture(history_color_[current_], glm::ivec3(size_, 1));

@@ -55,6 +55,9 @@ class CloudPasses {
                 glm::ivec2 size, const CloudView& view);
     // Binds what the sky pass reads to composite the last Render's clouds.
     void BindForComposite() const;
+    // Binds what TraceClouds and GroundShadowCorrection read, as Prepare left them this frame
+    // (the environment's faces trace the clouds after it).
+    void BindForTrace() const;
 
     LutImage ReadClouds() const;
     LutImage ReadShadowMap() const;

@@ -118,7 +118,7 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     glm::vec3 moon_sunlight;
     int night_sky_enabled;
     int star_visibility;
-    int frame_padding0;
+    int environment_size;
     int frame_padding1;
     int frame_padding2;
 };
@@ -134,5 +134,12 @@ static_assert(offsetof(FrameUniforms, world_from_view) == 16);
 static_assert(offsetof(FrameUniforms, output_size) == 64);
 static_assert(offsetof(FrameUniforms, viewport_x) == 80);
 static_assert(offsetof(FrameUniforms, viewport_y) == 156);
+
+// atmosphere/environment_sh.comp: EnvironmentShStorage (std430), the environment's spherical
+// harmonics, coefficient i in environment_sh[i].rgb (zenith/sky/environment.h's order).
+struct EnvironmentShStorage {
+    glm::vec4 environment_sh[9];
+};
+static_assert(sizeof(EnvironmentShStorage) == 144);
 
 }  // namespace zenith::sky::gl

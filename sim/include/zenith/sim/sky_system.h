@@ -31,6 +31,7 @@
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/display.h"
+#include "zenith/sky/environment.h"
 #include "zenith/sky/gl/loader.h"
 #include "zenith/sky/lut.h"
 #include "zenith/sky/sky_state.h"
@@ -77,6 +78,10 @@ struct SkySystemSettings {
     // What Render writes (zenith/sky/display.h): linear cd/m^2 (the default), or display values
     // (exposed, night-adapted, tone mapped, sRGB-encoded) for an 8-bit or sRGB target.
     sky::DisplaySettings display;
+    // An environment cube map of the sky around the aircraft, clouds included, and its
+    // spherical harmonics for the host's reflections and diffuse light (zenith/sky/
+    // environment.h; SkyLighting::sky_radiance_sh, environment_texture()). Off (size 0) by default.
+    sky::EnvironmentSettings environment;
 };
 
 enum class DayPhase { kDay, kCivilTwilight, kNauticalTwilight, kAstronomicalTwilight, kNight };
@@ -114,14 +119,25 @@ struct SkyLighting {
     // without waiting for it (AtmosphereRenderer::LatestCloudShade), so it lags a frame or two.
     glm::dvec3 sky_irradiance{0.0};
     double sky_cloud_transmittance = 1.0;  // the clouds' part of that sky light (1 above them)
-    double sun_elevation = 0.0;            // rad, geometric
+    // The sky's light from every direction around the aircraft, clouds and our ground included
+    // (the Sun's and the Moon's disks are the lights above): L2 spherical harmonics of its
+    // luminance in the aircraft's ENU frame, from the environment cube map (SkySystemSettings::
+    // environment). SkyIrradianceEnu/Ecef give the irradiance on a surface of any orientation
+    // (lux; a horizontal one's near sky_irradiance). Made after each round of the cube's faces
+    // and read back behind a fence without waiting, so a round or two late; zero, with
+    // sky_radiance_sh_valid false, without an environment or before the first round has arrived.
+    sky::SphericalHarmonics9 sky_radiance_sh;
+    bool sky_radiance_sh_valid = false;
+    glm::dvec3 SkyIrradianceEnu(const glm::dvec3& normal_enu) const;
+    glm::dvec3 SkyIrradianceEcef(const glm::dvec3& normal_ecef) const;
+    double sun_elevation = 0.0;  // rad, geometric
     double moon_illuminated_fraction = 0.0;
     DayPhase phase = DayPhase::kDay;
 };
 
 // The GL state contract. It covers every call that issues GL commands: creation, SetAtmosphere,
-// SetVisibility, SetMetar, SetWeather, Prepare, Update, Render and RenderOffscreen (and the
-// same members of sky::AtmosphereRenderer).
+// SetVisibility, SetMetar, SetWeather, SetEnvironment, Prepare, Update, Render and RenderOffscreen
+// (and the same members of sky::AtmosphereRenderer).
 //
 // A host may leave any of this in any state; zenith sets what it needs before its passes:
 //   face culling (so the front face does not matter), polygon mode, point size (and
@@ -258,8 +274,9 @@ class SkySystem {
     // frame is the one it would have been. With display.output == kDisplay it also runs the
     // display pass, metered, over that frame into a scratch target (~100 ms once on llvmpipe at
     // 1280x720, taken from the first Render; BENCHMARKS.md), restarts its adaptation and reports
-    // no exposure (exposure_ev100() waits for a Render). A host with scene depth still compiles
-    // the depth variant at its first Render.
+    // no exposure (exposure_ev100() waits for a Render). With an environment it draws all six
+    // faces, so the lighting has the sky's harmonics (sky_radiance_sh_valid) from then on. A
+    // host with scene depth still compiles the depth variant at its first Render.
     void Prepare(const glm::ivec2& size);
 
     // Ephemeris, lights, lighting and per-frame LUTs for the current state.
@@ -278,6 +295,9 @@ class SkySystem {
     //     geometry pixels are left as they are (no aerial perspective over them in this mode):
     //     draw the geometry afterwards with exposure_ev100(), or use kLinear.
     void Render(unsigned framebuffer, const glm::ivec4& viewport);
+    // The environment from now on (sky::AtmosphereRenderer::SetEnvironment; throws
+    // zenith::ArgumentError for bad settings, keeping the previous one).
+    void SetEnvironment(const sky::EnvironmentSettings& environment);
     // The display from now on (throws zenith::ArgumentError for bad settings).
     void SetDisplay(const sky::DisplaySettings& display);
     const sky::DisplaySettings& display() const;
@@ -301,6 +321,12 @@ class SkySystem {
     // The clouds' shadow on the ground around the aircraft (sky::RendererInspection::
     // ReadCloudShadowMap has the layout); 0 without clouds.
     unsigned cloud_shadow_texture() const;
+    // The environment's cube map (GL_TEXTURE_CUBE_MAP, RGBA32F, mip-mapped, cd/m^2, faces in the
+    // aircraft's ENU frame by OpenGL's convention: sample with the ENU direction) and a buffer of
+    // sky_radiance_sh's nine coefficients (9 x vec4) for the host's shaders; 0 without an
+    // environment. Both are changed by Update: sample them after it.
+    unsigned environment_texture() const;
+    unsigned environment_sh_buffer() const;
 
   private:
     struct Impl;

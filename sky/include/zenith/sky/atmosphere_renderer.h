@@ -12,6 +12,7 @@
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/clouds/noise.h"
 #include "zenith/sky/clouds/weather.h"
+#include "zenith/sky/environment.h"
 #include "zenith/sky/frame.h"
 #include "zenith/sky/lut.h"
 
@@ -119,6 +120,14 @@ class AtmosphereRenderer {
     const clouds::Weather& weather() const;
     const CloudSettings& cloud_settings() const;
 
+    // The environment from now on (zenith/sky/environment.h): size 0 removes it; another size
+    // makes it anew; throws zenith::ArgumentError for bad settings. Each Update then draws the
+    // next faces_per_frame faces of the cube map after the frame's LUTs, and after the sixth
+    // makes its mip levels and its spherical harmonics. A round starts over with face 0 at a
+    // cut (CloudView::reset_history).
+    void SetEnvironment(const EnvironmentSettings& settings);
+    const EnvironmentSettings& environment_settings() const;
+
     // The front door, every frame: Update makes the per-frame LUTs (Sky-View, aerial
     // perspective) for this scene and view (with weather, first the clouds' shadow map and their
     // shading of the air and the ground beneath them, Frostbite 2016 Eq. 22) and keeps both;
@@ -144,11 +153,24 @@ class AtmosphereRenderer {
     // clouds (SkySystem's SkyLighting::sky_irradiance).
     std::optional<CloudShade> LatestCloudShade() const;
 
+    // The newest spherical harmonics of the environment (world frame) that the GPU has finished,
+    // without waiting (a read-back behind a fence, as LatestCloudShade): a round's usually
+    // arrive by the next Update. nullopt without an environment or before the first round's.
+    std::optional<SphericalHarmonics9> LatestEnvironmentSh() const;
+    // Rounds of the six faces completed since SetEnvironment (0 without an environment).
+    long long environment_rounds() const;
+
     // GL texture names, for hosts that sample them (aerial perspective on their geometry).
     unsigned transmittance_texture() const;
     unsigned aerial_perspective_texture() const;
     unsigned frame_texture() const;
     unsigned cloud_shadow_texture() const;  // 0 without weather
+    // The environment's cube map (GL_TEXTURE_CUBE_MAP, RGBA32F, mip-mapped; cd/m^2) and a
+    // buffer of its nine coefficients (9 x vec4, rgb = coefficient i, std430 or std140), which
+    // a host's shader may read as a storage or uniform block; 0 without an environment. Enable
+    // GL_TEXTURE_CUBE_MAP_SEAMLESS to filter across the faces' edges.
+    unsigned environment_texture() const;
+    unsigned environment_sh_buffer() const;
 
   private:
     friend class RendererInspection;  // read-backs and timers: zenith/sky/inspection.h

@@ -25,6 +25,7 @@ struct PassTimes {
     double cloud_reconstruct = 0.0;
     double cloud_ground_shadow = 0.0;  // per trace cell, which the composite interpolates
     double cloud_light_shafts = 0.0;   // per 2x2 trace cells, likewise
+    double environment = 0.0;          // the environment's faces and, after a round, its projection
 };
 
 // A view of one renderer (which must outlive it); cheap to make, e.g. Inspect(renderer).
@@ -38,6 +39,11 @@ class RendererInspection {
     LutImage ReadSkyView() const;
     LutImage ReadAerialPerspective() const;
     LutImage ReadFrame() const;  // the renderer's own frame; row 0 = bottom (GL convention)
+    // The environment's atlas (zenith/sky/environment.h: size x 6 size, face f in rows f size..)
+    // and its cube map's faces read back from the cube (level `level`, the same layout); throw
+    // without an environment.
+    LutImage ReadEnvironmentAtlas() const;
+    LutImage ReadEnvironmentCube(int level = 0) const;
     // The last frame's clouds: rgb luminance in front of the sky (aerial perspective applied),
     // a their transmittance, so frame = rgb + a * sky. Frame-sized; throws without weather.
     LutImage ReadClouds() const;
