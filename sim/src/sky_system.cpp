@@ -404,9 +404,9 @@ void SkySystem::Update() {
     // ground (functions.glsl's ground term), from the newest shade the GPU has finished.
     if (const std::optional<sky::CloudShade> shade = d.renderer->LatestCloudShade();
         shade && height < shade->base_altitude) {
-        l.sky_irradiance =
-            l.sky_irradiance * shade->sky_transmittance + glm::pi<double>() * shade->luminance;
-        l.sky_cloud_transmittance = shade->sky_transmittance;
+        l.sky_irradiance = l.sky_irradiance * shade->ground_sky_transmittance +
+                           glm::pi<double>() * shade->ground_luminance;
+        l.sky_cloud_transmittance = shade->ground_sky_transmittance;
     } else {
         l.sky_cloud_transmittance = 1.0;
     }

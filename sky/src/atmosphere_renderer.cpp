@@ -70,6 +70,8 @@ CloudShade ShadeOf(const gl::LightUniforms& u) {
     shade.direct_transmittance = u.cloud_direct;
     shade.sky_transmittance = u.cloud_sky;
     shade.luminance = glm::dvec3(u.cloud_luminance);
+    shade.ground_sky_transmittance = u.cloud_ground_sky;
+    shade.ground_luminance = glm::dvec3(u.cloud_ground_luminance);
     return shade;
 }
 

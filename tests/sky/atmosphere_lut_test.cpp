@@ -271,9 +271,10 @@ TEST(AtmosphereLuts, MoonIsDroppedOnlyWhereItsSkyIsNegligible) {
 TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
     // Frostbite 2016 Eq. 22 as IntegrateScatteredLuminance applies it: below cloud_base the air
     // scatters the clouds' mean luminance L isotropically (half of it: they fill the upper
-    // hemisphere), the ground is lit by them as a uniform hemisphere (pi L), and the lights are
-    // dimmed. With the lights fully blocked and no absorption, energy conservation gives closed
-    // forms: L (1 - T) / 2 toward the sky, plus T albedo L where the ray ends on the ground.
+    // hemisphere), the ground is lit by them with irradiance pi L_g (L_g their mean weighted by
+    // the cosine), and the lights are dimmed. With the lights fully blocked and no absorption,
+    // energy conservation gives closed forms: L (1 - T) / 2 toward the sky, plus T albedo L_g
+    // where the ray ends on the ground.
     ref::AtmosphereParameters a = EarthKm();
     a.mie_extinction = a.mie_scattering;
     a.absorption_extinction = ref::vec3(0.0);
@@ -286,6 +287,9 @@ TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
     lights.cloud_direct = 0.0;
     lights.cloud_sky = 0.0;
     lights.cloud_luminance = ref::vec3(1000.0, 2000.0, 3000.0);
+    // The ground's: the same weighted by the cosine (brighter overhead, as under a deck).
+    lights.cloud_ground_sky = 0.0;
+    lights.cloud_ground_luminance = ref::vec3(1100.0, 2300.0, 3500.0);
     const ref::vec3 origin(0.0, 0.0, a.bottom_radius + 1.0);
     for (double mu : {0.3, -0.01, -0.02, -0.6}) {  // up; above, beyond and below the horizon
         const ref::vec3 direction(std::sqrt(1.0 - mu * mu), 0.0, mu);
@@ -295,9 +299,10 @@ TEST(AtmosphereFunctions, UnderCloudsTheAirScattersTheCloudsLight) {
         const bool ground = mu < -std::sqrt(1.0 - a.bottom_radius * a.bottom_radius / (r0 * r0));
         for (int c = 0; c < 3; ++c) {
             const double l = lights.cloud_luminance[c];
+            const double l_ground = lights.cloud_ground_luminance[c];
             const double t = r.transmittance[c];
             const double expected =
-                0.5 * l * (1.0 - t) + (ground ? t * a.ground_albedo[c] * l : 0.0);
+                0.5 * l * (1.0 - t) + (ground ? t * a.ground_albedo[c] * l_ground : 0.0);
             EXPECT_NEAR(r.luminance[c] / expected, 1.0, 1e-9) << "mu " << mu << " channel " << c;
         }
     }

@@ -274,8 +274,12 @@ TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbi
         EXPECT_DOUBLE_EQ(shade.base_altitude, weather.layers[0].base_altitude) << v.name;
         EXPECT_NEAR(shade.direct_transmittance, scene.lights.cloud_direct, 1e-3) << v.name;
         EXPECT_NEAR(shade.sky_transmittance, scene.lights.cloud_sky, 1e-3) << v.name;
+        EXPECT_NEAR(shade.ground_sky_transmittance, scene.lights.cloud_ground_sky, 1e-3) << v.name;
         for (int c = 0; c < 3; ++c) {
             EXPECT_NEAR(shade.luminance[c] / scene.lights.cloud_luminance[c], 1.0, 0.005) << v.name;
+            EXPECT_NEAR(shade.ground_luminance[c] / scene.lights.cloud_ground_luminance[c], 1.0,
+                        0.005)
+                << v.name;
         }
         LutImage cpu(size.x, size.y, 1);
         const glm::dvec3 camera_km = glm::dvec3(glm::vec3(camera.position / kKm));

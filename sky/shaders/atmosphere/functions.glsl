@@ -453,6 +453,10 @@ struct Light {
 // light over the ground around the camera, its sky-scattered part by cloud_sky, the clouds' mean
 // transmittance over the upper hemisphere, and the clouds' own light is added as an isotropic
 // source: cloud_luminance, their mean luminance over that hemisphere (clouds/sky_shade.comp).
+// The ground, a horizontal surface, gets the same means weighted by the cosine from the zenith
+// (cloud_ground_sky, cloud_ground_luminance: its irradiance from the clouds is pi times the
+// latter): an overcast deck is brighter overhead than toward the horizon, and the uniform mean
+// gave the ground 10 % too little of its light.
 struct LightSet {
     Light light[kMaxLights];
     int count;
@@ -460,6 +464,8 @@ struct LightSet {
     Number cloud_direct;
     Number cloud_sky;
     vec3 cloud_luminance;
+    Number cloud_ground_sky;
+    vec3 cloud_ground_luminance;
     Number padding0;
     // A solar eclipse (eclipse 1; 0 without): light 0 lights each point of the air (and the
     // ground) by what the Moon leaves of the Sun's disk there, from eclipse_sun_illuminance, the
@@ -719,12 +725,13 @@ ScatteringResult IntegrateScatteredLuminance(
     if (include_ground && ends_on_ground) {
         vec3 p = origin + direction * t_end;
         vec3 n_ground = normalize(p);
-        // Under clouds the ground's sunlight and skylight are dimmed like the air's, and the
-        // clouds light it as a uniform hemisphere: irradiance pi L.
+        // Under clouds the ground's sunlight is dimmed like the air's, its skylight by the
+        // clouds' transmittance weighted by the cosine, and the clouds light it with irradiance
+        // pi times their cosine-weighted mean luminance.
         Number under = UnderClouds(lights, 0.0);
         Number direct = 1.0 + under * (lights.cloud_direct - 1.0);
-        Number sky = 1.0 + under * (lights.cloud_sky - 1.0);
-        vec3 ground = lights.cloud_luminance * (kPi * under);
+        Number sky = 1.0 + under * (lights.cloud_ground_sky - 1.0);
+        vec3 ground = lights.cloud_ground_luminance * (kPi * under);
         for (int l = 0; l < lights.count; ++l) {
             Number mu_l = dot(n_ground, lights.light[l].direction);
             ground += LightIlluminanceAt(lights, l, p) *
@@ -880,7 +887,9 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
     unit_sun.cloud_base = 0.0;  // a clear sky
     unit_sun.cloud_direct = 1.0;
     unit_sun.cloud_sky = 1.0;
+    unit_sun.cloud_ground_sky = 1.0;
     unit_sun.cloud_luminance = vec3(0.0);
+    unit_sun.cloud_ground_luminance = vec3(0.0);
     unit_sun.padding0 = 0.0;
     unit_sun.eclipse = 0;  // a whole Sun (the other eclipse members are read only with it)
     vec3 origin = vec3(0.0, 0.0, atmosphere.bottom_radius);

@@ -525,11 +525,16 @@ Number CloudLayerShadowDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) 
 // marched over the upper hemisphere from the ground below the camera and averaged. Direction i
 // of n_sqrt^2 about `up`: equal solid angles, cos(theta) and phi each in n_sqrt strata, taken
 // at the strata's centres (the same directions every frame, so the averages do not flicker).
+// The cosines sum to n_sqrt^2 / 2, so a mean weighted by the cosine is 2 mean(L cos theta).
+Number CloudSkyShadeCosine(int i, int n_sqrt) {
+    return (Number(i / n_sqrt) + 0.5) / Number(n_sqrt);
+}
+
 vec3 CloudSkyShadeDirection(int i, int n_sqrt, vec3 up) {
     vec3 x = SkyViewFrameX(up, vec3(1.0, 0.0, 0.0));
     vec3 y = cross(up, x);
     int row = i / n_sqrt;
-    Number cos_theta = (Number(row) + 0.5) / Number(n_sqrt);
+    Number cos_theta = CloudSkyShadeCosine(i, n_sqrt);
     Number phi = 2.0 * kPi * (Number(i - row * n_sqrt) + 0.5) / Number(n_sqrt);
     Number sin_theta = SafeSqrt(1.0 - cos_theta * cos_theta);
     return up * cos_theta + x * (sin_theta * cos(phi)) + y * (sin_theta * sin(phi));

@@ -83,15 +83,15 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
 static_assert(offsetof(CloudUniforms, scattering) == 192);
 static_assert(offsetof(CloudUniforms, march) == 224);
 static_assert(offsetof(CloudUniforms, lights) == 272);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 560);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 608);
-static_assert(offsetof(CloudUniforms, previous_camera_km) == 656);
-static_assert(offsetof(CloudUniforms, trace_size) == 672);
-static_assert(offsetof(CloudUniforms, block) == 688);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 704);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 720);
-static_assert(offsetof(CloudUniforms, layer_order) == 736);
-static_assert(offsetof(CloudUniforms, ground_layer_order) == 752);
-static_assert(sizeof(CloudUniforms) == 768);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 576);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 624);
+static_assert(offsetof(CloudUniforms, previous_camera_km) == 672);
+static_assert(offsetof(CloudUniforms, trace_size) == 688);
+static_assert(offsetof(CloudUniforms, block) == 704);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 720);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 736);
+static_assert(offsetof(CloudUniforms, layer_order) == 752);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 768);
+static_assert(sizeof(CloudUniforms) == 784);
 
 }  // namespace zenith::sky::gl

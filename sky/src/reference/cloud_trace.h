@@ -82,19 +82,22 @@ Number CloudShadowMapTexel(const CloudScene& scene, const CloudSettings& setting
 
 // clouds/sky_shade.comp: the LightSet members that say what the clouds do to the light beneath
 // them, for `camera` (km): the shadow map's mean and the clouds' mean transmittance and
-// luminance over the upper hemisphere from the ground below the camera.
+// luminance over the upper hemisphere from the ground below the camera, and both weighted by the
+// cosine for the ground.
 void ShadeLightsUnderClouds(const CloudScene& scene, const CloudSettings& settings, vec3 camera,
                             LightSet& lights) {
     if (scene.layers.empty()) return;  // a clear sky: nothing to shade
     constexpr int kShadeSqrt = kCloudSkyShadeSize;
     const vec3 up = normalize(camera);
-    vec4 sum(0.0);
+    vec4 sum(0.0), ground_sum(0.0);
     for (int i = 0; i < kShadeSqrt * kShadeSqrt; ++i) {
         const CloudMarchState state = MarchCloudLayers(
             scene, scene.weather_from_frame * (up * scene.atmosphere.bottom_radius), 0.0,
             scene.weather_from_frame * CloudSkyShadeDirection(i, kShadeSqrt, up), 0.5,
             scene.ground_order);
         sum += vec4(state.luminance, state.transmittance);
+        ground_sum +=
+            vec4(state.luminance, state.transmittance) * CloudSkyShadeCosine(i, kShadeSqrt);
     }
     const int n = settings.shadow_map_size;
     Number shadow = 0.0;
@@ -107,10 +110,13 @@ void ShadeLightsUnderClouds(const CloudScene& scene, const CloudSettings& settin
     Number base = scene.layers[0].base_altitude;
     for (const CloudLayerParameters& layer : scene.layers) base = min(base, layer.base_altitude);
     const vec4 mean = sum / Number(kShadeSqrt * kShadeSqrt);
+    const vec4 ground_mean = ground_sum * (2.0 / Number(kShadeSqrt * kShadeSqrt));
     lights.cloud_base = base;
     lights.cloud_direct = shadow / Number(n * n);
     lights.cloud_sky = mean.w;
     lights.cloud_luminance = vec3(mean);
+    lights.cloud_ground_sky = ground_mean.w;
+    lights.cloud_ground_luminance = vec3(ground_mean);
 }
 
 // The scene the renderer draws for this camera: LUTs as read back from the GPU (so the CPU

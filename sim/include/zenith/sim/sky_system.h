@@ -114,11 +114,12 @@ struct SkyLighting {
     // Sky (not Sun or Moon) illuminance on a horizontal surface (lux, RGB), from the
     // ground-irradiance LUT: exact at the ground, an overestimate at altitude. Below the clouds'
     // base it is the clear sky's times the clouds' sky transmittance plus their own light
-    // (pi x their mean luminance over the upper hemisphere), as zenith lights its own ground:
+    // (pi x their mean luminance over the upper hemisphere, both weighted by the cosine from the
+    // zenith: CloudShade's ground members), as zenith lights its own ground:
     // the shade the GPU works out every shadow_map_interval frames, read back behind a fence
     // without waiting for it (AtmosphereRenderer::LatestCloudShade), so it lags a frame or two.
     glm::dvec3 sky_irradiance{0.0};
-    double sky_cloud_transmittance = 1.0;  // the clouds' part of that sky light (1 above them)
+    double sky_cloud_transmittance = 1.0;  // the clouds' part of the clear sky's light (1 above)
     // The sky's light from every direction around the aircraft, clouds and our ground included
     // (the Sun's and the Moon's disks are the lights above): L2 spherical harmonics of its
     // luminance in the aircraft's ENU frame, from the environment cube map (SkySystemSettings::

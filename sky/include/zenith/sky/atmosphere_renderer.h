@@ -82,15 +82,19 @@ struct CloudSettings {
 };
 
 // What the clouds do to the light beneath them (Frostbite 2016 §5.9.2, Eq. 22), found by
-// Update with the shadow map (every shadow_map_interval frames): the air and the ground
-// below base_altitude get each light's direct part times direct_transmittance and the sky's part
-// times sky_transmittance, and the clouds' own light as a source of luminance `luminance` over
-// the upper hemisphere.
+// Update with the shadow map (every shadow_map_interval frames): the air below base_altitude
+// gets each light's direct part times direct_transmittance and the sky's part times
+// sky_transmittance, and the clouds' own light as a source of luminance `luminance` over the
+// upper hemisphere; the ground, a horizontal surface, the same with the means weighted by the
+// cosine from the zenith: sky light times ground_sky_transmittance and the clouds' irradiance
+// pi x ground_luminance.
 struct CloudShade {
     double base_altitude = 0.0;         // m above the ground; 0: no clouds
     double direct_transmittance = 1.0;  // toward the Sun (Moon at night), mean over the shadow map
     double sky_transmittance = 1.0;     // mean over the upper hemisphere, from the ground
     glm::dvec3 luminance{0.0};          // cd/m^2, the clouds' mean over the upper hemisphere
+    double ground_sky_transmittance = 1.0;  // the same two weighted by the cosine
+    glm::dvec3 ground_luminance{0.0};
 };
 
 class AtmosphereRenderer {
