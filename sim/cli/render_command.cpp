@@ -68,7 +68,7 @@ Command AddRenderCommand(CLI::App& app) {
     render
         ->add_option("--weather", frame.weather,
                      "clouds: clear, scattered_cumulus, broken, overcast_stratus, "
-                     "cumulonimbus or a weather JSON file")
+                     "cumulonimbus, cirrus or a weather JSON file")
         ->capture_default_str();
     render->add_option("--preset", frame.preset, "atmosphere: earth, mars, thick or a JSON file")
         ->capture_default_str();

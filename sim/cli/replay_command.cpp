@@ -130,7 +130,7 @@ Command AddReplayCommand(CLI::App& app) {
     replay_cmd
         ->add_option("--weather", replay.weather,
                      "clouds: clear, scattered_cumulus, broken, overcast_stratus, "
-                     "cumulonimbus or a weather JSON file")
+                     "cumulonimbus, cirrus or a weather JSON file")
         ->capture_default_str();
     auto* metar_file = replay_cmd->add_option(
         "--metar-file", args->replay_metar_file,

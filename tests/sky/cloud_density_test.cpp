@@ -36,7 +36,8 @@ RepeatTexture2D WeatherFor(double coverage, WeatherMapSource::Kind kind, double 
     layer.precipitation = precipitation;
     layer.map.kind = kind;
     layer.map.size = 64;
-    layer.map.cells_per_tile = 6;
+    // Streaks' fine fibres need 4 x 6 x cells texels across.
+    layer.map.cells_per_tile = kind == WeatherMapSource::Kind::kStreaks ? 2 : 6;
     layer.map.variation = 0.8;
     return ToTexture(clouds::BuildWeatherMap(layer));
 }
@@ -60,7 +61,7 @@ double Density(const CloudLayerParameters& layer, const RepeatTexture2D& weather
 
 TEST(CloudDensity, CoverageZeroIsExactlyTheClearSky) {
     for (auto kind : {WeatherMapSource::Kind::kUniform, WeatherMapSource::Kind::kPatches,
-                      WeatherMapSource::Kind::kCells}) {
+                      WeatherMapSource::Kind::kCells, WeatherMapSource::Kind::kStreaks}) {
         const RepeatTexture2D weather = WeatherFor(0.0, kind, 1.0, 1.0);
         for (const Point& p : RandomPoints(20000, 0.0, 6.0, 1)) {
             ASSERT_EQ(Density(Layer(), weather, p), 0.0);

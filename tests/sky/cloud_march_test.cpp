@@ -27,6 +27,7 @@ CloudLayerParameters Layer(double base = 1.5, double top = 4.0) {
     p.detail_period = 1.8;
     p.erosion_strength = 0.45;
     p.cloud_top_altitude = top;
+    p.extinction_scale = 1.0;
     return p;
 }
 

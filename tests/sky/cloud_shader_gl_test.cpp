@@ -122,14 +122,15 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
     const ref::CloudLayerParameters layer = Layer();
     const ref::CloudScatteringParameters scattering = Scattering();
     const GLuint name = program.name();
-    const char* layer_fields[] = {
-        "bottom_radius",  "base_altitude", "top_altitude",     "weather_period", "shape_period",
-        "shape_period_y", "detail_period", "erosion_strength", "wind_offset_x",  "wind_offset_y"};
+    const char* layer_fields[] = {"bottom_radius",  "base_altitude",    "top_altitude",
+                                  "weather_period", "shape_period",     "shape_period_y",
+                                  "detail_period",  "erosion_strength", "wind_offset_x",
+                                  "wind_offset_y",  "extinction_scale"};
     const double layer_values[] = {
-        layer.bottom_radius, layer.base_altitude,  layer.top_altitude,  layer.weather_period,
-        layer.shape_period,  layer.shape_period_y, layer.detail_period, layer.erosion_strength,
-        layer.wind_offset_x, layer.wind_offset_y};
-    for (int i = 0; i < 10; ++i) {
+        layer.bottom_radius, layer.base_altitude,  layer.top_altitude,    layer.weather_period,
+        layer.shape_period,  layer.shape_period_y, layer.detail_period,   layer.erosion_strength,
+        layer.wind_offset_x, layer.wind_offset_y,  layer.extinction_scale};
+    for (int i = 0; i < 11; ++i) {
         SetUniform(name, std::string("layer.") + layer_fields[i],
                    static_cast<float>(layer_values[i]));
     }

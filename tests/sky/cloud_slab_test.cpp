@@ -39,6 +39,7 @@ struct Slab {
         layer.base_altitude = 1.0;
         layer.top_altitude = 3.0;
         layer.cloud_top_altitude = 1.5;
+        layer.extinction_scale = 1.0;
         layer.weather_period = 40.0;
         layer.shape_period = 14.0;
         layer.shape_period_y = 3.5;

@@ -47,6 +47,7 @@ inline ref::CloudLayerParameters CumulusLayer(double wind_x = 0.0, double wind_y
     p.wind_offset_x = wind_x;
     p.wind_offset_y = wind_y;
     p.cloud_top_altitude = p.top_altitude;  // a bound for any map (CloudTopFraction is tighter)
+    p.extinction_scale = 1.0;               // water droplets
     return p;
 }
 

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "cloud_test_support.h"
 #include "zenith/sky/clouds/weather.h"
@@ -46,7 +49,7 @@ std::string LayerJson(const std::string& extra = "", const std::string& coverage
 
 TEST(CloudWeatherPresets, EveryPresetLoadsAndValidates) {
     for (const char* name :
-         {"clear", "scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus"}) {
+         {"clear", "scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus", "cirrus"}) {
         SCOPED_TRACE(name);
         const Weather weather = LoadWeather(name);
         EXPECT_EQ(weather.name, name);
@@ -69,6 +72,12 @@ TEST(CloudWeatherPresets, EveryPresetLoadsAndValidates) {
     const CloudLayer& cu = scattered.layers[0];
     EXPECT_EQ(cu.wind_speed, 8.0);
     EXPECT_NEAR(cu.wind_from, 1.5 * std::numbers::pi, 1e-15);
+    EXPECT_EQ(cu.extinction_scale, 1.0);  // the default: water droplets
+    const Weather ci = LoadWeather("cirrus");
+    ASSERT_EQ(ci.layers.size(), 1u);
+    EXPECT_EQ(ci.layers[0].extinction_scale, 0.04);
+    EXPECT_EQ(ci.layers[0].map.kind, WeatherMapSource::Kind::kStreaks);
+    EXPECT_GE(ci.layers[0].base_altitude, 6000.0);  // a high cloud
 }
 
 TEST(CloudWeatherPresets, UnknownPresetListsTheShippedOnes) {
@@ -84,6 +93,23 @@ TEST(CloudWeatherPresets, BadFieldsAreNamedWithValueAndRange) {
     ExpectMentions(
         ErrorOf([] { ParseWeatherJson(LayerJson(", \"wind_speed_m_s\": 400"), "w.json"); }),
         {"wind_speed_m_s = 400 m/s", "150 m/s"});
+    for (const char* scale : {"0", "1.5", "-0.1"}) {
+        ExpectMentions(ErrorOf([&] {
+                           ParseWeatherJson(
+                               LayerJson(std::string(", \"extinction_scale\": ") + scale),
+                               "w.json");
+                       }),
+                       {"w.json", "layers[0].extinction_scale", scale, "0 < value <= 1"});
+    }
+    ExpectMentions(ErrorOf([] {
+                       ParseWeatherJson(R"({"layers": [{"base_altitude_m": 9000,
+                           "top_altitude_m": 11000, "coverage": 0.4, "cloud_type": 0,
+                           "precipitation": 0, "map_period_m": 60000,
+                           "map": {"procedural": "streaks", "cells_per_tile": 30,
+                                   "size": 256}}]})",
+                                        "w.json");
+                   }),
+                   {"map.cells_per_tile", "30", "<= map.size / 24 = 10", "streaks"});
     ExpectMentions(ErrorOf([] {
                        ParseWeatherJson(R"({"layers": [{"base_altitude_m": 1500,
                            "top_altitude_m": 4000, "coverage": 0.4, "cloud_type": "nimbus",
@@ -145,12 +171,16 @@ TEST(CloudWeatherPresets, HostileJsonIsAWeatherErrorNamingTheFile) {
 }
 
 TEST(CloudWeatherMaps, ProceduralMapsAreDeterministicInRangeAndTile) {
-    for (const char* name : {"scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus"}) {
+    for (const char* name :
+         {"scattered_cumulus", "broken", "overcast_stratus", "cumulonimbus", "cirrus"}) {
         for (const CloudLayer& layer : LoadWeather(name).layers) {
             SCOPED_TRACE(std::string(name) + " " + layer.name);
             const WeatherMap map = BuildWeatherMap(layer);
             EXPECT_EQ(map.texels, BuildWeatherMap(layer).texels);
-            double coverage = 0.0, interior = 0.0, wrap = 0.0;
+            double coverage = 0.0;
+            // |change| summed over each column boundary (x to x + 1) and row boundary.
+            std::vector<double> columns(static_cast<std::size_t>(map.size), 0.0);
+            std::vector<double> rows(static_cast<std::size_t>(map.size), 0.0);
             const int n = map.size;
             for (int y = 0; y < n; ++y) {
                 for (int x = 0; x < n; ++x) {
@@ -161,16 +191,23 @@ TEST(CloudWeatherMaps, ProceduralMapsAreDeterministicInRangeAndTile) {
                     coverage += t.x;
                     const double dx = std::abs(map.at((x + 1) % n, y).x - t.x);
                     const double dy = std::abs(map.at(x, (y + 1) % n).x - t.x);
-                    (x + 1 == n ? wrap : interior) += dx;
-                    (y + 1 == n ? wrap : interior) += dy;
+                    columns[static_cast<std::size_t>(x)] += dx;
+                    rows[static_cast<std::size_t>(y)] += dy;
                 }
             }
             coverage /= n * n;
             // The map's mean coverage is the layer's (cells add full-cover cores on top).
             EXPECT_NEAR(coverage, layer.coverage,
                         layer.map.kind == WeatherMapSource::Kind::kCells ? 0.3 : 0.12);
-            // Tiling: the seam costs no more than any other column or row.
-            EXPECT_LE(wrap / (2.0 * n), 1.3 * interior / (2.0 * n * (n - 1)) + 1e-6);
+            // Tiling: the seam (the last boundary, back to the first texel) changes no more than
+            // the largest other column or row boundary, in each direction (a map that did not
+            // tile would jump there by as much as two unrelated texels differ).
+            for (const std::vector<double>* boundaries : {&columns, &rows}) {
+                const double seam = boundaries->back();
+                const double largest =
+                    *std::max_element(boundaries->begin(), boundaries->end() - 1);
+                EXPECT_LE(seam, largest + 1e-6) << (boundaries == &columns ? "x" : "y");
+            }
         }
     }
 }
@@ -180,12 +217,39 @@ TEST(CloudWeatherMaps, CoverageZeroIsExactlyClearForEveryProceduralKind) {
     layer.coverage = 0.0;
     layer.precipitation = 0.5;
     for (auto kind : {WeatherMapSource::Kind::kUniform, WeatherMapSource::Kind::kPatches,
-                      WeatherMapSource::Kind::kCells}) {
+                      WeatherMapSource::Kind::kCells, WeatherMapSource::Kind::kStreaks}) {
         layer.map.kind = kind;
         layer.map.variation = 1.0;
         const WeatherMap map = BuildWeatherMap(layer);
         for (const glm::vec4& t : map.texels) ASSERT_EQ(t.x, 0.0f);
     }
+}
+
+// Streaks are fibres along the map's x: the coverage changes several times less from texel to
+// texel along x than across, where patches change alike both ways.
+TEST(CloudWeatherMaps, StreaksAreLongAlongXAndThinAcross) {
+    CloudLayer layer;
+    layer.coverage = 0.5;
+    layer.map.size = 256;
+    layer.map.cells_per_tile = 6;
+    layer.map.variation = 0.7;
+    const auto gradients = [&](WeatherMapSource::Kind kind) {
+        layer.map.kind = kind;
+        const WeatherMap map = BuildWeatherMap(layer);
+        double along = 0.0, across = 0.0;
+        for (int y = 0; y < map.size; ++y) {
+            for (int x = 0; x < map.size; ++x) {
+                along += std::abs(map.at((x + 1) % map.size, y).x - map.at(x, y).x);
+                across += std::abs(map.at(x, (y + 1) % map.size).x - map.at(x, y).x);
+            }
+        }
+        return across / along;
+    };
+    const double streaks = gradients(WeatherMapSource::Kind::kStreaks);
+    const double patches = gradients(WeatherMapSource::Kind::kPatches);
+    std::printf("coverage change across / along x: streaks %.2f, patches %.2f\n", streaks, patches);
+    EXPECT_GT(streaks, 3.0);
+    EXPECT_NEAR(patches, 1.0, 0.3);
 }
 
 TEST(CloudWeatherMaps, WindCarriesTheWeatherDownwind) {

@@ -198,7 +198,7 @@ void AddCloudLayer(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, wind_offset_x);
     ZENITH_SAME(S, wind_offset_y);
     ZENITH_SAME(S, cloud_top_altitude);
-    ZENITH_SAME(S, padding1);
+    ZENITH_SAME(S, extinction_scale);
 }
 
 void AddCloudScattering(Layout& layout, const std::string& prefix, std::size_t base) {

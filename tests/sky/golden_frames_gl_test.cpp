@@ -78,6 +78,9 @@ constexpr Scene kScenes[] = {
     {"cumulonimbus_ground", kCloudUtc, 2.0, 20.0, true, "cumulonimbus", 60.0},
     {"cumulonimbus_inside", kCloudUtc, kInsideTheLayer, 0.0, true, "cumulonimbus", 60.0},
     {"cumulonimbus_above", kCloudUtc, 14000.0, -25.0, true, "cumulonimbus", 60.0},
+    {"cirrus_ground", kCloudUtc, 2.0, 35.0, true, "cirrus", 60.0},
+    {"cirrus_inside", kCloudUtc, kInsideTheLayer, 0.0, true, "cirrus", 60.0},
+    {"cirrus_above", kCloudUtc, 12000.0, -25.0, true, "cirrus", 60.0},
 };
 
 // gtest prints the parameter in test names and failures.

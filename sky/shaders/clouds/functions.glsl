@@ -36,7 +36,9 @@ struct CloudLayerParameters {
     Number wind_offset_x;     // km the clouds have moved along ground x (H16 §4.4.2)
     Number wind_offset_y;     // km along ground y
     Number cloud_top_altitude;  // km: the map's clouds reach no higher (clouds::CloudTopFraction)
-    Number padding1;
+    // (0, 1]: the layer's cloud material's extinction relative to CloudMarchParameters'
+    // (clouds::CloudLayer::extinction_scale: 1 for water droplets, ~0.02 for cirrus' ice).
+    Number extinction_scale;
 };
 
 // Erosion remaps density from [e, 1] to [0, 1]; e must stay below 1.
@@ -235,8 +237,10 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     Number detail = CloudDetail(SampleTexture3D(detail_noise, detail_uvw), s.cloud_fraction);
     density = CloudErode(density, layer.erosion_strength * detail);
     density *= CloudHeightGradient(weather.type, s.cloud_fraction);
-    // H16 §4.5.1: densities above 1 are clamped.
-    s.density = CloudSaturate(density);
+    // H16 §4.5.1: densities above 1 are clamped. The layer's material then scales it, so that
+    // everything that reads density (the march, the shadow map, the path tracer's medium) sees
+    // the layer's extinction.
+    s.density = CloudSaturate(density) * layer.extinction_scale;
     return s;
 }
 

@@ -36,6 +36,7 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_
     p.wind_offset_y = Scalar(-drift.y / kKm);
     p.cloud_top_altitude = Scalar(
         (layer.base_altitude + (layer.top_altitude - layer.base_altitude) * top_fraction) / kKm);
+    p.extinction_scale = Scalar(layer.extinction_scale);
     return p;
 }
 

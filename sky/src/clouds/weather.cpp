@@ -38,6 +38,7 @@ constexpr double kMaxWindSpeed = 150.0;      // m/s
 constexpr double kMinMapPeriod = 1e3;        // m
 constexpr double kMaxMapPeriod = 1e7;        // m
 constexpr int kMinMapSize = 16;
+constexpr int kStreakAspect = 6;  // streaks: features this many times longer than wide
 
 // Smoothstep of x clamped to [0, 1].
 double SmoothUnit(double x) {
@@ -126,6 +127,11 @@ void Check(const Weather& weather, const Checker& check) {
                        "0 <= value <= " + FormatNumber(kMaxWindSpeed) +
                            " m/s (twice the strongest jet stream)");
         }
+        if (!(l.extinction_scale > 0.0 && l.extinction_scale <= 1.0)) {
+            check.Fail(i, l.name, "extinction_scale", "extinction_scale", unit(l.extinction_scale),
+                       "0 < value <= 1 (of the cloud material's extinction: 1 for water "
+                       "droplets, ~0.02 for cirrus' ice)");
+        }
         if (!std::isfinite(l.wind_from)) {
             check.Fail(
                 i, l.name, "wind_from_deg", "wind_from",
@@ -151,6 +157,14 @@ void Check(const Weather& weather, const Checker& check) {
                        std::to_string(m.cells_per_tile),
                        "1 <= value <= map.size / 2 = " + std::to_string(m.size / 2) +
                            " (a whole number of features per tile keeps the map tiling)");
+        }
+        if (m.kind == WeatherMapSource::Kind::kStreaks &&
+            !(4 * kStreakAspect * m.cells_per_tile <= m.size)) {
+            check.Fail(i, l.name, "map.cells_per_tile", "map.cells_per_tile",
+                       std::to_string(m.cells_per_tile),
+                       "<= map.size / " + std::to_string(4 * kStreakAspect) + " = " +
+                           std::to_string(m.size / (4 * kStreakAspect)) +
+                           " for streaks (their fine fibres need two texels across)");
         }
         if (!(m.variation >= 0.0 && m.variation <= 1.0)) {
             check.Fail(i, l.name, "map.variation", "map.variation", unit(m.variation),
@@ -194,9 +208,17 @@ class Reader : public data_files::JsonReader<WeatherError> {
 };
 
 constexpr const char* kTopKeys[] = {"name", "description", "layers"};
-constexpr const char* kLayerKeys[] = {
-    "name",          "base_altitude_m", "top_altitude_m", "coverage",     "cloud_type",
-    "precipitation", "wind_speed_m_s",  "wind_from_deg",  "map_period_m", "map"};
+constexpr const char* kLayerKeys[] = {"name",
+                                      "base_altitude_m",
+                                      "top_altitude_m",
+                                      "coverage",
+                                      "cloud_type",
+                                      "precipitation",
+                                      "wind_speed_m_s",
+                                      "wind_from_deg",
+                                      "extinction_scale",
+                                      "map_period_m",
+                                      "map"};
 constexpr const char* kProceduralKeys[] = {"procedural", "seed", "cells_per_tile", "variation",
                                            "size"};
 constexpr const char* kFileKeys[] = {"file"};
@@ -221,10 +243,12 @@ WeatherMapSource ReadMap(const Reader& read, const Json& map, const std::string&
         source.kind = WeatherMapSource::Kind::kPatches;
     } else if (kind == "cells") {
         source.kind = WeatherMapSource::Kind::kCells;
+    } else if (kind == "streaks") {
+        source.kind = WeatherMapSource::Kind::kStreaks;
     } else {
         read.Fail(prefix + ".procedural",
                   Quote(kind) +
-                      " is not a procedural map; expected uniform, patches or cells "
+                      " is not a procedural map; expected uniform, patches, cells or streaks "
                       "(or give \"file\" instead)");
     }
     const int seed = read.Integer(map, prefix + ".", "seed", 1);
@@ -301,6 +325,7 @@ Weather ParseWeatherDocument(std::string_view json_text, const std::string& sour
         layer.precipitation = read.Number(l, prefix, "precipitation");
         layer.wind_speed = read.Number(l, prefix, "wind_speed_m_s", 0.0);
         layer.wind_from = read.Number(l, prefix, "wind_from_deg", 0.0) * kDeg;
+        layer.extinction_scale = read.Number(l, prefix, "extinction_scale", 1.0);
         layer.map_period = read.Number(l, prefix, "map_period_m");
         layer.map = ReadMap(read, read.Required(l, prefix, "map"), prefix + "map", base_directory);
         weather.layers.push_back(std::move(layer));
@@ -405,6 +430,22 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer) {
                                                SmoothUnit(8.0 * rim)
                                : layer.cloud_type + (between - layer.cloud_type) * (1.0 - w);
                     height = (0.5 + 0.5 * SmoothUnit(2.0 * w)) * (0.85 + 0.15 * size);
+                    break;
+                }
+                case WeatherMapSource::Kind::kStreaks: {
+                    // Cirrus' fibres: Perlin noise stretched kStreakAspect times along the map's
+                    // x (east at the weather's origin; high-level winds are mostly westerly),
+                    // two octaves, with a sharper fine one across; the texel's height varies
+                    // little (a thin layer).
+                    const glm::ivec3 along(n, kStreakAspect * n, 1);
+                    const glm::ivec3 along_fine(2 * n, 2 * kStreakAspect * n, 1);
+                    const glm::dvec3 p(u.x * n, u.y * kStreakAspect * n, 0.0);
+                    const double fibre = TileablePerlin(p, along, seed) +
+                                         0.5 * TileablePerlin(glm::dvec3(2.0 * p.x, 2.0 * p.y, 0.0),
+                                                              along_fine, seed + 1U);
+                    coverage = layer.coverage * (1.0 + 2.0 * source.variation * fibre);
+                    height =
+                        0.8 + 0.4 * TileablePerlin(p + glm::dvec3(0.5, 0.5, 0.0), along, seed + 2U);
                     break;
                 }
                 case WeatherMapSource::Kind::kFile:

@@ -22,7 +22,7 @@ struct CloudLayerUniforms {  // clouds/functions.glsl: struct CloudLayerParamete
     float wind_offset_x;
     float wind_offset_y;
     float cloud_top_altitude;
-    float padding1;
+    float extinction_scale;
 };
 static_assert(sizeof(CloudLayerUniforms) == 48);
 

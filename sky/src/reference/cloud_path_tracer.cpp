@@ -499,8 +499,9 @@ CloudField::CloudField(const clouds::Weather& weather, const CloudSettings& sett
         }
         const double top =
             layer.base_altitude + (layer.top_altitude - layer.base_altitude) * top_fraction;
-        m.shells.push_back({bottom_radius + layer.base_altitude, bottom_radius + top,
-                            settings.extinction * max_coverage * kMajorantSlack});
+        m.shells.push_back(
+            {bottom_radius + layer.base_altitude, bottom_radius + top,
+             settings.extinction * layer.extinction_scale * max_coverage * kMajorantSlack});
     }
 }
 

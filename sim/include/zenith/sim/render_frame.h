@@ -43,8 +43,8 @@ struct FrameRequest {
     bool force_ray_march = false;
     sky::LutSettings lut_settings;
     // Clouds: a built-in weather preset (clear, scattered_cumulus, broken, overcast_stratus,
-    // cumulonimbus) or a weather JSON file. A single frame has no history to reproject, so every
-    // pixel is traced (block 1), cloud_passes times with the jitter moved each time, averaged
+    // cumulonimbus, cirrus) or a weather JSON file. A single frame has no history to reproject, so
+    // every pixel is traced (block 1), cloud_passes times with the jitter moved each time, averaged
     // by the renderer's history (grain instead of banding from the equal steps).
     std::string weather = "clear";
     // Or the weather of a METAR report (zenith::weather::CloudWeatherFromMetar): its clouds, and

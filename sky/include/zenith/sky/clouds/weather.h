@@ -39,6 +39,8 @@ struct WeatherMapSource {
         kCells,    // isolated cells of varied size with raining cores (cumulonimbus); a
                    // cumulonimbus layer keeps its type over a rim 1.7x the cells' cover,
                    // where the anvil spreads under the layer's top
+        kStreaks,  // long thin fibres along the map's x (east), 6 times longer than wide
+                   // (cirrus); cells_per_tile of them across a tile
         kFile,     // an image: see LoadWeatherMapImage
     };
     Kind kind = Kind::kUniform;
@@ -61,6 +63,10 @@ struct CloudLayer {
     double wind_from = 0.0;         // rad, meteorological: where the wind blows from, clockwise
                                     // from north (pi / 2: an east wind, clouds move west)
     double map_period = 50000.0;    // m of ground covered by one tile of the weather map
+    // The layer's cloud material's extinction relative to CloudSettings::extinction, (0, 1]:
+    // 1 for water droplets (cumulus, stratus: 40 /km), ~0.02 for the ice of cirrus (~1 /km:
+    // fewer, larger crystals; vertical optical depths 0.03-3, Sassen & Cho 1992).
+    double extinction_scale = 1.0;
     WeatherMapSource map;
     bool operator==(const CloudLayer&) const = default;
 };
@@ -94,8 +100,8 @@ struct WeatherMap {
 void Validate(const Weather& weather);
 
 // Reads a preset: a built-in name ("clear", "scattered_cumulus", "broken", "overcast_stratus",
-// "cumulonimbus") in WeatherDirectory(), or a path to a JSON file (anything with a '/' or ending
-// in ".json"). Unknown keys are errors. The result is validated; map files are checked when
+// "cumulonimbus", "cirrus") in WeatherDirectory(), or a path to a JSON file (anything with a '/' or
+// ending in ".json"). Unknown keys are errors. The result is validated; map files are checked when
 // the map is built (BuildWeatherMap), not here.
 //
 //   {
@@ -113,8 +119,9 @@ void Validate(const Weather& weather);
 //         "wind_speed_m_s": 8,              optional, default 0
 //         "wind_from_deg": 270,             optional, default 0
 //         "map_period_m": 60000,
+//         "extinction_scale": 1,            optional, default 1 (water); ~0.02 for cirrus' ice
 //         "map": {"procedural": "patches", "seed": 3, "cells_per_tile": 12, "variation": 0.6,
-//                 "size": 256}             or {"procedural": "uniform"} / "cells", or
+//                 "size": 256}             or {"procedural": "uniform"} / "cells" / "streaks", or
 //                {"file": "maps/front.exr"} (relative to this JSON file)
 //       }
 //     ]
