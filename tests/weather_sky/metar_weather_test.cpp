@@ -49,7 +49,13 @@ TEST(CloudWeather, BaseIsAboveTheStation) {
     EXPECT_DOUBLE_EQ(w.clouds.layers[2].base_altitude, 98.0 + 25000 * kMetresPerFoot);
     EXPECT_EQ(w.clouds.layers[0].name, "cumulus");
     EXPECT_EQ(w.clouds.layers[1].name, "altocumulus");
-    EXPECT_EQ(w.clouds.layers[2].name, "high cloud");
+    EXPECT_EQ(w.clouds.layers[2].name, "cirrostratus");  // ice: OVC250
+    EXPECT_EQ(w.clouds.layers[2].extinction_scale, 0.04);
+    EXPECT_EQ(w.clouds.layers[1].extinction_scale, 1.0);  // water
+    const MetarWeather cirrus = FromText("LFMY 141200Z 31010KT 9999 SCT280 29/12 Q1016", 98.0);
+    ASSERT_EQ(cirrus.clouds.layers.size(), 1u);
+    EXPECT_EQ(cirrus.clouds.layers[0].name, "cirrus");
+    EXPECT_EQ(cirrus.clouds.layers[0].map.kind, sky::clouds::WeatherMapSource::Kind::kStreaks);
     // The cumulus reach the altocumulus' base; alone, on a warm day (29 degC), they are deeper
     // than the 1000 m of a 15 degC day.
     EXPECT_DOUBLE_EQ(w.clouds.layers[0].top_altitude, w.clouds.layers[1].base_altitude);

@@ -18,6 +18,8 @@ using sky::clouds::WeatherMapSource;
 
 constexpr double kLowEtageTop = 2000.0;    // m above the station (WMO cloud atlas, temperate)
 constexpr double kHighEtageBase = 6000.0;  // m
+// Cirrus' ice against the water clouds' extinction (the `cirrus` preset; weather.h).
+constexpr double kIceExtinctionScale = 0.04;
 constexpr double kCbTopAboveStation = 10000.0;
 constexpr double kMaxTop = 20000.0;  // sky::clouds::Validate's troposphere
 constexpr double kMinThickness = 50.0;
@@ -231,12 +233,18 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
                 l.cloud_type = overcast ? kStratus : kStratocumulus;
                 depth = 800.0;
             } else {
-                l.name = "high cloud";
+                // Ice: cirrus fibres, or an overcast veil of cirrostratus (the `cirrus` preset's
+                // material and map).
+                l.name = overcast ? "cirrostratus" : "cirrus";
                 l.cloud_type = kStratus;
+                l.extinction_scale = kIceExtinctionScale;
                 depth = 500.0;
             }
             if (b.convective) {
                 // set above
+            } else if (height >= kHighEtageBase && !overcast) {
+                l.map = Map(WeatherMapSource::Kind::kStreaks, Seed(metar.station, i), 6, 0.7);
+                l.map_period = 80000.0;
             } else if (overcast) {
                 l.map = Map(WeatherMapSource::Kind::kUniform, 1, 8, 0.0);
                 l.map_period = 50000.0;

@@ -19,7 +19,9 @@
 //   ...TCU                  as its amount       congestus (0.75)              with precipitation:
 //   middle (base >= 2 km)   as its amount       stratocumulus (0.25);         nimbostratus)
 //                                               OVC: stratus (0)            middle 800 m
-//   high (base >= 6 km)     as its amount       stratus (0) (no cirrus)     high 500 m
+//   high (base >= 6 km)     as its amount       cirrus (OVC: cirrostratus): high 500 m
+//                                               ice, extinction_scale 0.04,
+//                                               stratus (0) profile
 //                                                                           TCU 4000 m
 //                                                                           CB to 10 km above
 //                                                                             the station
@@ -37,8 +39,9 @@
 // seen is the report's (within 3 %); two layers reported less than 50 m apart are one.
 //
 // Map: FEW/SCT and TCU layers "patches" (12 cells per tile, variation 0.6), BKN "patches"
-// (8, 0.4), OVC and fog "uniform", CB "cells"; seeds from the station and the layer's index, so
-// the same report gives the same sky. Each layer drifts with the reported surface wind.
+// (8, 0.4), OVC and fog "uniform", CB "cells", high non-OVC "streaks" (6, 0.7; cirrus' fibres);
+// seeds from the station and the layer's index, so the same report gives the same sky. Each
+// layer drifts with the reported surface wind.
 // Precipitation (-: 0.3, moderate: 0.6, +: 0.9) goes to the layer that rains: a CB or TCU layer
 // for showers and thunderstorms, else the lowest BKN/OVC layer, else the lowest layer.
 // Layers that overlap are cut at the next layer's base; one left thinner than 50 m is merged
