@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <glm/gtc/constants.hpp>
 #include <limits>
 #include <string>
@@ -15,6 +16,7 @@
 
 #include "host_frame.h"
 #include "zenith/sim/sky_system.h"
+#include "zenith/sky/clouds/weather.h"
 
 namespace zenith::sim {
 namespace {
@@ -98,6 +100,71 @@ TEST_F(DepthConventionsTest, EveryConventionGivesTheSameFrame) {
         EXPECT_LT(worst_geometry, 1e-3) << c.name;
         EXPECT_LT(worst_sky, 1e-5) << c.name;
     }
+}
+
+// With clouds: host geometry 300 m away (in front of every cloud), 30 km away (behind the
+// cumulus in view) and none, from 500 m looking up through scattered cumulus. The clouds'
+// depth test against the host's (render.frag: only the clouds nearer than the geometry) gives
+// the same frame in every convention; and the far geometry is hidden by the clouds where the
+// near is not.
+TEST_F(DepthConventionsTest, CloudsOccludeTheSameGeometryInEveryConvention) {
+    sky_->SetGeodetic(46.5, 8.0, 500.0);
+    sky_->SetAttitude(glm::radians(120.0), 0.15, 0.0);
+    sky::CloudSettings settings;
+    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    const auto draw = [&](double far_m, bool reversed) {
+        const float near_geometry = static_cast<float>(WindowDepth(300.0, kNear, far_m, reversed));
+        const float far_geometry = static_cast<float>(WindowDepth(30000.0, kNear, far_m, reversed));
+        std::vector<float> depth(kSize * kSize, reversed ? 0.0f : 1.0f);
+        for (int y = 0; y < kSize; ++y) {
+            for (int x = 0; x < 2 * kSize / 3; ++x) {
+                depth[static_cast<std::size_t>(y * kSize + x)] =
+                    x < kSize / 3 ? near_geometry : far_geometry;
+            }
+        }
+        sky_->ResetCloudHistory();  // each frame the first of its history: comparable
+        sky_->Update();
+        test::HostFrame frame(kSize, kSize);
+        return frame.Render(*sky_, depth, kColour, kNear, far_m, reversed);
+    };
+    const std::vector<glm::vec4> clear = draw(kFar, false);
+    sky_->SetWeather(sky::clouds::LoadWeather("scattered_cumulus"), settings);
+    const std::vector<glm::vec4> standard = draw(kFar, false);
+    // What the clouds change in each band: little in front of the near geometry (the air under
+    // the clouds is shaded a little), much over the far geometry and the sky.
+    double change[3] = {0.0, 0.0, 0.0};
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y * kSize + x);
+            change[std::min(3 * x / kSize, 2)] +=
+                std::abs(standard[i].g - clear[i].g) / clear[i].g / (kSize * kSize / 3.0);
+        }
+    }
+    std::printf("clouds change the frame by %.3f (near geometry), %.3f (far), %.3f (sky)\n",
+                change[0], change[1], change[2]);
+    EXPECT_GT(change[1], 3.0 * change[0]);
+    EXPECT_GT(change[2], 3.0 * change[0]);
+    for (const bool reversed : {false, true}) {
+        for (const double far_m : {kFar, kInfinity}) {
+            if (!reversed && far_m == kFar) continue;
+            const std::vector<glm::vec4> pixels = draw(far_m, reversed);
+            double worst = 0.0;
+            for (std::size_t i = 0; i < pixels.size(); ++i) {
+                for (int ch = 0; ch < 3; ++ch) {
+                    const double d =
+                        std::abs(pixels[i][ch] - standard[i][ch]) / std::abs(standard[i][ch]);
+                    worst = std::max(worst, d);
+                }
+            }
+            std::printf("clouds, %s, far %g m: within %.3g of the standard frame\n",
+                        reversed ? "reversed-Z" : "standard", far_m, worst);
+            EXPECT_LT(worst, 1e-3);
+        }
+    }
+    sky_->SetWeather({});
+    sky_->SetGeodetic(46.5, 8.0, 1500.0);
+    sky_->SetAttitude(glm::radians(120.0), 0.0, 0.0);
+    sky_->Update();
 }
 
 TEST_F(DepthConventionsTest, AMultisampledDepthTextureIsRefused) {
