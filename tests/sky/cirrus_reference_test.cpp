@@ -59,14 +59,7 @@ TEST(CirrusReference, ThinIceLayerMatchesThePathTracer) {
         const vec3 sun_direction(std::cos(sun_elevation) * std::cos(c.sun_azimuth),
                                  std::cos(sun_elevation) * std::sin(c.sun_azimuth),
                                  std::sin(sun_elevation));
-        Sunlight sun(std::sin(sun_elevation));
-        sun.lights.light[0].direction = sun_direction;
-        reference::CloudScene scene;
-        scene.atmosphere.solar_illuminance = glm::dvec3(1.0);
-        scene.clouds = &field;
-        scene.sun_direction = sun_direction;
-        scene.air = false;
-        scene.ground = false;
+        const BareSun sun(field, sun_direction);
         reference::CloudPathTraceOptions options;
         options.samples = 1500;
         double variance = 0.0;
@@ -79,11 +72,11 @@ TEST(CirrusReference, ThinIceLayerMatchesThePathTracer) {
                 const vec3 forward(std::cos(view_elevation), 0.0, std::sin(view_elevation));
                 const vec3 up_image(-std::sin(view_elevation), 0.0, std::cos(view_elevation));
                 const vec3 view = normalize(forward + vec3(0.0, u, 0.0) + up_image * v);
-                c.renderer += CloudLuminance(sun, params, weather_texture, shape, detail,
+                c.renderer += CloudLuminance(sun.march, params, weather_texture, shape, detail,
                                              scattering, march, camera_km, view, 8);
                 options.seed = 7 + std::uint64_t(j * width + i);
                 const reference::CloudPathTraceResult r =
-                    reference::CloudPathTrace(scene, camera_km * 1000.0, view, options);
+                    reference::CloudPathTrace(sun.scene, camera_km * 1000.0, view, options);
                 c.reference += r.luminance;
                 variance += r.luminance_error * r.luminance_error;
             }

@@ -39,6 +39,24 @@ struct Sunlight {
     }
 };
 
+// One bare sunlight toward `sun_direction` (unit, cloud frame) for both sides of a comparison:
+// the march's (Sunlight) and the path tracer's scene through `field` with no air and a black
+// ground.
+struct BareSun {
+    Sunlight march;
+    reference::CloudScene scene;
+
+    BareSun(const reference::CloudField& field, const vec3& sun_direction)
+        : march(sun_direction.z) {
+        march.lights.light[0].direction = sun_direction;
+        scene.atmosphere.solar_illuminance = glm::dvec3(1.0);
+        scene.clouds = &field;
+        scene.sun_direction = sun_direction;
+        scene.air = false;
+        scene.ground = false;
+    }
+};
+
 // The renderer's cloud material (default: CloudSettings{}), in the shaders' units, over a grey
 // ground.
 CloudScatteringParameters DefaultScattering(double ground_albedo = 0.0,
@@ -142,14 +160,7 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
     for (std::size_t c = 0; c < cases.size(); ++c) {
         const vec3 sun_direction(std::cos(elevation) * std::cos(azimuths[c]),
                                  std::cos(elevation) * std::sin(azimuths[c]), std::sin(elevation));
-        Sunlight sun(std::sin(elevation));
-        sun.lights.light[0].direction = sun_direction;
-        reference::CloudScene scene;
-        scene.atmosphere.solar_illuminance = glm::dvec3(1.0);
-        scene.clouds = &field;
-        scene.sun_direction = sun_direction;
-        scene.air = false;
-        scene.ground = false;
+        const BareSun sun(field, sun_direction);
         reference::CloudPathTraceOptions options;
         options.samples = samples;
         options.threads = threads;
@@ -160,11 +171,11 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
                 const double v =
                     (2.0 * (j + 0.5) / height - 1.0) * std::tan(half_fov) * height / width;
                 const vec3 view = normalize(vec3(1.0, u, v + 0.05));
-                renderer.push_back(CloudLuminance(sun, params, weather_texture, shape, detail,
+                renderer.push_back(CloudLuminance(sun.march, params, weather_texture, shape, detail,
                                                   scattering, march, camera_km, view, 8));
                 options.seed = seed + std::uint64_t(j * width + i);
                 const reference::CloudPathTraceResult r =
-                    reference::CloudPathTrace(scene, camera_km * 1000.0, view, options);
+                    reference::CloudPathTrace(sun.scene, camera_km * 1000.0, view, options);
                 traced.push_back(r.luminance);
                 traced_error.push_back(r.luminance_error);
             }
