@@ -252,7 +252,8 @@ void SkySystem::SetVisibility(std::optional<double> visibility_m, bool fog) {
 std::vector<std::string> SkySystem::SetMetar(const weather::Metar& report,
                                              double station_elevation_m,
                                              const sky::CloudSettings& settings) {
-    weather::MetarWeather mapped = weather::CloudWeatherFromMetar(report, station_elevation_m);
+    weather::MetarWeather mapped =
+        weather::CloudWeatherFromMetar(report, station_elevation_m, settings.extinction);
     std::vector<std::string> notes;
     for (const weather::MetarWarning& w : report.warnings)
         notes.push_back("METAR: " + w.ToString());

@@ -129,7 +129,7 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
         std::vector<double> tops;
         for (const clouds::CloudLayer& layer : weather.layers) {
             maps.push_back(clouds::BuildWeatherMap(layer));
-            tops.push_back(clouds::CloudTopFraction(maps.back()));
+            tops.push_back(clouds::LayerTopFraction(layer, maps.back()));
         }
         const clouds::CloudNoiseLoad noise =
             clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory);

@@ -125,12 +125,12 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
     const char* layer_fields[] = {"bottom_radius",  "base_altitude",    "top_altitude",
                                   "weather_period", "shape_period",     "shape_period_y",
                                   "detail_period",  "erosion_strength", "wind_offset_x",
-                                  "wind_offset_y",  "extinction_scale"};
+                                  "wind_offset_y",  "extinction_scale", "ground_fog"};
     const double layer_values[] = {
-        layer.bottom_radius, layer.base_altitude,  layer.top_altitude,    layer.weather_period,
-        layer.shape_period,  layer.shape_period_y, layer.detail_period,   layer.erosion_strength,
-        layer.wind_offset_x, layer.wind_offset_y,  layer.extinction_scale};
-    for (int i = 0; i < 11; ++i) {
+        layer.bottom_radius, layer.base_altitude,  layer.top_altitude,     layer.weather_period,
+        layer.shape_period,  layer.shape_period_y, layer.detail_period,    layer.erosion_strength,
+        layer.wind_offset_x, layer.wind_offset_y,  layer.extinction_scale, layer.ground_fog};
+    for (int i = 0; i < 12; ++i) {
         SetUniform(name, std::string("layer.") + layer_fields[i],
                    static_cast<float>(layer_values[i]));
     }

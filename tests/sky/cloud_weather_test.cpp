@@ -93,13 +93,13 @@ TEST(CloudWeatherPresets, BadFieldsAreNamedWithValueAndRange) {
     ExpectMentions(
         ErrorOf([] { ParseWeatherJson(LayerJson(", \"wind_speed_m_s\": 400"), "w.json"); }),
         {"wind_speed_m_s = 400 m/s", "150 m/s"});
-    for (const char* scale : {"0", "1.5", "-0.1"}) {
+    for (const char* scale : {"0", "4.5", "-0.1"}) {
         ExpectMentions(ErrorOf([&] {
                            ParseWeatherJson(
                                LayerJson(std::string(", \"extinction_scale\": ") + scale),
                                "w.json");
                        }),
-                       {"w.json", "layers[0].extinction_scale", scale, "0 < value <= 1"});
+                       {"w.json", "layers[0].extinction_scale", scale, "0 < value <= 4"});
     }
     ExpectMentions(ErrorOf([] {
                        ParseWeatherJson(R"({"layers": [{"base_altitude_m": 9000,

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "zenith/base/units.h"
+#include "zenith/sky/reference/cloud_path_tracer.h"
 #include "zenith/weather/cloud_weather.h"
 
 namespace zenith::weather {
@@ -95,6 +96,35 @@ TEST(CloudWeather, ExtinctionGivesTheReportedVisualRange) {
     EXPECT_THROW(ExtinctionForVisibility(std::nan("")), ArgumentError);
 }
 
+// The fog's medium, as the renderer and the cloud path tracer define it (CloudField: the shared
+// density function over the layer's map and the noise), has at eye height the extinction that,
+// with the air's (set for 1 km), makes the reported visibility: ln 20 / V in all, by Koschmieder.
+TEST(CloudWeather, FogsExtinctionAtTheGroundGivesTheReportedVisibility) {
+    const sky::CloudSettings settings;
+    const sky::clouds::CloudNoise noise =
+        sky::clouds::LoadOrGenerateCloudNoise(
+            settings.noise, std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache")
+            .noise;
+    const sky::Atmosphere earth;
+    for (const char* text :
+         {"EDDF 010000Z 00000KT 0100 FG VV002 05/05 Q1020",
+          "EDDF 010000Z 00000KT 0250 FG 05/05 Q1020", "EDDF 010000Z 00000KT 0600 FG 05/05 Q1020"}) {
+        SCOPED_TRACE(text);
+        const MetarWeather w = FromText(text, 0.0);
+        const double v = *w.visibility_m;
+        const sky::Atmosphere air = AtmosphereForVisibility(earth, v, w.fog, nullptr);
+        const sky::reference::CloudField field(w.clouds, settings, noise, earth.bottom_radius);
+        const double expected = std::log(20.0) / v - GroundExtinctionGreen(air);
+        for (const glm::dvec3 p : {glm::dvec3(0.0, 0.0, earth.bottom_radius + 2.0),
+                                   glm::dvec3(3000.0, -2000.0, earth.bottom_radius + 20.0)}) {
+            // Near the origin, the dome is the plane: the point's height is its altitude.
+            EXPECT_NEAR(field.Extinction(p) / expected, 1.0, 1e-3);
+        }
+        // Above the fog, nothing.
+        EXPECT_EQ(field.Extinction(glm::dvec3(0.0, 0.0, earth.bottom_radius + 150.0)), 0.0);
+    }
+}
+
 TEST(CloudWeather, VerticalVisibilityAndFogAreAFogLayer) {
     const MetarWeather vv = FromText("EDDF 010000Z 00000KT 0100 FG VV002 05/05 Q1020", 111.0);
     ASSERT_EQ(vv.clouds.layers.size(), 1u);
@@ -108,6 +138,8 @@ TEST(CloudWeather, VerticalVisibilityAndFogAreAFogLayer) {
     const MetarWeather patches = FromText("EDDF 010000Z 00000KT 3000 BCFG FEW005 05/05 Q1020");
     ASSERT_EQ(patches.clouds.layers.size(), 2u);
     EXPECT_EQ(patches.clouds.layers[0].coverage, 0.5);
+    EXPECT_TRUE(patches.clouds.layers[0].ground_fog);
+    EXPECT_FALSE(patches.clouds.layers[1].ground_fog);
     EXPECT_DOUBLE_EQ(patches.clouds.layers[0].top_altitude, 100.0);
     // Fog in the vicinity is not at the station.
     EXPECT_FALSE(FromText("EDDF 010000Z 00000KT 3000 VCFG FEW005 05/05 Q1020").fog);

@@ -39,7 +39,16 @@ struct CloudLayerParameters {
     // (0, 1]: the layer's cloud material's extinction relative to CloudMarchParameters'
     // (clouds::CloudLayer::extinction_scale: 1 for water droplets, ~0.02 for cirrus' ice).
     Number extinction_scale;
+    // 1: ground fog (clouds::CloudLayer::ground_fog): homogeneous (no noise), its density the
+    // map's coverage from the base to kCloudFogFlat of the layer, falling to 0 at its top.
+    Number ground_fog;
+    Number padding1;
+    Number padding2;
+    Number padding3;
 };
+
+// Ground fog is flat to this share of its layer's thickness, then thins linearly to its top.
+const Number kCloudFogFlat = 0.8;
 
 // Erosion remaps density from [e, 1] to [0, 1]; e must stay below 1.
 const Number kCloudMaxErosion = 0.9;
@@ -216,6 +225,15 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     s.precipitation = weather.precipitation;
     s.type = weather.type;
     if (!(weather.coverage > 0.0)) return s;
+    if (layer.ground_fog > 0.5) {
+        // Fog: as dense at the ground as the coverage says, whatever the noise, so that its
+        // extinction there (and the visibility in it) is the one the layer was given.
+        s.cloud_fraction = s.height_fraction;
+        s.density = weather.coverage *
+                    CloudSaturate((1.0 - s.height_fraction) / (1.0 - kCloudFogFlat)) *
+                    layer.extinction_scale;
+        return s;
+    }
 
     Number cloud_height = (layer.top_altitude - layer.base_altitude) *
                           CloudTypeHeightFraction(weather.type) * weather.height;
@@ -264,6 +282,8 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
                        Number extinction) {
     Number x = CloudSaturate(s.cloud_fraction);
     if (!(x > 0.0) || !(s.density > 0.0)) return 0.0;
+    // Fog: flat below kCloudFogFlat, where the sample's density holds down to the ground.
+    if (layer.ground_fog > 0.5) return extinction * s.density * (altitude - layer.base_altitude);
     Number b = CloudHeightGradient(s.type, 0.0);
     Number profile = 4.0 * x * (1.0 - x) * mix(b, 1.0, x);
     Number x2 = x * x;

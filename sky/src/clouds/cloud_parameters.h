@@ -37,6 +37,7 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_
     p.cloud_top_altitude = Scalar(
         (layer.base_altitude + (layer.top_altitude - layer.base_altitude) * top_fraction) / kKm);
     p.extinction_scale = Scalar(layer.extinction_scale);
+    p.ground_fog = Scalar(layer.ground_fog ? 1.0 : 0.0);
     return p;
 }
 

@@ -38,7 +38,8 @@ constexpr double kMaxWindSpeed = 150.0;      // m/s
 constexpr double kMinMapPeriod = 1e3;        // m
 constexpr double kMaxMapPeriod = 1e7;        // m
 constexpr int kMinMapSize = 16;
-constexpr int kStreakAspect = 6;  // streaks: features this many times longer than wide
+constexpr int kStreakAspect = 6;             // streaks: features this many times longer than wide
+constexpr double kMaxExtinctionScale = 4.0;  // CloudLayer::extinction_scale: fog of 20 m
 
 // Smoothstep of x clamped to [0, 1].
 double SmoothUnit(double x) {
@@ -127,10 +128,11 @@ void Check(const Weather& weather, const Checker& check) {
                        "0 <= value <= " + FormatNumber(kMaxWindSpeed) +
                            " m/s (twice the strongest jet stream)");
         }
-        if (!(l.extinction_scale > 0.0 && l.extinction_scale <= 1.0)) {
+        if (!(l.extinction_scale > 0.0 && l.extinction_scale <= kMaxExtinctionScale)) {
             check.Fail(i, l.name, "extinction_scale", "extinction_scale", unit(l.extinction_scale),
-                       "0 < value <= 1 (of the cloud material's extinction: 1 for water "
-                       "droplets, ~0.02 for cirrus' ice)");
+                       "0 < value <= " + FormatNumber(kMaxExtinctionScale) +
+                           " (of the cloud material's extinction: 1 for water droplets, ~0.02 "
+                           "for cirrus' ice, up to 4 for the densest fog)");
         }
         if (!std::isfinite(l.wind_from)) {
             check.Fail(
@@ -208,17 +210,10 @@ class Reader : public data_files::JsonReader<WeatherError> {
 };
 
 constexpr const char* kTopKeys[] = {"name", "description", "layers"};
-constexpr const char* kLayerKeys[] = {"name",
-                                      "base_altitude_m",
-                                      "top_altitude_m",
-                                      "coverage",
-                                      "cloud_type",
-                                      "precipitation",
-                                      "wind_speed_m_s",
-                                      "wind_from_deg",
-                                      "extinction_scale",
-                                      "map_period_m",
-                                      "map"};
+constexpr const char* kLayerKeys[] = {"name",           "base_altitude_m", "top_altitude_m",
+                                      "coverage",       "cloud_type",      "precipitation",
+                                      "wind_speed_m_s", "wind_from_deg",   "extinction_scale",
+                                      "ground_fog",     "map_period_m",    "map"};
 constexpr const char* kProceduralKeys[] = {"procedural", "seed", "cells_per_tile", "variation",
                                            "size"};
 constexpr const char* kFileKeys[] = {"file"};
@@ -326,6 +321,13 @@ Weather ParseWeatherDocument(std::string_view json_text, const std::string& sour
         layer.wind_speed = read.Number(l, prefix, "wind_speed_m_s", 0.0);
         layer.wind_from = read.Number(l, prefix, "wind_from_deg", 0.0) * kDeg;
         layer.extinction_scale = read.Number(l, prefix, "extinction_scale", 1.0);
+        if (const auto it = l.find("ground_fog"); it != l.end()) {
+            if (!it->is_boolean()) {
+                read.Fail(prefix + "ground_fog",
+                          "expected true or false, got " + DescribeJsonValue(*it));
+            }
+            layer.ground_fog = it->get<bool>();
+        }
         layer.map_period = read.Number(l, prefix, "map_period_m");
         layer.map = ReadMap(read, read.Required(l, prefix, "map"), prefix + "map", base_directory);
         weather.layers.push_back(std::move(layer));
@@ -488,6 +490,14 @@ double CloudTopFraction(const WeatherMap& map) {
         }
     }
     return top;
+}
+
+double LayerTopFraction(const CloudLayer& layer, const WeatherMap& map) {
+    if (!layer.ground_fog) return CloudTopFraction(map);
+    for (const glm::vec4& t : map.texels) {
+        if (t.r > 0.0f) return 1.0;
+    }
+    return 0.0;
 }
 
 namespace {

@@ -23,8 +23,12 @@ struct CloudLayerUniforms {  // clouds/functions.glsl: struct CloudLayerParamete
     float wind_offset_y;
     float cloud_top_altitude;
     float extinction_scale;
+    float ground_fog;
+    float padding1;
+    float padding2;
+    float padding3;
 };
-static_assert(sizeof(CloudLayerUniforms) == 48);
+static_assert(sizeof(CloudLayerUniforms) == 64);
 
 struct CloudScatteringUniforms {  // clouds/functions.glsl: struct CloudScatteringParameters
     float forward_g;
@@ -80,18 +84,18 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     glm::ivec4 layer_order;
     glm::ivec4 ground_layer_order;
 };
-static_assert(offsetof(CloudUniforms, scattering) == 192);
-static_assert(offsetof(CloudUniforms, march) == 224);
-static_assert(offsetof(CloudUniforms, lights) == 272);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 576);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 624);
-static_assert(offsetof(CloudUniforms, previous_camera_km) == 672);
-static_assert(offsetof(CloudUniforms, trace_size) == 688);
-static_assert(offsetof(CloudUniforms, block) == 704);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 720);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 736);
-static_assert(offsetof(CloudUniforms, layer_order) == 752);
-static_assert(offsetof(CloudUniforms, ground_layer_order) == 768);
-static_assert(sizeof(CloudUniforms) == 784);
+static_assert(offsetof(CloudUniforms, scattering) == 256);
+static_assert(offsetof(CloudUniforms, march) == 288);
+static_assert(offsetof(CloudUniforms, lights) == 336);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 640);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 688);
+static_assert(offsetof(CloudUniforms, previous_camera_km) == 736);
+static_assert(offsetof(CloudUniforms, trace_size) == 752);
+static_assert(offsetof(CloudUniforms, block) == 768);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 784);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 800);
+static_assert(offsetof(CloudUniforms, layer_order) == 816);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 832);
+static_assert(sizeof(CloudUniforms) == 848);
 
 }  // namespace zenith::sky::gl

@@ -489,7 +489,7 @@ CloudField::CloudField(const clouds::Weather& weather, const CloudSettings& sett
     m.detail = ref::ToTexture(noise.detail);
     for (const clouds::CloudLayer& layer : weather.layers) {
         const clouds::WeatherMap map = clouds::BuildWeatherMap(layer);
-        const double top_fraction = clouds::CloudTopFraction(map);
+        const double top_fraction = clouds::LayerTopFraction(layer, map);
         m.layers.push_back(MakeCloudLayerParameters<ref::CloudLayerParameters>(
             layer, top_fraction, settings, bottom_radius, options.time));
         m.weather_maps.push_back(ref::ToTexture(map));

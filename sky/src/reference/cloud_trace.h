@@ -135,7 +135,8 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
     for (const clouds::CloudLayer& layer : weather.layers) {
         const clouds::WeatherMap map = clouds::BuildWeatherMap(layer);
         scene.layers.push_back(MakeCloudLayerParameters<CloudLayerParameters>(
-            layer, clouds::CloudTopFraction(map), settings, atmosphere.bottom_radius, view.time));
+            layer, clouds::LayerTopFraction(layer, map), settings, atmosphere.bottom_radius,
+            view.time));
         scene.weather_maps.push_back(ToTexture(map));
     }
     scene.shape = ToTexture(noise.shape);

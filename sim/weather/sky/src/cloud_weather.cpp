@@ -25,6 +25,7 @@ constexpr double kMaxTop = 20000.0;  // sky::clouds::Validate's troposphere
 constexpr double kMinThickness = 50.0;
 constexpr double kFogDepth = 100.0;
 constexpr double kShallowFogDepth = 50.0;
+constexpr double kFogPatchVisibility = 500.0;  // m: in fog reported with 1 km or more
 
 // Cloud types of the weather map's B channel (weather.h).
 constexpr double kStratus = 0.0;
@@ -113,8 +114,10 @@ double ExtinctionForVisibility(double visibility_m) {
     return std::log(20.0) / visibility_m;
 }
 
-MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_m) {
+MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_m,
+                                   double cloud_extinction_per_m) {
     Require("station_elevation", station_elevation_m, "m", Range::Closed(-500.0, 9000.0));
+    Require("cloud_extinction", cloud_extinction_per_m, "1/m", Range::LeftOpen(0.0, 10.0));
     MetarWeather out;
     out.clouds.name = "metar " + metar.station;
     out.clouds.description = "from the METAR of " + metar.station;
@@ -169,6 +172,25 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
         b.layer.top_altitude = ground + depth;
         b.layer.coverage = patchy ? 0.5 : 1.0;
         b.layer.cloud_type = kStratus;
+        // Homogeneous, with the extinction that makes the reported visibility in it: ln 20 / V
+        // less the air's, which AtmosphereForVisibility sets for kFogAerosolVisibility (below
+        // 1 km). Fog reported with 1 km or more (shallow or patchy: MIFG, BCFG, PRFG) or
+        // without a visibility is given kFogPatchVisibility inside it. Patchy fog is that
+        // dense in its patches.
+        b.layer.ground_fog = true;
+        const std::optional<double> v = metar.visibility && metar.visibility->visibility_m > 0.0
+                                            ? std::optional<double>(metar.visibility->visibility_m)
+                                            : std::nullopt;
+        const double fog_visibility = v && *v < kFogAerosolVisibility ? *v : kFogPatchVisibility;
+        const double fog_extinction = ExtinctionForVisibility(fog_visibility) -
+                                      ExtinctionForVisibility(kFogAerosolVisibility);
+        b.layer.extinction_scale =
+            std::clamp(fog_extinction / (b.layer.coverage * cloud_extinction_per_m), 1e-3, 4.0);
+        if (fog_extinction / (b.layer.coverage * cloud_extinction_per_m) > 4.0) {
+            out.notes.push_back(fmt::format(
+                "fog of {:.0f} m visibility is denser than the densest fog drawn ({:.0f} m)",
+                fog_visibility, std::log(20.0) / (4.0 * cloud_extinction_per_m)));
+        }
         b.layer.map = patchy
                           ? Map(WeatherMapSource::Kind::kPatches, Seed(metar.station, 99), 8, 0.6)
                           : Map(WeatherMapSource::Kind::kUniform, 1, 8, 0.0);

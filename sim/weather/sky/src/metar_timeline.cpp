@@ -26,12 +26,16 @@ bool IsFog(const CloudLayer& l) { return l.name == "fog"; }
 double Lerp(double a, double b, double u) { return a + (b - a) * u; }
 
 CloudLayer BlendLayer(const CloudLayer& a, const CloudLayer& b, double u) {
-    CloudLayer l = u < 0.5 ? a : b;  // name, map, period, wind
+    CloudLayer l = u < 0.5 ? a : b;  // name, map, period, wind, ground fog
     l.base_altitude = Lerp(a.base_altitude, b.base_altitude, u);
     l.top_altitude = Lerp(a.top_altitude, b.top_altitude, u);
     l.coverage = std::clamp(Lerp(a.coverage, b.coverage, u), 0.0, 1.0);
     l.cloud_type = std::clamp(Lerp(a.cloud_type, b.cloud_type, u), 0.0, 1.0);
     l.precipitation = std::clamp(Lerp(a.precipitation, b.precipitation, u), 0.0, 1.0);
+    // The material by its logarithm: fog thinning from 100 m to 400 m of visibility, or water
+    // turning to ice, changes evenly in optical depth.
+    l.extinction_scale =
+        std::exp(Lerp(std::log(a.extinction_scale), std::log(b.extinction_scale), u));
     return l;
 }
 

@@ -63,10 +63,15 @@ struct CloudLayer {
     double wind_from = 0.0;         // rad, meteorological: where the wind blows from, clockwise
                                     // from north (pi / 2: an east wind, clouds move west)
     double map_period = 50000.0;    // m of ground covered by one tile of the weather map
-    // The layer's cloud material's extinction relative to CloudSettings::extinction, (0, 1]:
+    // The layer's cloud material's extinction relative to CloudSettings::extinction, (0, 4]:
     // 1 for water droplets (cumulus, stratus: 40 /km), ~0.02 for the ice of cirrus (~1 /km:
     // fewer, larger crystals; vertical optical depths 0.03-3, Sassen & Cho 1992).
     double extinction_scale = 1.0;
+    // Ground fog (METAR FG, VV): the layer is homogeneous (no noise), as dense as the map's
+    // coverage from its base to 80 % of its thickness and thinning to 0 at its top, so that its
+    // extinction at the ground, coverage x extinction_scale x CloudSettings::extinction, sets the
+    // visibility in it. Its base is the ground.
+    bool ground_fog = false;
     WeatherMapSource map;
     bool operator==(const CloudLayer&) const = default;
 };
@@ -120,6 +125,7 @@ void Validate(const Weather& weather);
 //         "wind_from_deg": 270,             optional, default 0
 //         "map_period_m": 60000,
 //         "extinction_scale": 1,            optional, default 1 (water); ~0.02 for cirrus' ice
+//         "ground_fog": false,              optional: homogeneous fog from the layer's base
 //         "map": {"procedural": "patches", "seed": 3, "cells_per_tile": 12, "variation": 0.6,
 //                 "size": 256}             or {"procedural": "uniform"} / "cells" / "streaks", or
 //                {"file": "maps/front.exr"} (relative to this JSON file)
@@ -146,6 +152,8 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer);
 // clouds reach 53 % of their layer, are not marched through the empty rest above them. 0 for a
 // map without cover.
 double CloudTopFraction(const WeatherMap& map);
+// The same for `layer` built from `map`: ground fog fills its whole layer (1, or 0 without cover).
+double LayerTopFraction(const CloudLayer& layer, const WeatherMap& map);
 
 // Reads a weather map image: PNG (8- or 16-bit RGB: R coverage, G precipitation, B cloud type;
 // A = 1) or OpenEXR (channels R, G, B and optionally A, half or float). Throws WeatherError

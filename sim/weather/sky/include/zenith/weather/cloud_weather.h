@@ -27,6 +27,9 @@
 //                                                                             the station
 //   VVhhh                   fog layer at the ground, coverage 1, stratus, top = hhh (>= 50 m)
 //   FG (no VV), FZFG        fog layer at the ground, 100 m deep; MIFG 50 m; BCFG/PRFG 0.5
+//                           Fog is homogeneous ground fog (CloudLayer::ground_fog) whose
+//                           extinction plus the air's (set for 1 km) is ln 20 / V for a
+//                           reported V below 1 km, or that of 500 m in its patches else
 //   CAVOK, SKC/CLR/NSC/NCD  no layer (a clear sky: the same Weather as the "clear" preset)
 //   ///hhh or XXX///        a layer without a base is left out, with a note
 //
@@ -60,6 +63,7 @@
 #include <vector>
 
 #include "zenith/sky/atmosphere.h"
+#include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/clouds/weather.h"
 #include "zenith/weather/metar.h"
 
@@ -83,7 +87,10 @@ double ExtinctionForVisibility(double visibility_m);
 
 // See the table above. station_elevation_m: the station's height above the planet's sphere
 // (mean sea level), [-500, 9000] m; throws ArgumentError outside.
-MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_m);
+// cloud_extinction_per_m: the renderer's cloud material (sky::CloudSettings::extinction), which
+// the fog layer's extinction_scale is relative to.
+MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_m,
+                                   double cloud_extinction_per_m = sky::CloudSettings{}.extinction);
 
 // The extinction coefficient of `atmosphere` at its ground in the green channel, 1/m: Rayleigh,
 // aerosol extinction and the absorbing layer's share there. The meteorological optical range is
