@@ -51,7 +51,8 @@ const int kCloudShadowMapUnit = 17;
 const int kCloudGroundShadowUnit = 18;
 const int kNightSkyUnit = 19;  // atmosphere/render.frag: the night sky's light (night_sky.h)
 const int kCloudAirShadowUnit = 20;  // clouds/light_shafts.frag's 4 outputs (20-23)
-const int kTextureUnitCount = 24;    // units 0 .. kTextureUnitCount - 1 are zenith's
+const int kCloudTraceProfileUnit = 24;  // clouds/trace.frag's transmittance profile
+const int kTextureUnitCount = 25;       // units 0 .. kTextureUnitCount - 1 are zenith's
 
 // Image units.
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write

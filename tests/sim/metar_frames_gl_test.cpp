@@ -181,6 +181,32 @@ TEST_F(MetarFramesTest, ABlackTargetAtTheVisibilityHasFivePercentContrast) {
     sky_->Update();
 }
 
+// The same in fog (METAR FG with a vertical visibility): the ground fog's extinction and the
+// air's make ln 20 / V (weather::CloudWeatherFromMetar), and the clouds' share in front of each
+// target comes from its trace cell's transmittance profile (CloudOpacityShareInFront). Each
+// frame is the first of its history (a cut), so the clouds are this frame's trace.
+TEST_F(MetarFramesTest, InFogABlackTargetAtTheVisibilityHasFivePercentContrast) {
+    sky_->SetAttitude(0.0, 0.0, 0.0);
+    sky_->SetProjection(kVerticalFov, static_cast<double>(kWidth) / kHeight);
+    std::printf("visual range in fog 91 m deep (VV003), from %.0f m, looking north\n", kEyeHeight);
+    std::printf("| visibility V | measured: C = 5 %% at | ratio | C at V |\n");
+    for (const double v : {100.0, 200.0, 500.0}) {
+        char text[96];
+        std::snprintf(text, sizeof(text), "LSZH 210900Z 00000KT %04.0f FG VV003 12/12 Q1020", v);
+        sky_->SetMetar(weather::DecodeMetar(text), 0.0);
+        sky_->ResetCloudHistory();
+        sky_->Update();
+        const VisualRange r = MeasureVisualRange(v);
+        std::printf("| %.0f m | %.0f m | %.3f | %.4f |\n", v, r.measured_m, r.measured_m / v,
+                    r.contrast_at_v);
+        EXPECT_GT(r.measured_m, 0.85 * v) << "V = " << v;
+        EXPECT_LT(r.measured_m, 1.15 * v) << "V = " << v;
+    }
+    sky_->SetWeather({});
+    sky_->SetVisibility(std::nullopt);
+    sky_->Update();
+}
+
 // CAVOK and SKC (and CLR, NSC, NCD) are the clear sky of the same time and place, bit for bit:
 // no layer, and the preset's own air (a visibility of 10 km or more sets none). The frame looks
 // from the ground at the horizon and up to 60 deg, the Sun in it.

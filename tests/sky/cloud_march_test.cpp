@@ -154,6 +154,45 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
     EXPECT_LT(state.transmittance, 0.5);
 }
 
+// The transmittance profile the march records for a host's geometry inside the clouds, against
+// closed forms: a homogeneous medium from the camera (fog), sigma = 3 /km, recorded step by step
+// as the march records it, gives 1 - exp(-sigma d) exactly in front of d, before its last
+// crossing and past it; a cloud 5-6 km away leaves nothing in front of geometry at 4 km and all of
+// its opacity in front of geometry at 8 km.
+TEST(CloudOpacityShareInFront, ClosedFormsForFogAndACloudAhead) {
+    const double sigma = 3.0, dt = 0.01;
+    CloudMarchState fog = CloudMarchStart();
+    for (int i = 0; i < 400 && fog.transmittance >= 0.01; ++i) {
+        const double before = fog.transmittance;
+        fog.transmittance *= std::exp(-sigma * dt);
+        CloudRecordCrossings(fog, i * dt, dt, before);
+    }
+    EXPECT_EQ(fog.entry, 0.0);
+    for (int k = 0; k < 4; ++k) {
+        EXPECT_NEAR(fog.crossing[k], -std::log(CloudProfileThreshold(k)) / sigma, 1e-9) << k;
+    }
+    const double transmittance = 0.0;  // the march counts the rest as opaque
+    for (double d : {0.05, 0.2, 0.5, 0.9}) {
+        EXPECT_NEAR(
+            CloudOpacityShareInFront(fog.entry, 1.0 / sigma, fog.crossing, transmittance, d),
+            1.0 - std::exp(-sigma * d), 1e-9)
+            << d;
+    }
+    // Past the last crossing (T = 0.05) with the last segment's slope.
+    EXPECT_NEAR(CloudOpacityShareInFront(fog.entry, 1.0 / sigma, fog.crossing, transmittance, 2.0),
+                1.0 - std::exp(-sigma * 2.0), 1e-9);
+
+    // A thin cloud (T = 0.9, no crossing below 0.8) from 5 to 6 km: mean depth 5.5 km.
+    const vec4 none(-1.0);
+    EXPECT_EQ(CloudOpacityShareInFront(5.0, 5.5, none, 0.9, 4.0), 0.0);
+    EXPECT_NEAR(CloudOpacityShareInFront(5.0, 5.5, none, 0.9, 8.0), 1.0, 1e-12);
+    const double half = CloudOpacityShareInFront(5.0, 5.5, none, 0.9, 5.5);
+    EXPECT_GT(half, 0.4);
+    EXPECT_LT(half, 0.6);
+    // No cloud met: nothing in front of anything.
+    EXPECT_EQ(CloudOpacityShareInFront(-1.0, -1.0, none, 1.0, 3.0), 0.0);
+}
+
 TEST(CloudLayerOrder, CameraLayerAndBelowDownwardThenAboveUpward) {
     clouds::Weather w;
     for (double base : {1000.0, 4000.0, 8000.0}) {

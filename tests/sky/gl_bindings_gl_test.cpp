@@ -346,6 +346,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"weather_maps[0]", kWeatherMapsUnit},  // and the next kCloudMaxLayers - 1
         {"cloud_trace", kCloudTraceUnit},
         {"cloud_trace_depth", kCloudTraceDepthUnit},
+        {"cloud_trace_profile", kCloudTraceProfileUnit},
         {"cloud_history", kCloudHistoryUnit},
         {"cloud_shadow_map", kCloudShadowMapUnit},
         {"cloud_ground_shadow", kCloudGroundShadowUnit},

@@ -24,8 +24,8 @@ void main() {
                                           horizon_zenith, direction);
     }
 #if ZENITH_CLOUDS
-    float depth;
-    vec4 clouds = TraceClouds(direction, 0.5, depth);
+    CloudMarchState state;
+    vec4 clouds = TraceClouds(direction, 0.5, state);
     luminance = clouds.rgb + clouds.a * (luminance + GroundShadowCorrection(direction));
 #endif
     out_luminance = vec4(luminance, 1.0);

@@ -139,9 +139,11 @@ void main() {
             aerial_perspective_texture, (vec2(pixel) + 0.5) / vec2(output_size), distance_km,
             aerial_perspective_range_km, aerial_perspective_size.z);
     #if ZENITH_CLOUDS
-        // Only the clouds in front of the geometry.
-        float cloud_depth = CloudTraceDepth(pixel);
-        if (!(cloud_depth > 0.0 && cloud_depth < distance_km)) clouds = vec4(0.0, 0.0, 0.0, 1.0);
+        // Only the clouds in front of the geometry: their share of the opacity before it, from
+        // the trace cell's transmittance profile (all of it behind a cloud, none in front, a
+        // part inside one or in fog).
+        float share = CloudShareInFront(pixel, distance_km);
+        clouds = vec4(clouds.rgb * share, 1.0 - (1.0 - clouds.a) * share);
         // The light shafts up to the geometry: in front of those clouds from below the base.
         vec3 shafts = CloudLightShaftsTo(pixel, direction, distance_km);
         float behind = camera_altitude_km < lights.cloud_base ? 1.0 : clouds.a;

@@ -37,11 +37,13 @@ layout(binding = kShapeNoiseUnit) uniform sampler3D shape_noise;
 layout(binding = kDetailNoiseUnit) uniform sampler3D detail_noise;
 layout(binding = kWeatherMapsUnit) uniform sampler2D weather_maps[kCloudMaxLayers];
 // cloud_trace: rgb luminance, a transmittance; cloud_trace_depth: r, mean depth (km), -1 for
-// none; cloud_shadow_map: r, transmittance to the light; cloud_ground_shadow: rgb,
+// none, g where the ray enters cloud (km); cloud_trace_profile: where its transmittance fell below
+// CloudProfileThreshold(0..3) (km, -1 for never); cloud_shadow_map: r, transmittance to the light; cloud_ground_shadow: rgb,
 // ground_shadow.frag's values, one per trace cell; cloud_air_shadow: light_shafts.frag's
 // CloudShaftProfile, one texture per part.
 layout(binding = kCloudTraceUnit) uniform sampler2D cloud_trace;
 layout(binding = kCloudTraceDepthUnit) uniform sampler2D cloud_trace_depth;
+layout(binding = kCloudTraceProfileUnit) uniform sampler2D cloud_trace_profile;
 layout(binding = kCloudHistoryUnit) uniform sampler2D cloud_history;
 layout(binding = kCloudShadowMapUnit) uniform sampler2D cloud_shadow_map;
 layout(binding = kCloudGroundShadowUnit) uniform sampler2D cloud_ground_shadow;
@@ -52,6 +54,18 @@ layout(binding = kCloudAirShadowUnit) uniform sampler2D cloud_air_shadow[4];
 // with clear sky at every edge).
 float CloudTraceDepth(ivec2 pixel) {
     return texelFetch(cloud_trace_depth, min(pixel / block, trace_size - 1), 0).r;
+}
+
+// The share of the clouds' opacity in front of a host's geometry `distance` km along a
+// full-resolution pixel's ray (CloudOpacityShareInFront over its trace cell's ray: its profile
+// and transmittance): 0 for geometry in front of the clouds, 1 behind them, and in between
+// inside them (fog around the camera, a cloud the geometry pierces).
+float CloudShareInFront(ivec2 pixel, float distance) {
+    ivec2 cell = min(pixel / block, trace_size - 1);
+    vec2 depth = texelFetch(cloud_trace_depth, cell, 0).rg;
+    if (!(depth.r > 0.0)) return 0.0;
+    return CloudOpacityShareInFront(depth.g, depth.r, texelFetch(cloud_trace_profile, cell, 0),
+                                    texelFetch(cloud_trace, cell, 0).a, distance);
 }
 
 // The change of our own ground's luminance by the clouds' shadow at a full-resolution pixel whose
@@ -118,13 +132,12 @@ CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, fl
 }
 
 // The clouds along `view` (this frame's world direction) from the camera, with the aerial
-// perspective at their mean depth. Returns (L, T) and the mean depth in km (-1 where no cloud
-// was met).
-vec4 TraceClouds(vec3 view, float jitter, out float depth) {
+// perspective at their mean depth. Returns (L, T), and the march's state (CloudMeanDepth: the
+// mean depth in km, -1 where no cloud was met; the transmittance's profile).
+vec4 TraceClouds(vec3 view, float jitter, out CloudMarchState state) {
     mat3 to_weather = WeatherFromFrame();
-    CloudMarchState state = MarchCloudLayers(to_weather * camera_km, camera_altitude_km,
-                                             to_weather * view, jitter, cloud_layer_order);
-    depth = CloudMeanDepth(state);
+    state = MarchCloudLayers(to_weather * camera_km, camera_altitude_km, to_weather * view, jitter,
+                             cloud_layer_order);
     return CloudApplyAerialPerspective(atmosphere, transmittance_texture,
                                        multiple_scattering_texture,
                                        irradiance_texture, lights, camera_km,

@@ -41,6 +41,11 @@ struct CloudMarchState {
     Number transmittance;   // of the clouds alone, camera to the end of the march
     Number depth_weight;    // F16 Eq. 21: sum of T(x_n) over samples inside cloud...
     Number weighted_depth;  // ...and of T(x_n) t_n (km)
+    // The transmittance's profile along the ray, for a host's geometry inside the clouds
+    // (CloudOpacityShareInFront): where the first step with cloud starts, and where T fell below
+    // CloudProfileThreshold(k) for k = 0..3 (km; -1: not reached).
+    Number entry;
+    vec4 crossing;
 };
 
 CloudMarchState CloudMarchStart() {
@@ -49,7 +54,57 @@ CloudMarchState CloudMarchStart() {
     s.transmittance = 1.0;
     s.depth_weight = 0.0;
     s.weighted_depth = 0.0;
+    s.entry = -1.0;
+    s.crossing = vec4(-1.0);
     return s;
+}
+
+// The transmittances whose distances CloudMarchState.crossing records.
+Number CloudProfileThreshold(int k) { return k == 0 ? 0.8 : k == 1 ? 0.5 : k == 2 ? 0.2 : 0.05; }
+
+// Records where T fell below each threshold during a step [t0, t0 + dt] that took it from
+// `before` to state.transmittance, exponential within the step.
+void CloudRecordCrossings(INOUT(CloudMarchState) state, Number t0, Number dt, Number before) {
+    if (state.entry < 0.0) state.entry = t0;
+    Number after = state.transmittance;
+    for (int k = 0; k < 4; ++k) {
+        Number threshold = CloudProfileThreshold(k);
+        if (state.crossing[k] < 0.0 && before >= threshold && after < threshold) {
+            state.crossing[k] = t0 + dt * log(before / threshold) / max(log(before / after), 1e-9);
+        }
+    }
+}
+
+// The share, in [0, 1], of the clouds' opacity 1 - T along a ray that lies in front of distance
+// d (km): (1 - T(d)) / (1 - T). T(d) runs through the recorded points (entry, 1) and
+// (crossing k, threshold k), exponential between them and past the last one with its slope, never
+// below T; from a ray that stays above 0.8, it falls from the entry to T at twice the mean depth.
+// A homogeneous medium (fog around the camera) gives its T(d) = exp(-sigma d) exactly; 0 in
+// front of the clouds, 1 behind them.
+Number CloudOpacityShareInFront(Number entry, Number mean_depth, vec4 crossing,
+                                Number transmittance, Number d) {
+    if (!(entry >= 0.0) || !(transmittance < 1.0) || !(d > entry)) return 0.0;
+    Number t_previous = entry;
+    Number log_previous = 0.0;  // ln T at t_previous
+    Number slope = 0.0;         // -d ln T / dt of the last segment
+    for (int k = 0; k < 4; ++k) {
+        if (!(crossing[k] >= 0.0)) continue;
+        Number log_threshold = log(CloudProfileThreshold(k));
+        Number length_km = max(crossing[k] - t_previous, 1e-9);
+        slope = (log_previous - log_threshold) / length_km;
+        if (d <= crossing[k]) {
+            Number t_d = exp(log_previous - slope * (d - t_previous));
+            return CloudSaturate((1.0 - t_d) / (1.0 - transmittance));
+        }
+        t_previous = crossing[k];
+        log_previous = log_threshold;
+    }
+    if (!(slope > 0.0)) {
+        Number end = max(2.0 * mean_depth - entry, entry + 1e-6);
+        slope = (log_previous - log(max(transmittance, 1e-6))) / max(end - t_previous, 1e-9);
+    }
+    Number t_d = max(exp(log_previous - slope * (d - t_previous)), transmittance);
+    return CloudSaturate((1.0 - t_d) / (1.0 - transmittance));
 }
 
 // The transmittance-weighted mean depth (km) of the clouds hit (F16 Eq. 21), -1 if none.
@@ -294,7 +349,9 @@ void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
                                             origin + view * t, view, refinement);
             state.depth_weight += state.transmittance;
             state.weighted_depth += state.transmittance * t;
+            Number before = state.transmittance;
             CloudIntegrateStep(source, extinction, dt, state.luminance, state.transmittance);
+            CloudRecordCrossings(state, interval.x + Number(i) * dt, dt, before);
         }
     }
     // Opaque from here on: no Sun disk shining through.

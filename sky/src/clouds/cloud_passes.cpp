@@ -200,8 +200,9 @@ CloudPasses::~CloudPasses() {
     glDeleteVertexArrays(1, &vertex_array_);
     DeleteFramebuffers({&trace_framebuffer_, &history_framebuffer_[0], &history_framebuffer_[1],
                         &shade_framebuffer_, &ground_shadow_framebuffer_, &shaft_framebuffer_});
-    DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &ground_shadow_color_,
-                    &history_color_[0], &history_color_[1], &shadow_map_, &shade_directions_});
+    DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &trace_profile_,
+                    &ground_shadow_color_, &history_color_[0], &history_color_[1], &shadow_map_,
+                    &shade_directions_});
     glDeleteTextures(static_cast<GLsizei>(air_shadow_color_.size()), air_shadow_color_.data());
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
     glDeleteBuffers(1, &uniforms_);
@@ -211,15 +212,16 @@ CloudPasses::~CloudPasses() {
 void CloudPasses::Resize(glm::ivec2 size) {
     DeleteFramebuffers({&trace_framebuffer_, &ground_shadow_framebuffer_, &shaft_framebuffer_,
                         &history_framebuffer_[0], &history_framebuffer_[1]});
-    DeleteTextures({&trace_color_, &trace_depth_, &ground_shadow_color_, &history_color_[0],
-                    &history_color_[1]});
+    DeleteTextures({&trace_color_, &trace_depth_, &trace_profile_, &ground_shadow_color_,
+                    &history_color_[0], &history_color_[1]});
     glDeleteTextures(static_cast<GLsizei>(air_shadow_color_.size()), air_shadow_color_.data());
     size_ = size;
     const int block = settings_.block;
     trace_size_ = (size + block - 1) / block;
     trace_color_ = gl::CreateTexture2D(trace_size_);
-    trace_depth_ = gl::CreateTexture2D(trace_size_, GL_R32F);
-    trace_framebuffer_ = CreateFramebuffer({trace_color_, trace_depth_});
+    trace_depth_ = gl::CreateTexture2D(trace_size_, GL_RG32F);
+    trace_profile_ = gl::CreateTexture2D(trace_size_);
+    trace_framebuffer_ = CreateFramebuffer({trace_color_, trace_depth_, trace_profile_});
     ground_shadow_color_ = gl::CreateTexture2D(trace_size_);
     ground_shadow_framebuffer_ = CreateFramebuffer({ground_shadow_color_});
     shaft_size_ = (trace_size_ + kCloudLightShaftCell - 1) / kCloudLightShaftCell;
@@ -386,7 +388,9 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
 
 void CloudPasses::BindForComposite() const {
     glBindBufferBase(GL_UNIFORM_BUFFER, kCloudBlockBinding, uniforms_);
+    glBindTextureUnit(kCloudTraceUnit, trace_color_);
     glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
+    glBindTextureUnit(kCloudTraceProfileUnit, trace_profile_);
     glBindTextureUnit(kCloudHistoryUnit, history_color_[current_]);
     glBindTextureUnit(kCloudGroundShadowUnit, ground_shadow_color_);
     for (std::size_t k = 0; k < air_shadow_color_.size(); ++k) {

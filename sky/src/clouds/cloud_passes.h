@@ -82,7 +82,9 @@ class CloudPasses {
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;
     std::vector<double> cloud_tops_;  // clouds::CloudTopFraction of each map
-    GLuint trace_color_ = 0, trace_depth_ = 0, trace_framebuffer_ = 0;
+    // The trace, one ray per cell: (L, T); (mean depth, entry) (km); the transmittance's profile
+    // (CloudMarchState.crossing), for a host's geometry inside the clouds.
+    GLuint trace_color_ = 0, trace_depth_ = 0, trace_profile_ = 0, trace_framebuffer_ = 0;
     GLuint ground_shadow_color_ = 0, ground_shadow_framebuffer_ = 0;  // per trace cell
     // The light shafts, per kCloudLightShaftCell^2 trace cells (clouds/light_shafts.frag): the
     // parts of each cell's CloudShaftProfile.
