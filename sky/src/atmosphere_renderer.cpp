@@ -3,9 +3,7 @@
 #include <glad/gl.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -144,6 +142,7 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     d.weather = weather;
     d.cloud_settings = settings;
 }
+
 void AtmosphereRenderer::SetEnvironment(const EnvironmentSettings& settings) {
     settings.Validate();
     Impl& d = *impl_;
