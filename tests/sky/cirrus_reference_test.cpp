@@ -32,14 +32,7 @@ TEST(CirrusReference, ThinIceLayerMatchesThePathTracer) {
     ASSERT_LT(layer.extinction_scale, 0.1);  // ice, not water
     const double bottom_m = kR * 1000.0;
     const reference::CloudField field(weather, settings, noise, bottom_m);
-    const clouds::WeatherMap weather_map = clouds::BuildWeatherMap(layer);
-    const CloudLayerParameters params = MakeCloudLayerParameters<CloudLayerParameters>(
-        layer, clouds::CloudTopFraction(weather_map), settings, bottom_m, 0.0);
-    const RepeatTexture2D weather_texture = ToTexture(weather_map);
-    const Texture3D shape = ToTexture(noise.shape);
-    const Texture3D detail = ToTexture(noise.detail);
-    const CloudMarchParameters march = MakeCloudMarchParameters<CloudMarchParameters>(settings);
-    const CloudScatteringParameters scattering = DefaultScattering(0.0, settings);
+    const LayerMarch layer_march(layer, settings, noise, bottom_m);
     const double tau = field.MeanVerticalOpticalDepth(32, 256);
     std::printf("cirrus: mean vertical optical depth %.3f\n", tau);
     EXPECT_GT(tau, 0.03);  // cirrus: 0.03-3 (thin to cirrostratus)
@@ -72,8 +65,7 @@ TEST(CirrusReference, ThinIceLayerMatchesThePathTracer) {
                 const vec3 forward(std::cos(view_elevation), 0.0, std::sin(view_elevation));
                 const vec3 up_image(-std::sin(view_elevation), 0.0, std::cos(view_elevation));
                 const vec3 view = normalize(forward + vec3(0.0, u, 0.0) + up_image * v);
-                c.renderer += CloudLuminance(sun.march, params, weather_texture, shape, detail,
-                                             scattering, march, camera_km, view, 8);
+                c.renderer += layer_march.Luminance(sun.march, camera_km, view, 8);
                 options.seed = 7 + std::uint64_t(j * width + i);
                 const reference::CloudPathTraceResult r =
                     reference::CloudPathTrace(sun.scene, camera_km * 1000.0, view, options);

@@ -83,6 +83,34 @@ double CloudLuminance(const Sunlight& sun, const CloudLayerParameters& layer,
     return sum / jitters;
 }
 
+// One layer of a weather as the CPU march sees it: its parameters, its map and the noise as
+// textures, the march's settings and the material (default: CloudSettings{}).
+struct LayerMarch {
+    CloudLayerParameters params;
+    RepeatTexture2D weather;
+    Texture3D shape, detail;
+    CloudMarchParameters march;
+    CloudScatteringParameters scattering;
+
+    LayerMarch(const clouds::CloudLayer& layer, const CloudSettings& settings,
+               const clouds::CloudNoise& noise, double bottom_m)
+        : LayerMarch(layer, clouds::BuildWeatherMap(layer), settings, noise, bottom_m) {}
+    LayerMarch(const clouds::CloudLayer& layer, const clouds::WeatherMap& map,
+               const CloudSettings& settings, const clouds::CloudNoise& noise, double bottom_m)
+        : params(MakeCloudLayerParameters<CloudLayerParameters>(
+              layer, clouds::LayerTopFraction(layer, map), settings, bottom_m, 0.0)),
+          weather(ToTexture(map)),
+          shape(ToTexture(noise.shape)),
+          detail(ToTexture(noise.detail)),
+          march(MakeCloudMarchParameters<CloudMarchParameters>(settings)),
+          scattering(DefaultScattering(0.0, settings)) {}
+    // CloudLuminance through this layer.
+    double Luminance(const Sunlight& sun, vec3 camera, vec3 view, int jitters) const {
+        return CloudLuminance(sun, params, weather, shape, detail, scattering, march, camera, view,
+                              jitters);
+    }
+};
+
 // An isolated cumulus (one disk of full cover in an otherwise clear weather map, written as an
 // image the way a host would give it; base 1.5 km, 3.2 km wide) in a vacuum over a black ground,
 // lit by a sun of unit illuminance 30 deg up, seen from 6 km away at its middle height on a
@@ -140,15 +168,8 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
     const clouds::CloudLayer& layer = weather.layers[0];
     const double bottom_m = kR * 1000.0;
     const reference::CloudField field(weather, settings, noise, bottom_m);
-    const clouds::WeatherMap weather_map = clouds::BuildWeatherMap(layer);
+    const LayerMarch layer_march(layer, settings, noise, bottom_m);
     std::filesystem::remove_all(scratch);
-    const CloudLayerParameters params = MakeCloudLayerParameters<CloudLayerParameters>(
-        layer, clouds::CloudTopFraction(weather_map), settings, bottom_m, 0.0);
-    const RepeatTexture2D weather_texture = ToTexture(weather_map);
-    const Texture3D shape = ToTexture(noise.shape);
-    const Texture3D detail = ToTexture(noise.detail);
-    const CloudMarchParameters march = MakeCloudMarchParameters<CloudMarchParameters>(settings);
-    const CloudScatteringParameters scattering = DefaultScattering(0.0, settings);
 
     const int width = 24, height = 16;
     const double half_fov = 22.0 * kPi / 180.0;
@@ -171,8 +192,7 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
                 const double v =
                     (2.0 * (j + 0.5) / height - 1.0) * std::tan(half_fov) * height / width;
                 const vec3 view = normalize(vec3(1.0, u, v + 0.05));
-                renderer.push_back(CloudLuminance(sun.march, params, weather_texture, shape, detail,
-                                                  scattering, march, camera_km, view, 8));
+                renderer.push_back(layer_march.Luminance(sun.march, camera_km, view, 8));
                 options.seed = seed + std::uint64_t(j * width + i);
                 const reference::CloudPathTraceResult r =
                     reference::CloudPathTrace(sun.scene, camera_km * 1000.0, view, options);
