@@ -501,6 +501,30 @@ glm::dvec3 SkyLighting::SkyIrradianceEcef(const glm::dvec3& normal_ecef) const {
 }
 
 const SkyLighting& SkySystem::lighting() const { return impl_->lighting; }
+
+// The renderer's frame is the aircraft's ENU frame (sky_state.h).
+glm::dvec3 SkySystem::SkyLuminanceEnu(const glm::dvec3& direction_enu) const {
+    return impl_->renderer->SkyLuminance(impl_->frame.view.camera.position, direction_enu);
+}
+glm::dvec3 SkySystem::SkyLuminanceEcef(const glm::dvec3& direction_ecef) const {
+    return SkyLuminanceEnu(glm::transpose(impl_->lighting.ecef_from_enu) * direction_ecef);
+}
+
+SkySystem::Fog SkySystem::FogEnu(const glm::dvec3& direction_enu, double distance_m) const {
+    const glm::dvec4 air = impl_->renderer->AirInScattering(impl_->frame.view.camera.position,
+                                                            direction_enu, distance_m);
+    Fog fog;
+    fog.in_scattered = glm::dvec3(air);
+    fog.transmittance = air.a;
+    if (distance_m > 0.0 && air.a > 0.0 && air.a < 1.0) {
+        fog.density_per_m = -std::log(air.a) / distance_m;
+        fog.colour = fog.in_scattered / (1.0 - air.a);
+    }
+    return fog;
+}
+SkySystem::Fog SkySystem::FogEcef(const glm::dvec3& direction_ecef, double distance_m) const {
+    return FogEnu(glm::transpose(impl_->lighting.ecef_from_enu) * direction_ecef, distance_m);
+}
 const std::vector<std::string>& SkySystem::notices() const { return impl_->notices; }
 const geo::SkyEphemeris& SkySystem::ephemeris() const { return impl_->frame.ephemeris; }
 unsigned SkySystem::aerial_perspective_texture() const {

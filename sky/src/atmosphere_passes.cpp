@@ -319,6 +319,10 @@ void AtmospherePasses::BuildStaticLuts() {
              static_cast<GLuint>(s.irradiance_size.y), 1);
     transmittance_cpu_ =
         ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
+    multiple_scattering_cpu_ = ref::FromImage(
+        gl::ReadTexture(multiple_scattering_, glm::ivec3(s.multiple_scattering_size, 1)));
+    irradiance_cpu_ =
+        ref::FromImage(gl::ReadTexture(irradiance_, glm::ivec3(s.irradiance_size, 1)));
 }
 
 // The night sky's map changes with the sky's turning (0.004 deg/s), the Sun's place and the

@@ -93,6 +93,11 @@ class AtmospherePasses {
     GLuint sky_view() const { return sky_view_; }
     GLuint aerial_perspective() const { return aerial_perspective_; }
     GLuint frame() const { return frame_; }  // 0 before the first Render into the own frame
+    const ref::TransmittanceTexture& transmittance_cpu() const { return transmittance_cpu_; }
+    const ref::MultipleScatteringTexture& multiple_scattering_cpu() const {
+        return multiple_scattering_cpu_;
+    }
+    const ref::IrradianceTexture& irradiance_cpu() const { return irradiance_cpu_; }
     glm::ivec2 frame_size() const { return frame_size_; }
     // GPU time of a query (ms), 0 when it did not run.
     double QueryMilliseconds(std::size_t query) const;
@@ -127,7 +132,11 @@ class AtmospherePasses {
         glm::dvec3 camera_position;
     };
     std::optional<NightSkyMapInputs> night_sky_map_for_;
-    ref::TransmittanceTexture transmittance_cpu_;  // for the stars' extinction
+    // The static LUTs as the GPU made them, for CPU work: the stars' extinction, a host's
+    // queries (AtmosphereRenderer::SkyLuminance, AerialPerspective).
+    ref::TransmittanceTexture transmittance_cpu_;
+    ref::MultipleScatteringTexture multiple_scattering_cpu_;
+    ref::IrradianceTexture irradiance_cpu_;
     glm::ivec2 frame_size_{0, 0};
     std::array<GLuint, kQueryCount> queries_{};
     std::array<bool, kQueryCount> query_used_{};

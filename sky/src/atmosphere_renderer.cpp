@@ -20,6 +20,7 @@
 #include "gl/textures.h"
 #include "reference/cloud_march.h"
 #include "reference/lut_texture.h"
+#include "shader_parameters.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/sky/inspection.h"
@@ -249,6 +250,57 @@ unsigned AtmosphereRenderer::aerial_perspective_texture() const {
 unsigned AtmosphereRenderer::frame_texture() const { return impl_->atmosphere.frame(); }
 unsigned AtmosphereRenderer::cloud_shadow_texture() const {
     return impl_->clouds ? impl_->clouds->shadow_map_texture() : 0;
+}
+
+namespace {
+
+// The lights of `scene` for a ray from `position` (m), with `shade`'s cloud members.
+ref::LightSet ShadedLights(const SkyScene& scene, const glm::dvec3& position,
+                           const CloudShade& shade) {
+    auto l = MakeLightSet<ref::LightSet>(scene.lights, position);
+    l.cloud_base = shade.base_altitude / kKm;
+    l.cloud_direct = shade.direct_transmittance;
+    l.cloud_sky = shade.sky_transmittance;
+    l.cloud_luminance = shade.luminance;
+    l.cloud_ground_sky = shade.ground_sky_transmittance;
+    l.cloud_ground_luminance = shade.ground_luminance;
+    return l;
+}
+
+}  // namespace
+
+glm::dvec4 AtmosphereRenderer::MarchAir(const glm::dvec3& position, const glm::dvec3& direction,
+                                        double distance, int steps, bool ground) const {
+    const Impl& d = *impl_;
+    if (!d.scene) throw std::logic_error("AtmosphereRenderer: an air query before any Update");
+    if (!(steps >= 1 && steps <= 4096)) {
+        throw ArgumentError(
+            "steps", "steps " + std::to_string(steps) + " is out of range (expected 1..4096)");
+    }
+    const AtmospherePasses& a = d.atmosphere;
+    const auto params = MakeShaderParameters<ref::AtmosphereParameters>(a.atmosphere());
+    const ref::LightSet lights =
+        ShadedLights(*d.scene, position, LatestCloudShade().value_or(CloudShade{}));
+    const double altitude_km = glm::length(position) / kKm - params.bottom_radius;
+    const ref::ScatteringResult r = ref::IntegrateScatteredLuminance(
+        params, a.transmittance_cpu(), a.multiple_scattering_cpu(), a.irradiance_cpu(), lights,
+        position / kKm, altitude_km, glm::normalize(direction), 0.0, distance / kKm, steps, ground);
+    return {r.luminance, (r.transmittance.x + r.transmittance.y + r.transmittance.z) / 3.0};
+}
+
+glm::dvec3 AtmosphereRenderer::SkyLuminance(const glm::dvec3& position, const glm::dvec3& direction,
+                                            int steps) const {
+    return glm::dvec3(MarchAir(position, direction, 1e12, steps, true));
+}
+
+glm::dvec4 AtmosphereRenderer::AirInScattering(const glm::dvec3& position,
+                                               const glm::dvec3& direction, double distance,
+                                               int steps) const {
+    if (!(distance >= 0.0 && std::isfinite(distance))) {
+        throw ArgumentError("distance", "distance " + std::to_string(distance) +
+                                            " m is out of range (expected finite, >= 0)");
+    }
+    return MarchAir(position, direction, distance, steps, false);
 }
 
 double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,

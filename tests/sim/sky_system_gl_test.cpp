@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <glm/gtc/constants.hpp>
+#include <string>
 #include <vector>
 
 #include "colour_target.h"
@@ -393,6 +394,62 @@ TEST_F(SkySystemTest, AerialPerspectiveOverTheHostsGeometry) {
                 worst);
     // The froxel volume (32 x 32 cells, 1 km slices) against the exact march: 2 %.
     EXPECT_LT(worst, 0.02);
+}
+
+// The host's own fog and background colours (SkySystem::FogEnu, SkyLuminanceEnu) are what the
+// frame draws: over a host's geometry 4 km away the frame's colour x T + L equals the fog's
+// (the frame's aerial-perspective volume against the query's direct march: 2 %), in a clear sky
+// and under overcast_stratus, where the clouds' shade dims the air; in a clear sky the sky's
+// luminance toward a direction equals the frame's pixel there (the Sky-View LUT against the
+// march); the ECEF forms give the ENU ones.
+TEST_F(SkySystemTest, HostFogAndSkyColourMatchTheFrame) {
+    constexpr int kSize = 16;
+    constexpr double kNear = 1.0, kFar = 200000.0, kEyeDepth = 4000.0;
+    constexpr float kColour = 500.0f;
+    SkySystem* sky = sky_;
+    sky->SetTime(geo::TimeFromIso8601("2024-06-21T09:00:00Z"));
+    sky->SetGeodetic(46.5, 8.0, 300.0);
+    sky->SetAttitude(glm::radians(200.0), 0.02, 0.0);
+    sky->SetProjection(0.02, 1.0);  // narrow: every pixel ~the centre's direction
+    const glm::dvec3 forward = -sky->enu_from_view()[2];
+    const double z_ndc = (kFar + kNear - 2.0 * kNear * kFar / kEyeDepth) / (kFar - kNear);
+    const std::vector<float> depth(kSize * kSize, static_cast<float>(0.5 * (z_ndc + 1.0)));
+    sky::CloudSettings settings;
+    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    for (const char* weather : {"clear", "overcast_stratus"}) {
+        SCOPED_TRACE(weather);
+        sky->SetWeather(sky::clouds::LoadWeather(weather), settings);
+        sky->Prepare({kSize, kSize});  // the clouds' shade has arrived
+        sky->Update();
+        const std::size_t centre = static_cast<std::size_t>(kSize / 2 * kSize + kSize / 2);
+        test::HostFrame frame(kSize, kSize);
+        const glm::vec4 over_geometry = frame.Render(*sky, depth, kColour, kNear, kFar)[centre];
+        const sky::LutImage sky_only = sky->RenderOffscreen({kSize, kSize});
+        const SkySystem::Fog fog = sky->FogEnu(forward, kEyeDepth);
+        const glm::dvec3 background = sky->SkyLuminanceEnu(forward);
+        const double expected = Luminance(
+            glm::vec4(glm::vec3(fog.in_scattered + fog.transmittance * glm::dvec3(kColour)), 0.0f));
+        const double drawn_sky = Luminance(sky_only.at(kSize / 2, kSize / 2));
+        std::printf(
+            "%s: over geometry at 4 km frame %.1f, fog %.1f cd/m^2 (%+.2f %%; T %.3f, "
+            "density %.2e /m); sky frame %.1f, query %.1f (%+.2f %%)\n",
+            weather, Luminance(over_geometry), expected,
+            100.0 * (expected / Luminance(over_geometry) - 1.0), fog.transmittance,
+            fog.density_per_m, drawn_sky, Luminance(glm::vec4(glm::vec3(background), 0.0f)),
+            100.0 * (Luminance(glm::vec4(glm::vec3(background), 0.0f)) / drawn_sky - 1.0));
+        EXPECT_NEAR(expected / Luminance(over_geometry), 1.0, 0.02);
+        // The sky query is the air's (the clouds are in the frame and the environment): the
+        // frame's sky where no cloud is in the way.
+        if (std::string(weather) == "clear") {
+            EXPECT_NEAR(Luminance(glm::vec4(glm::vec3(background), 0.0f)) / drawn_sky, 1.0, 0.02);
+        }
+        // The exponential fog gives the same at that distance.
+        EXPECT_NEAR(std::exp(-fog.density_per_m * kEyeDepth), fog.transmittance, 1e-12);
+        const glm::dvec3 ecef = sky->lighting().ecef_from_enu * forward;
+        EXPECT_NEAR(sky->FogEcef(ecef, kEyeDepth).transmittance, fog.transmittance, 1e-12);
+        EXPECT_NEAR(sky->SkyLuminanceEcef(ecef).g, background.g, 1e-9 * background.g);
+    }
+    sky->SetWeather({});
 }
 
 // A host's own weather engine sets the visibility; a METAR report sets layers and visibility.

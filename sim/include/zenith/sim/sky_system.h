@@ -312,6 +312,27 @@ class SkySystem {
     sky::LutImage RenderOffscreen(const glm::ivec2& size);
 
     const SkyLighting& lighting() const;
+
+    // The sky and the air as the host's own shading may want them, from the aircraft, for the
+    // last Update (sky::AtmosphereRenderer::SkyLuminance / AirInScattering: a CPU ray march over
+    // the renderer's own LUTs, ~10-50 us, no GL call; the clouds' shade of the air beneath them
+    // included, the clouds themselves not: they are in the frame and the environment). Throw
+    // std::logic_error before the first Update.
+    //   SkyLuminance: the sky's luminance toward a direction (cd/m^2, RGB; our ground below the
+    //     horizon): a background or horizon colour.
+    //   Fog: the air between the aircraft and a point `distance_m` away toward a direction, as
+    //     the frame blends it over a host's geometry there (colour x transmittance + in_scattered),
+    //     and the exponential fog that gives the same at that distance.
+    struct Fog {
+        glm::dvec3 in_scattered{0.0};  // cd/m^2
+        double transmittance = 1.0;    // mean over RGB
+        double density_per_m = 0.0;    // -ln(transmittance) / distance: exp(-density d)...
+        glm::dvec3 colour{0.0};        // ...and in_scattered / (1 - transmittance), cd/m^2
+    };
+    glm::dvec3 SkyLuminanceEnu(const glm::dvec3& direction_enu) const;
+    glm::dvec3 SkyLuminanceEcef(const glm::dvec3& direction_ecef) const;
+    Fog FogEnu(const glm::dvec3& direction_enu, double distance_m) const;
+    Fog FogEcef(const glm::dvec3& direction_ecef, double distance_m) const;
     // Every notice so far, oldest first (also given to SkySystemSettings::on_notice).
     const std::vector<std::string>& notices() const;
     const geo::SkyEphemeris& ephemeris() const;

@@ -150,6 +150,22 @@ class AtmosphereRenderer {
     double CloudTransmittance(const glm::dvec3& position, const glm::dvec3& direction,
                               const CloudView& view, int steps = 64) const;
 
+    // The air for a host's own shading, on the CPU: the shared functions over the renderer's own
+    // LUTs (read back when the atmosphere was set), the last Update's lights and the clouds'
+    // shade of the air beneath them as LatestCloudShade has it (the clouds themselves are not
+    // in these: they are in the frame and the environment). No GL call, nothing to wait for;
+    // ~10 us each. `position` m in the renderer's frame, `direction` a unit vector; `steps` of
+    // the ray march. Throw std::logic_error before the first Update.
+    //   SkyLuminance: the sky's luminance along `direction` (cd/m^2, RGB), our ground below the
+    //     horizon, as the composite draws the clear air (its Sky-View LUT agrees to ~1 %).
+    //   AirInScattering: the air between `position` and `distance` m along `direction`: the
+    //     luminance it scatters toward `position` (rgb) and its mean transmittance (a), what the
+    //     frame blends over a host's geometry there (colour x T + L).
+    glm::dvec3 SkyLuminance(const glm::dvec3& position, const glm::dvec3& direction,
+                            int steps = 64) const;
+    glm::dvec4 AirInScattering(const glm::dvec3& position, const glm::dvec3& direction,
+                               double distance, int steps = 64) const;
+
     // The most recent CloudShade the GPU has finished, without waiting for it: each Update
     // copies the frame's shade into a read-back buffer behind a fence, and this takes the newest
     // copy whose fence has signalled (usually the previous frame's; a frame's own once the GPU
@@ -178,6 +194,10 @@ class AtmosphereRenderer {
 
   private:
     friend class RendererInspection;  // read-backs and timers: zenith/sky/inspection.h
+    // SkyLuminance's and AirInScattering's march (the shared IntegrateScatteredLuminance):
+    // luminance (rgb) and mean transmittance (a).
+    glm::dvec4 MarchAir(const glm::dvec3& position, const glm::dvec3& direction, double distance,
+                        int steps, bool ground) const;
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
