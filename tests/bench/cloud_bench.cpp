@@ -185,6 +185,26 @@ void BM_CloudTransmittanceCpu(benchmark::State& state) {
 }
 BENCHMARK(BM_CloudTransmittanceCpu)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
+// The host's air queries (AtmosphereRenderer::SkyLuminance, AirInScattering to 4 km: the
+// shared ray march on the CPU, 64 steps, over the renderer's own LUTs) from the ground under
+// scattered cumulus, after an Update. args: 0 sky luminance, 1 air to 4 km
+void BM_AirQueryCpu(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.renderer.SetWeather(f.weather, Settings(4));
+    const Camera camera = f.CameraFor(kViews[0]);
+    zenith::test::DrawFrames(f.renderer, camera, f.lights, zenith::test::FrameOptions{});
+    const glm::dvec3 direction = -camera.world_from_view[2];
+    double sum = 0.0;
+    for (auto _ : state) {
+        sum += state.range(0) == 0
+                   ? f.renderer.SkyLuminance(camera.position, direction).g
+                   : f.renderer.AirInScattering(camera.position, direction, 4000.0).a;
+    }
+    benchmark::DoNotOptimize(sum);
+    state.SetLabel(state.range(0) == 0 ? "sky luminance" : "air to 4 km");
+}
+BENCHMARK(BM_AirQueryCpu)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 // SetWeather with scattered cumulus (noise from the cache, weather map, GL programs, the CPU
 // copy for CloudTransmittance): on a new renderer, which also compiles the six sky programs
 // that composite the clouds, and again on the same renderer.

@@ -315,7 +315,7 @@ class SkySystem {
 
     // The sky and the air as the host's own shading may want them, from the aircraft, for the
     // last Update (sky::AtmosphereRenderer::SkyLuminance / AirInScattering: a CPU ray march over
-    // the renderer's own LUTs, ~10-50 us, no GL call; the clouds' shade of the air beneath them
+    // the renderer's own LUTs, ~10 us, no GL call; the clouds' shade of the air beneath them
     // included, the clouds themselves not: they are in the frame and the environment). Throw
     // std::logic_error before the first Update.
     //   SkyLuminance: the sky's luminance toward a direction (cd/m^2, RGB; our ground below the
