@@ -33,7 +33,7 @@ namespace {
 using zenith::test::Luminance;
 
 constexpr int kWidth = 64, kHeight = 48;
-constexpr GLuint kUnits = 28;  // zenith uses units 0-23 (sky/shaders/bindings.glsl); a few more
+constexpr GLuint kUnits = 28;  // zenith uses units 0-24 (sky/shaders/bindings.glsl); a few more
 
 // A named list of state values, each read with the matching glGet*; floats kept as doubles so
 // that the comparison is exact.
