@@ -425,7 +425,7 @@ void SkySystem::Prepare(const glm::ivec2& size) {
     Impl& d = *impl_;
     // A whole round of the environment's faces from face 0 (a cut), so that its lighting is
     // there from the first frame on.
-    const sky::EnvironmentSettings environment = d.settings.environment;
+    const sky::EnvironmentSettings environment = d.renderer->environment_settings();
     d.reset_history = true;
     if (environment.enabled()) {
         sky::EnvironmentSettings all = environment;
@@ -486,7 +486,6 @@ sky::LutImage SkySystem::RenderOffscreen(const glm::ivec2& size) {
 
 void SkySystem::SetEnvironment(const sky::EnvironmentSettings& environment) {
     impl_->renderer->SetEnvironment(environment);
-    impl_->settings.environment = environment;
 }
 unsigned SkySystem::environment_texture() const { return impl_->renderer->environment_texture(); }
 unsigned SkySystem::environment_sh_buffer() const {

@@ -352,7 +352,7 @@ bool AtmospherePasses::NightSkyMapHolds(const SkyScene& scene,
            glm::length(camera_position - last.camera_position) < 10.0;
 }
 
-void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
+void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view, int environment_size) {
     const Camera& camera = view.camera;
     const bool night_sky = scene.night_sky.enabled && scene.night_sky.settings.enabled;
     if (night_sky) scene.night_sky.settings.Validate();
@@ -368,7 +368,7 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view) {
     for (int i = 0; i < 3; ++i) u.world_from_view[i] = glm::vec4(camera.world_from_view[i], 0.0);
     u.aspect = static_cast<float>(camera.aspect);
     u.ray_march_steps = view.ray_march_steps;
-    u.environment_size = environment_size_;
+    u.environment_size = environment_size;
     u.moon_enabled = scene.moon.enabled ? 1 : 0;
     u.moon_direction = glm::vec3(glm::normalize(scene.moon.direction));
     u.moon_angular_radius = static_cast<float>(scene.moon.angular_radius);

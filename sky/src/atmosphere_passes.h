@@ -69,10 +69,9 @@ class AtmospherePasses {
 
     // This frame's lights (into the light block, which CloudPasses::Prepare then completes with
     // the clouds' shading) and its per-frame constants: what the view and the scene fix, worked
-    // out once a frame; Render adds what the target fixes.
-    void SetFrame(const SkyScene& scene, const SkyView& view);
-    // The environment's face size for the frame block from the next SetFrame (0: none).
-    void set_environment_size(int size) { environment_size_ = size; }
+    // out once a frame; Render adds what the target fixes. `environment_size`: the environment's
+    // faces' size for its passes (0: none).
+    void SetFrame(const SkyScene& scene, const SkyView& view, int environment_size = 0);
     GLuint light_buffer() const { return buffers_[1]; }
     // Binds the uniform blocks and the LUTs every pass reads (CloudPasses' passes too).
     void BindInputs() const;
@@ -143,7 +142,6 @@ class AtmospherePasses {
     int light_count_ = 1;                 // with the Sun alone, the Sky-View LUT is symmetric...
     bool eclipse_active_ = false;         // ...unless the Moon covers part of the Sun
     gl::FrameUniforms frame_uniforms_{};  // SetFrame's part of the frame block
-    int environment_size_ = 0;
 };
 
 }  // namespace zenith::sky

@@ -157,7 +157,6 @@ void AtmosphereRenderer::SetEnvironment(const EnvironmentSettings& settings) {
         d.environment->set_faces_per_frame(settings.faces_per_frame);
     }
     d.environment_settings = settings;
-    d.atmosphere.set_environment_size(settings.size);
 }
 const EnvironmentSettings& AtmosphereRenderer::environment_settings() const {
     return impl_->environment_settings;
@@ -170,7 +169,7 @@ const LutSettings& AtmosphereRenderer::settings() const { return impl_->atmosphe
 void AtmosphereRenderer::Update(const SkyScene& scene, const SkyView& view) {
     Impl& d = *impl_;
     const gl::StateGuard guard(d.preserve_gl_state);
-    d.atmosphere.SetFrame(scene, view);
+    d.atmosphere.SetFrame(scene, view, d.environment ? d.environment->settings().size : 0);
     if (d.clouds) {
         // What the clouds do to the light beneath them goes into the light block first.
         d.atmosphere.BindInputs();

@@ -7,9 +7,11 @@
 #include <glad/gl.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include "draw_frame.h"
 #include "gl_test_support.h"
@@ -79,23 +81,28 @@ SphericalHarmonics9 RoundSh(AtmosphereRenderer& renderer, const SkyScene& scene,
 
 double Mean(const glm::dvec3& v) { return (v.r + v.g + v.b) / 3.0; }
 
-// The irradiance on a surface of unit normal `normal` from the atlas' texels, each at its
-// centre's direction: the integral L(d) max(d.n, 0) dOmega that the harmonics approximate.
-glm::dvec3 AtlasIrradiance(const LutImage& atlas, const glm::dvec3& normal) {
+// The integral of L(d) weight(d) dOmega over the atlas' texels, each at its centre's direction.
+glm::dvec3 AtlasIntegral(const LutImage& atlas,
+                         const std::function<double(const glm::dvec3&)>& weight) {
     const int n = atlas.size.x;
-    glm::dvec3 e(0.0);
+    glm::dvec3 sum(0.0);
     for (int face = 0; face < 6; ++face) {
         for (int y = 0; y < n; ++y) {
             for (int x = 0; x < n; ++x) {
                 const glm::dvec3 d = CubeFaceDirection(face, (x + 0.5) / n, (y + 0.5) / n);
-                const double cosine = glm::dot(d, normal);
-                if (cosine <= 0.0) continue;
-                e += glm::dvec3(glm::vec3(atlas.at(x, face * n + y))) * cosine *
-                     CubeTexelSolidAngle(x, y, n);
+                sum += glm::dvec3(glm::vec3(atlas.at(x, face * n + y))) * weight(d) *
+                       CubeTexelSolidAngle(x, y, n);
             }
         }
     }
-    return e;
+    return sum;
+}
+
+// The irradiance on a surface of unit normal `normal`: the integral L(d) max(d.n, 0) dOmega
+// that the harmonics approximate.
+glm::dvec3 AtlasIrradiance(const LutImage& atlas, const glm::dvec3& normal) {
+    return AtlasIntegral(atlas,
+                         [&](const glm::dvec3& d) { return std::max(glm::dot(d, normal), 0.0); });
 }
 
 // Each face's texels lie where OpenGL's cube map convention puts them: a texel off the face's
@@ -261,20 +268,10 @@ TEST_F(EnvironmentGlTest, OvercastIrradianceCarriesTheClouds) {
     const std::optional<CloudShade> shade = renderer.LatestCloudShade();
     ASSERT_TRUE(shade.has_value());
     const LutImage atlas = Inspect(renderer).ReadEnvironmentAtlas();
-    glm::dvec3 upper(0.0);
-    double upper_solid_angle = 0.0;
-    for (int face = 0; face < 6; ++face) {
-        for (int y = 0; y < kSize; ++y) {
-            for (int x = 0; x < kSize; ++x) {
-                const glm::dvec3 d = CubeFaceDirection(face, (x + 0.5) / kSize, (y + 0.5) / kSize);
-                if (d.z <= 0.0) continue;
-                const double omega = CubeTexelSolidAngle(x, y, kSize);
-                upper += glm::dvec3(glm::vec3(atlas.at(x, face * kSize + y))) * omega;
-                upper_solid_angle += omega;
-            }
-        }
-    }
-    upper /= upper_solid_angle;
+    // The upper hemisphere's mean: its texels (the horizon runs along texel edges) cover 2 pi.
+    const glm::dvec3 upper =
+        AtlasIntegral(atlas, [](const glm::dvec3& d) { return d.z > 0.0 ? 1.0 : 0.0; }) /
+        (2.0 * kPi);
     const glm::dvec3 clear =
         lights.sun_illuminance *
         SampleGroundIrradiance(Inspect(renderer).ReadGroundIrradiance(), lights.sun_direction.z);

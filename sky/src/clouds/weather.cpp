@@ -38,8 +38,7 @@ constexpr double kMaxWindSpeed = 150.0;      // m/s
 constexpr double kMinMapPeriod = 1e3;        // m
 constexpr double kMaxMapPeriod = 1e7;        // m
 constexpr int kMinMapSize = 16;
-constexpr int kStreakAspect = 6;             // streaks: features this many times longer than wide
-constexpr double kMaxExtinctionScale = 4.0;  // CloudLayer::extinction_scale: fog of 20 m
+constexpr int kStreakAspect = 6;  // streaks: features this many times longer than wide
 
 // Smoothstep of x clamped to [0, 1].
 double SmoothUnit(double x) {

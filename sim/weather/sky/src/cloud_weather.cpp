@@ -184,12 +184,13 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
         const double fog_visibility = v && *v < kFogAerosolVisibility ? *v : kFogPatchVisibility;
         const double fog_extinction = ExtinctionForVisibility(fog_visibility) -
                                       ExtinctionForVisibility(kFogAerosolVisibility);
-        b.layer.extinction_scale =
-            std::clamp(fog_extinction / (b.layer.coverage * cloud_extinction_per_m), 1e-3, 4.0);
-        if (fog_extinction / (b.layer.coverage * cloud_extinction_per_m) > 4.0) {
+        const double scale = fog_extinction / (b.layer.coverage * cloud_extinction_per_m);
+        using sky::clouds::kMaxExtinctionScale;
+        b.layer.extinction_scale = std::clamp(scale, 1e-3, kMaxExtinctionScale);
+        if (scale > kMaxExtinctionScale) {
             out.notes.push_back(fmt::format(
                 "fog of {:.0f} m visibility is denser than the densest fog drawn ({:.0f} m)",
-                fog_visibility, std::log(20.0) / (4.0 * cloud_extinction_per_m)));
+                fog_visibility, std::log(20.0) / (kMaxExtinctionScale * cloud_extinction_per_m)));
         }
         b.layer.map = patchy
                           ? Map(WeatherMapSource::Kind::kPatches, Seed(metar.station, 99), 8, 0.6)

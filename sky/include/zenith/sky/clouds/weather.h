@@ -52,6 +52,9 @@ struct WeatherMapSource {
     bool operator==(const WeatherMapSource&) const = default;
 };
 
+// The largest CloudLayer::extinction_scale: fog of 20 m visibility.
+inline constexpr double kMaxExtinctionScale = 4.0;
+
 struct CloudLayer {
     std::string name;
     double base_altitude = 1500.0;  // m above the planet's surface (sphere)
