@@ -12,6 +12,7 @@
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/moon.h"
 #include "zenith/geo/planets.h"
+#include "zenith/geo/refraction.h"
 #include "zenith/geo/sun.h"
 
 namespace {
@@ -124,5 +125,17 @@ void BM_EphemerisWithStars(benchmark::State& state) {
 BENCHMARK(BM_EphemerisWithStars)->Unit(benchmark::kMillisecond);
 
 }  // namespace
+
+// The refraction table a frame draws the bodies with (traced once per height, then cached by
+// sky::RefractionCache), against the Sun and Moon of a frame above.
+void BM_RefractionTable(benchmark::State& state) {
+    double height = 10000.0;
+    for (auto _ : state) {
+        const zenith::geo::RefractionTable table(zenith::geo::RefractionAir{}, height);
+        benchmark::DoNotOptimize(table.horizon());
+        height += 1.0;
+    }
+}
+BENCHMARK(BM_RefractionTable)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

@@ -129,5 +129,15 @@ TEST(Altimetry, StationAirFromAReport) {
                      kIsaPressureHpa);
 }
 
+// Refraction's air: QNH at sea level, the station's temperature carried down ISA's lapse rate.
+TEST(Altimetry, RefractionAirFromAReport) {
+    const Metar q = DecodeMetar("LSZH 211750Z 24012KT 9999 FEW035 25/12 Q1020");
+    const geo::RefractionAir air = RefractionAirOf(StationAirOf(q, 500.0));
+    EXPECT_DOUBLE_EQ(air.sea_level_pressure_hpa, 1020.0);
+    EXPECT_DOUBLE_EQ(air.sea_level_temperature_c, 25.0 + 0.0065 * 500.0);
+    const geo::RefractionAir isa = RefractionAirOf(StationAir{});
+    EXPECT_EQ(isa, geo::RefractionAir{});
+}
+
 }  // namespace
 }  // namespace zenith::weather

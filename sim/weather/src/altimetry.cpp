@@ -1,5 +1,6 @@
 #include "zenith/weather/altimetry.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "zenith/base/error.h"
@@ -55,6 +56,16 @@ double HeightFromPressureAltitude(double pressure_altitude_m, const StationAir& 
     const double deviation =
         *air.temperature_c + 273.15 - (kIsaTemperatureK - kIsaLapseRate * air.elevation_m);
     return altimeter + deviation * kGasOverGravity * std::log(station_pressure / pressure);
+}
+
+geo::RefractionAir RefractionAirOf(const StationAir& air) {
+    geo::RefractionAir out;
+    out.sea_level_pressure_hpa = air.qnh_hpa;
+    if (air.temperature_c) {
+        out.sea_level_temperature_c =
+            std::clamp(*air.temperature_c + kIsaLapseRate * air.elevation_m, -90.0, 60.0);
+    }
+    return out;
 }
 
 StationAir StationAirOf(const Metar& report, double elevation_m) {

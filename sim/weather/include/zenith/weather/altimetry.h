@@ -17,18 +17,20 @@
 
 #include <optional>
 
+#include "zenith/geo/refraction.h"
+#include "zenith/geo/standard_atmosphere.h"
 #include "zenith/weather/metar.h"
 
 namespace zenith::weather {
 
-// ISA (ICAO Doc 7488): sea-level pressure and temperature, the troposphere's lapse rate and
-// its top, standard gravity and the specific gas constant of dry air.
-inline constexpr double kIsaPressureHpa = 1013.25;
-inline constexpr double kIsaTemperatureK = 288.15;
-inline constexpr double kIsaLapseRate = 0.0065;          // K/m
-inline constexpr double kIsaTropopause = 11000.0;        // m, geopotential
-inline constexpr double kStandardGravity = 9.80665;      // m/s^2
-inline constexpr double kDryAirGasConstant = 287.05287;  // J/(kg K)
+// ISA (zenith/geo/standard_atmosphere.h): sea-level pressure and temperature, the
+// troposphere's lapse rate and its top, standard gravity and the gas constant of dry air.
+using geo::kDryAirGasConstant;
+using geo::kIsaLapseRate;
+using geo::kIsaPressureHpa;
+using geo::kIsaTemperatureK;
+using geo::kIsaTropopause;
+using geo::kStandardGravity;
 
 // ISA pressure (hPa) at geopotential height `h` (m; -5 km to 20 km), and its inverse.
 double IsaPressure(double h);
@@ -50,5 +52,10 @@ double HeightFromPressureAltitude(double pressure_altitude_m, const StationAir& 
 // A report's QNH (ISA's 1013.25 hPa when it has none) and temperature, at a station of that
 // elevation.
 StationAir StationAirOf(const Metar& report, double elevation_m);
+
+// The air refraction is traced through (zenith/geo/refraction.h) from what a station reports:
+// QNH as the sea-level pressure, the station's temperature carried down ISA's lapse rate to sea
+// level (ISA's 15 deg C without one; within -90..60 deg C).
+geo::RefractionAir RefractionAirOf(const StationAir& air);
 
 }  // namespace zenith::weather
