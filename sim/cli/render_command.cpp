@@ -101,6 +101,9 @@ Command AddRenderCommand(CLI::App& app) {
         ->add_option("--light-pollution", args->light_pollution,
                      "artificial zenith sky brightness, V mag/arcsec^2 (e.g. 20 for a suburb)")
         ->excludes(bortle);
+    render->add_flag("!--no-refraction", frame.refraction,
+                     "the Sun, Moon, planets and stars at their geometric places (default: seen "
+                     "through the air's refraction, ISA's or the METAR's QNH and temperature)");
     render->add_flag("!--no-night-sky", frame.night_sky.enabled,
                      "no airglow, zodiacal light or starlight (the atmosphere's scattering only)");
     return {render, [args] {

@@ -210,6 +210,7 @@ LiveResult RunLive(const LiveRequest& r, const std::atomic<bool>& stop,
     ValidateLiveRequest(r);
     SkySystemSettings settings;
     settings.preset = r.preset;
+    settings.refraction = PresetRefraction(r.preset);
     settings.weather = r.weather;
     settings.clouds.block = 1;
     auto sky = SkySystem::CreateHeadless(settings);

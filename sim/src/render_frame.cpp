@@ -14,9 +14,11 @@
 #include "zenith/base/units.h"
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/observer.h"
+#include "zenith/sim/sky_system.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/inspection.h"
+#include "zenith/weather/altimetry.h"
 #include "zenith/weather/cloud_weather.h"
 #include "zenith/weather/metar.h"
 
@@ -100,6 +102,11 @@ FrameResult RenderFrame(const FrameRequest& request, std::string* warning) {
         geo::Attitude::FromDegrees(request.heading_deg, request.pitch_deg, request.roll_deg);
     setup.vertical_fov = Radians(request.fov_deg);
     setup.aspect = static_cast<double>(request.size.x) / request.size.y;
+    setup.refraction = request.refraction ? PresetRefraction(request.preset) : std::nullopt;
+    if (setup.refraction && request.metar) {
+        setup.refraction = weather::RefractionAirOf(
+            weather::StationAirOf(*request.metar, request.station_elevation_m.value_or(0.0)));
+    }
     sky::SkyFrame frame =
         sky::BuildSkyFrame(geo::Ephemeris(catalog ? &*catalog : nullptr), setup, atmosphere);
     frame.view.force_ray_march = request.force_ray_march;

@@ -441,6 +441,7 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
 
     SkySystemSettings settings;
     settings.preset = r.preset;
+    settings.refraction = PresetRefraction(r.preset);
     settings.weather = r.weather;
     settings.clouds.block = 1;
     auto sky = SkySystem::CreateHeadless(settings);
@@ -499,6 +500,10 @@ ReplayResult RunReplay(const ReplayRequest& r, const std::atomic<bool>& stop,
                     sky->SetWeather(sample.weather.clouds, settings.clouds);
                     sky->SetWeatherEpoch(weather_epoch);  // SetWeather restarts the wind
                     ++result.weather_sets;
+                }
+                if (settings.refraction) {
+                    sky->SetRefraction(weather::RefractionAirOf(
+                        timeline->AirAt(t, aircraft.lat_deg, aircraft.lon_deg)));
                 }
                 if (sample.weather.visibility_m != visibility_drawn ||
                     sample.weather.fog != fog_drawn) {

@@ -16,6 +16,7 @@
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/inspection.h"
 #include "zenith/sky/lighting.h"
+#include "zenith/weather/altimetry.h"
 #include "zenith/weather/cloud_weather.h"
 
 namespace zenith::sim {
@@ -63,6 +64,8 @@ struct SkySystem::Impl {
     sky::Atmosphere preset_atmosphere;  // SetAtmosphere's, before the visibility
     std::optional<double> visibility_m;
     bool visibility_is_fog = false;
+    std::optional<geo::RefractionAir> refraction;  // settings.refraction, then SetRefraction's
+    sky::RefractionCache refraction_table;
     std::optional<geo::StarCatalog> catalog;
     std::shared_ptr<const sky::StarlightMap> starlight;  // the night sky's integrated starlight
     std::unique_ptr<sky::AtmosphereRenderer> renderer;
@@ -121,7 +124,9 @@ struct SkySystem::Impl {
         : context(std::move(c)),
           settings(s),
           atmosphere(sky::LoadAtmosphere(s.preset)),
-          preset_atmosphere(atmosphere) {
+          preset_atmosphere(atmosphere),
+          refraction(s.refraction) {
+        if (refraction) refraction->Validate();
         try {
             catalog = geo::StarCatalog::Load(s.star_magnitude_limit, s.star_directory);
         } catch (const geo::CatalogError& e) {
@@ -147,6 +152,11 @@ struct SkySystem::Impl {
         if (s.display.output == sky::DisplaySettings::Output::kDisplay) DisplayPassMade();
     }
 };
+
+std::optional<geo::RefractionAir> PresetRefraction(const std::string& preset) {
+    if (preset == "earth") return geo::RefractionAir{};
+    return std::nullopt;
+}
 
 SkySystem::SkySystem(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 SkySystem::~SkySystem() = default;
@@ -260,7 +270,15 @@ std::vector<std::string> SkySystem::SetMetar(const weather::Metar& report,
     notes.insert(notes.end(), mapped.notes.begin(), mapped.notes.end());
     SetWeather(mapped.clouds, settings);
     SetVisibility(mapped.visibility_m, mapped.fog);
+    if (impl_->refraction) {
+        SetRefraction(weather::RefractionAirOf(weather::StationAirOf(report, station_elevation_m)));
+    }
     return notes;
+}
+
+void SkySystem::SetRefraction(const std::optional<geo::RefractionAir>& air) {
+    if (air) air->Validate();
+    impl_->refraction = air;
 }
 
 void SkySystem::SetWeather(const sky::clouds::Weather& weather,
@@ -344,7 +362,8 @@ void SkySystem::Update() {
     }
     setup.vertical_fov = d.vertical_fov;
     setup.aspect = d.aspect;
-    d.frame = sky::BuildSkyFrame(*d.calculator, setup, d.atmosphere);
+    setup.refraction = d.refraction;
+    d.frame = sky::BuildSkyFrame(*d.calculator, setup, d.atmosphere, &d.refraction_table);
     if (!d.weather_origin) {
         d.weather_origin = glm::dvec2(d.observer.lat_deg(), d.observer.lon_deg());
     }

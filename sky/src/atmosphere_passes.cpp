@@ -27,6 +27,14 @@ using Pass = AtmospherePasses::Pass;
 using enum AtmospherePasses::Pass;
 constexpr double kKm = 1000.0;
 
+// Where the disks are drawn: their apparent places, or unsqueezed in their own directions.
+ApparentPlace SunDiskPlace(const SkyScene& scene) {
+    return scene.sun_apparent.value_or(ApparentPlace{scene.lights.sun_direction, 1.0});
+}
+ApparentPlace MoonDiskPlace(const MoonDisk& moon) {
+    return moon.apparent.value_or(ApparentPlace{moon.direction, 1.0});
+}
+
 constexpr std::array<std::string_view, AtmospherePasses::kPassCount> kPassFiles = {
     "atmosphere/transmittance.comp",
     "atmosphere/multiple_scattering.comp",
@@ -374,6 +382,12 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view, int 
     u.moon_angular_radius = static_cast<float>(scene.moon.angular_radius);
     u.moon_albedo = static_cast<float>(scene.moon.albedo);
     u.moon_sunlight = glm::vec3(scene.moon.sunlight);
+    const ApparentPlace sun_disk = SunDiskPlace(scene);
+    const ApparentPlace moon_disk = MoonDiskPlace(scene.moon);
+    u.sun_disk_direction = glm::vec3(glm::normalize(sun_disk.direction));
+    u.sun_disk_scale = static_cast<float>(sun_disk.vertical_scale);
+    u.moon_disk_direction = glm::vec3(glm::normalize(moon_disk.direction));
+    u.moon_disk_scale = static_cast<float>(moon_disk.vertical_scale);
     // Per-frame constants, from the shared functions compiled as C++ (double).
     const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere_);
     const glm::dvec3 up = glm::normalize(camera.position);
@@ -458,7 +472,7 @@ void AtmospherePasses::SetTarget(const SkyScene& scene, const SkyView& view,
     const bool sun_disk_resolved = SunDiskResolved(view, size);
     std::vector<StarPoint> points = scene.stars;
     if (scene.draw_sun_disk && !sun_disk_resolved) {
-        points.push_back({scene.lights.sun_direction, scene.lights.sun_illuminance});
+        points.push_back({SunDiskPlace(scene).direction, scene.lights.sun_illuminance});
     }
     if (!points.empty()) {
         SplatPoints(points, view.camera, size,
@@ -521,10 +535,12 @@ void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
     if (scene.draw_sun_disk && SunDiskResolved(view, size)) {
         // In a solar eclipse the corona too, out to 6 solar radii (render.frag).
         const Lights::SolarEclipse& eclipse = scene.lights.eclipse;
-        add_disk(scene.lights.sun_direction, eclipse.active ? 6.0 * eclipse.sun_angular_radius
-                                                            : atmosphere_.sun_angular_radius);
+        add_disk(SunDiskPlace(scene).direction, eclipse.active ? 6.0 * eclipse.sun_angular_radius
+                                                               : atmosphere_.sun_angular_radius);
     }
-    if (scene.moon.enabled) add_disk(scene.moon.direction, scene.moon.angular_radius);
+    if (scene.moon.enabled) {
+        add_disk(MoonDiskPlace(scene.moon).direction, scene.moon.angular_radius);
+    }
     const Pass disk_pass = target.scene_depth ? kDiskDepthPass : kDiskPass;
     for (std::size_t i = 0; i < boxes.size(); ++i) {
         Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, framebuffer, viewport, clouds, depth,

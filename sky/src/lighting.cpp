@@ -6,6 +6,7 @@
 #include "reference/atmosphere_functions.h"
 #include "shader_parameters.h"
 #include "zenith/geo/eclipse.h"
+#include "zenith/geo/refraction.h"
 
 namespace zenith::sky {
 
@@ -67,10 +68,9 @@ glm::dvec3 UmbraRefractedLight(const Atmosphere& atmosphere, double axis_distanc
                                double moon_distance, double sun_angular_radius) {
     const auto a = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
     constexpr double kKm = 1000.0;
-    constexpr double kEarthRefractivity = 2.77e-4;     // 15 C, 1013.25 hPa, 550 nm (Ciddor)
     constexpr double kEarthRayleighGreen = 13.558e-6;  // 1/m, Atmosphere's default green
     const double nu0 =
-        kEarthRefractivity * std::sqrt(atmosphere.rayleigh_scattering.y / kEarthRayleighGreen);
+        geo::kAirRefractivity * std::sqrt(atmosphere.rayleigh_scattering.y / kEarthRayleighGreen);
     const double radius = a.bottom_radius;              // km
     const double top = a.top_radius - a.bottom_radius;  // km
     const double scale_height = atmosphere.rayleigh_scale_height / kKm;

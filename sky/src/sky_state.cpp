@@ -54,7 +54,7 @@ double LambertSphereIlluminanceFactor(double albedo, double phase_angle, double 
 
 SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
                       const Atmosphere& atmosphere, const geo::Attitude& attitude,
-                      double vertical_fov, double aspect) {
+                      double vertical_fov, double aspect, const geo::RefractionTable* refraction) {
     SkyState state;
     Camera& camera = state.view.camera;
     camera.position = glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + observer.height_m());
@@ -74,6 +74,14 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     s.moon.angular_radius = 0.5 * e.moon.angular_diameter;
     s.lights.moon_enabled = true;
     s.lights.moon_direction = s.moon.direction;
+    if (refraction) {
+        const auto place = [&](const glm::dvec3& direction) {
+            return ApparentPlace{ApparentDirection(*refraction, direction),
+                                 refraction->VerticalScale(std::asin(direction.z))};
+        };
+        s.sun_apparent = place(s.lights.sun_direction);
+        s.moon.apparent = place(s.moon.direction);
+    }
     s.lights.moon_illuminance = s.lights.sun_illuminance *
                                 LambertSphereIlluminanceFactor(
                                     s.moon.albedo, e.moon_phase.phase_angle, s.moon.angular_radius);
@@ -116,9 +124,12 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
         s.lights.moon_illuminance *= s.moon.sunlight;
     }
 
+    const auto seen = [&](const glm::dvec3& direction) {
+        return refraction ? ApparentDirection(*refraction, direction) : direction;
+    };
     s.stars.reserve(e.stars.size());
     for (const geo::StarState& star : e.stars) {
-        s.stars.push_back({star.horizontal.direction_enu,
+        s.stars.push_back({seen(star.horizontal.direction_enu),
                            star.illuminance_lux * StarColour(star.star->b_minus_v)});
     }
     // Planets are drawn like stars (their disks, at most Venus's 66", are under a pixel at the
@@ -126,9 +137,31 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     const double min_elevation = MinStarElevation(atmosphere.bottom_radius, observer.height_m());
     for (const geo::PlanetPosition& planet : e.planets) {
         if (planet.topocentric.horizontal.elevation < min_elevation) continue;
-        s.stars.push_back({planet.topocentric.horizontal.direction_enu, PlanetIlluminance(planet)});
+        s.stars.push_back(
+            {seen(planet.topocentric.horizontal.direction_enu), PlanetIlluminance(planet)});
     }
     return state;
+}
+
+glm::dvec3 ApparentDirection(const geo::RefractionTable& refraction, const glm::dvec3& direction) {
+    const double horizontal = std::hypot(direction.x, direction.y);
+    const std::optional<double> apparent =
+        refraction.Apparent(std::asin(std::clamp(direction.z, -1.0, 1.0)));
+    if (!apparent || horizontal < 1e-12) return direction;
+    const double scale = std::cos(*apparent) / horizontal;
+    return {direction.x * scale, direction.y * scale, std::sin(*apparent)};
+}
+
+const geo::RefractionTable& RefractionCache::Get(const geo::RefractionAir& air, double height_m,
+                                                 double planet_radius_m) {
+    // The dip sqrt(2 h / R) moves by dh / sqrt(2 h R): 5" (2.4e-5 rad) or 0.5 m.
+    const double tolerance =
+        std::max(0.5, 2.4e-5 * std::sqrt(2.0 * std::max(height_m, 0.0) * planet_radius_m));
+    if (!table_ || !(table_->air() == air) || table_->planet_radius_m() != planet_radius_m ||
+        std::abs(table_->height_m() - height_m) > tolerance) {
+        table_.emplace(air, height_m, planet_radius_m);
+    }
+    return *table_;
 }
 
 double MinStarElevation(double bottom_radius, double height_m) {
@@ -142,15 +175,23 @@ void ValidateProjection(double vertical_fov, double aspect) {
 }
 
 SkyFrame BuildSkyFrame(const geo::Ephemeris& calculator, const FrameSetup& setup,
-                       const Atmosphere& atmosphere) {
+                       const Atmosphere& atmosphere, RefractionCache* cache) {
     setup.Validate();
     SkyFrame frame;
     geo::EphemerisOptions options;
     options.star_min_elevation =
         MinStarElevation(atmosphere.bottom_radius, setup.observer.height_m());
     frame.ephemeris = calculator.Compute(setup.time, setup.observer, options);
-    static_cast<SkyState&>(frame) = MakeSkyState(frame.ephemeris, setup.observer, atmosphere,
-                                                 setup.attitude, setup.vertical_fov, setup.aspect);
+    std::optional<geo::RefractionTable> own;
+    const geo::RefractionTable* refraction = nullptr;
+    if (setup.refraction) {
+        const double height = setup.observer.height_m();
+        refraction = cache ? &cache->Get(*setup.refraction, height, atmosphere.bottom_radius)
+                           : &own.emplace(*setup.refraction, height, atmosphere.bottom_radius);
+    }
+    static_cast<SkyState&>(frame) =
+        MakeSkyState(frame.ephemeris, setup.observer, atmosphere, setup.attitude,
+                     setup.vertical_fov, setup.aspect, refraction);
     if (setup.enu_from_view) frame.view.camera.world_from_view = *setup.enu_from_view;
     return frame;
 }

@@ -27,6 +27,7 @@
 #include "zenith/sim/sky_system.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/sky_state.h"
+#include "zenith/weather/altimetry.h"
 #include "zenith/weather/cloud_weather.h"
 #include "zenith/weather/metar.h"
 
@@ -219,15 +220,22 @@ TEST_F(MetarFramesTest, ClearReportsRenderTheClearSkyBitForBit) {
         sky_->Update();
         return sky_->RenderOffscreen({kSize, kSize});
     };
-    sky_->SetWeather(sky::clouds::Weather{});
-    sky_->SetVisibility(std::nullopt);
-    const sky::LutImage clear = frame();
-    ASSERT_EQ(clear.texels.size(), static_cast<std::size_t>(kSize * kSize));
+    // The clear sky seen through the report's air: its QNH and temperature refract the stars
+    // and the disks (SetMetar sets them too), and nothing else of a clear report may show.
+    const auto clear_frame = [&](const weather::Metar& report) {
+        sky_->SetWeather(sky::clouds::Weather{});
+        sky_->SetVisibility(std::nullopt);
+        sky_->SetRefraction(weather::RefractionAirOf(weather::StationAirOf(report, 0.0)));
+        return frame();
+    };
     for (const char* report :
          {"EGLL 210900Z 24012KT CAVOK 18/09 Q1018", "KJFK 210851Z 18010KT 10SM SKC 22/12 A3001",
           "EDDF 210850Z 27005KT 9999 NSC 17/08 Q1020", "KSFO 210856Z 30012KT 10SM CLR 16/10 A2995",
           "LFPG 210900Z AUTO 22008KT 9999 NCD 16/09 Q1019"}) {
-        sky_->SetMetar(weather::DecodeMetar(report), 0.0);
+        const weather::Metar decoded = weather::DecodeMetar(report);
+        const sky::LutImage clear = clear_frame(decoded);
+        ASSERT_EQ(clear.texels.size(), static_cast<std::size_t>(kSize * kSize));
+        sky_->SetMetar(decoded, 0.0);
         EXPECT_FALSE(sky_->has_clouds()) << report;
         const sky::LutImage metar = frame();
         ASSERT_EQ(metar.texels.size(), clear.texels.size());
@@ -242,13 +250,17 @@ TEST_F(MetarFramesTest, ClearReportsRenderTheClearSkyBitForBit) {
         EXPECT_EQ(differing, 0u) << report;
     }
     // The comparison sees a change: haze at 5 km is not the clear sky.
-    sky_->SetMetar(weather::DecodeMetar("EDDF 210850Z 27005KT 5000 HZ NSC 17/08 Q1020"), 0.0);
+    const weather::Metar hazy =
+        weather::DecodeMetar("EDDF 210850Z 27005KT 5000 HZ NSC 17/08 Q1020");
+    const sky::LutImage clear = clear_frame(hazy);
+    sky_->SetMetar(hazy, 0.0);
     const sky::LutImage haze = frame();
     EXPECT_NE(std::memcmp(haze.texels.data(), clear.texels.data(),
                           clear.texels.size() * sizeof(glm::vec4)),
               0);
     sky_->SetWeather(sky::clouds::Weather{});
     sky_->SetVisibility(std::nullopt);
+    sky_->SetRefraction(geo::RefractionAir{});
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/inspection.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
+#include "zenith/sky/sky_state.h"
 
 namespace zenith::sky {
 namespace {
@@ -250,7 +251,7 @@ TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {
     Lights lights;
     lights.sun_direction = right;  // perpendicular to the line of sight: quarter phase
     SkyScene scene = test::LightsOnly(lights, false);
-    scene.moon = {true, forward, 0.0045, 0.12};
+    scene.moon = {true, forward, 0.0045, 0.12, glm::dvec3(1.0), std::nullopt};
     const LutImage frame = test::DrawFrame(gpu, scene, {camera}, {128, 128});
     double left_sum = 0.0, right_sum = 0.0;
     for (int y = 0; y < 128; ++y) {
@@ -258,6 +259,62 @@ TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {
     }
     EXPECT_GT(right_sum, 0.0);
     EXPECT_LT(left_sum, 1e-3 * right_sum);
+}
+
+// The setting Sun through refraction (geo::RefractionTable on the ground): its disk drawn
+// around the apparent elevation, squeezed vertically by the table's scale, its width kept.
+// Measured on the frame: the disk's rows and columns above half the peak luminance, in a clear
+// atmosphere (the air's transmittance would dim the lower limb more and move the edge).
+TEST_F(AtmosphereGlTest, RefractedSunIsLiftedAndSqueezed) {
+    Atmosphere clear;
+    clear.rayleigh_scattering = glm::dvec3(1e-12);
+    clear.mie_scattering = glm::dvec3(1e-12);
+    clear.mie_absorption = glm::dvec3(0.0);
+    clear.absorption_extinction = glm::dvec3(0.0);
+    AtmosphereRenderer gpu(clear);
+    constexpr double kDeg = 0.017453292519943295;
+    Camera camera = CameraAt(2.0);  // looking along +x at the horizon
+    camera.vertical_fov = 2.0 * kDeg;
+    camera.aspect = 1.0;
+    const geo::RefractionTable refraction(geo::RefractionAir{}, 2.0, 6360e3);
+    const double geometric = 0.1 * kDeg;
+    Lights lights;
+    lights.sun_direction = glm::dvec3(std::cos(geometric), 0.0, std::sin(geometric));
+    SkyScene scene = test::LightsOnly(lights);
+    scene.sun_apparent = ApparentPlace{ApparentDirection(refraction, lights.sun_direction),
+                                       refraction.VerticalScale(geometric)};
+    constexpr int kSize = 512;
+    const LutImage frame = test::DrawFrame(gpu, scene, {camera}, {kSize, kSize});
+    double peak = 0.0;
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) peak = std::max(peak, Luminance(frame.at(x, y)));
+    }
+    int top = kSize, bottom = -1, left = kSize, right = -1;
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            if (Luminance(frame.at(x, y)) < 0.5 * peak) continue;
+            top = std::min(top, y);
+            bottom = std::max(bottom, y);
+            left = std::min(left, x);
+            right = std::max(right, x);
+        }
+    }
+    ASSERT_GE(bottom, top);
+    const double pixel = camera.vertical_fov / kSize;  // rad, near the centre
+    // Row 0 is the bottom of the frame (GL's origin): elevation of a row's centre.
+    const double centre = (0.5 * (top + bottom) + 0.5 - 0.5 * kSize) * pixel;
+    const double height = (bottom - top + 1) * pixel;
+    const double width = (right - left + 1) * pixel;
+    const double apparent = *refraction.Apparent(geometric);
+    const double scale = refraction.VerticalScale(geometric);
+    std::printf(
+        "refracted Sun: centre %.4f deg (apparent %.4f, geometric %.4f), height / width "
+        "%.3f (scale %.3f)\n",
+        centre / kDeg, apparent / kDeg, geometric / kDeg, height / width, scale);
+    EXPECT_GT(apparent - geometric, 0.4 * kDeg);  // ~0.45 deg on the horizon
+    EXPECT_NEAR(centre, apparent, 0.5 * pixel);
+    EXPECT_NEAR(height / width, scale, 0.02);
+    EXPECT_LT(scale, 0.9);
 }
 
 TEST_F(AtmosphereGlTest, MobileSettingsRenderTheSameSky) {

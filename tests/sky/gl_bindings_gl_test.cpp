@@ -181,7 +181,11 @@ void AddFrame(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, night_sky_enabled);
     ZENITH_SAME(S, star_visibility);
     ZENITH_SAME(S, environment_size);
+    ZENITH_SAME(S, sun_disk_scale);
+    ZENITH_SAME(S, moon_disk_scale);
+    ZENITH_SAME(S, sun_disk_direction);
     ZENITH_SAME(S, frame_padding1);
+    ZENITH_SAME(S, moon_disk_direction);
     ZENITH_SAME(S, frame_padding2);
 }
 

@@ -150,3 +150,68 @@ TEST(SkyFrame, BuildsTheSameFrameAsMakeSkyStateAndChecksTheProjection) {
 
 }  // namespace
 }  // namespace zenith::sky
+
+namespace zenith::sky {
+namespace {
+
+// The frame's bodies seen through the air (FrameSetup::refraction): every star lifted to the
+// table's apparent elevation with its azimuth kept, the disks' apparent places set and their
+// light still coming from the geometric directions; none of it without refraction.
+TEST(SkyFrame, RefractionLiftsWhatIsSeenAndKeepsTheLight) {
+    std::optional<geo::StarCatalog> catalog;
+    try {
+        catalog = geo::StarCatalog::Load(4.0);
+    } catch (const geo::CatalogError& e) {
+        GTEST_SKIP() << "star catalogue not installed: " << e.what();
+    }
+    FrameSetup setup;
+    setup.time = geo::TimeFromIso8601("2024-06-21T19:30:00Z");  // the Sun 0.8 deg below
+    setup.observer = geo::Observer(46.45, 6.6, 10000.0);
+    const Atmosphere earth;
+    const SkyFrame seen = BuildSkyFrame(geo::Ephemeris(&*catalog), setup, earth);
+    setup.refraction.reset();
+    const SkyFrame geometric = BuildSkyFrame(geo::Ephemeris(&*catalog), setup, earth);
+    const geo::RefractionTable table(geo::RefractionAir{}, 10000.0, earth.bottom_radius);
+
+    ASSERT_EQ(seen.scene.stars.size(), geometric.scene.stars.size());
+    ASSERT_GT(seen.scene.stars.size(), 100u);
+    int lifted = 0;
+    for (std::size_t i = 0; i < seen.scene.stars.size(); ++i) {
+        const glm::dvec3& a = seen.scene.stars[i].direction;
+        const glm::dvec3& g = geometric.scene.stars[i].direction;
+        EXPECT_NEAR(glm::length(a), 1.0, 1e-12);
+        EXPECT_NEAR(std::atan2(a.x, a.y), std::atan2(g.x, g.y), 1e-9);
+        const std::optional<double> apparent = table.Apparent(std::asin(g.z));
+        EXPECT_NEAR(std::asin(a.z), apparent.value_or(std::asin(g.z)), 1e-12);
+        lifted += std::asin(a.z) > std::asin(g.z) ? 1 : 0;
+    }
+    EXPECT_GT(lifted, static_cast<int>(seen.scene.stars.size()) * 9 / 10);
+
+    EXPECT_EQ(seen.scene.lights.sun_direction, geometric.scene.lights.sun_direction);
+    ASSERT_TRUE(seen.scene.sun_apparent);
+    const double sun = std::asin(seen.scene.lights.sun_direction.z);
+    EXPECT_NEAR(std::asin(seen.scene.sun_apparent->direction.z), *table.Apparent(sun), 1e-12);
+    EXPECT_NEAR(seen.scene.sun_apparent->vertical_scale, table.VerticalScale(sun), 1e-12);
+    ASSERT_TRUE(seen.scene.moon.apparent);
+    EXPECT_EQ(seen.scene.moon.direction, geometric.scene.moon.direction);
+    EXPECT_FALSE(geometric.scene.sun_apparent);
+    EXPECT_FALSE(geometric.scene.moon.apparent);
+}
+
+// The cache traces a new table only when the dip would move by more than 5".
+TEST(SkyFrame, RefractionCacheKeepsTheTableWhileTheHorizonHolds) {
+    RefractionCache cache;
+    const geo::RefractionAir air;
+    EXPECT_EQ(cache.Get(air, 10000.0, 6360e3).height_m(), 10000.0);
+    EXPECT_EQ(cache.Get(air, 10005.0, 6360e3).height_m(), 10000.0);  // 8.7 m allowed at 10 km
+    EXPECT_EQ(cache.Get(air, 10020.0, 6360e3).height_m(), 10020.0);
+    geo::RefractionAir warm;
+    warm.sea_level_temperature_c = 30.0;
+    EXPECT_EQ(cache.Get(warm, 10020.0, 6360e3).air(), warm);
+    EXPECT_EQ(cache.Get(air, 100.0, 6360e3).height_m(), 100.0);
+    EXPECT_EQ(cache.Get(air, 100.4, 6360e3).height_m(), 100.0);
+    EXPECT_EQ(cache.Get(air, 101.0, 6360e3).height_m(), 101.0);  // 0.5 m at 100 m
+}
+
+}  // namespace
+}  // namespace zenith::sky

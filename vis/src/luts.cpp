@@ -346,7 +346,7 @@ Slice MakeSlice(const Luts& luts, LutKind kind, Channel channel, int slice, int 
                                   channel_name, luts.atmosphere.name);
             s.x_title = "view zenith angle (deg)";
             s.y_title = "altitude (km)";
-            s.value_title = "T";
+            s.value_title = std::string("T");  // not = "T": GCC 12 -Wrestrict false positive
             grid(0.0, 180.0, 0.0, top / kKm);
             const ref::Texture2D texture = ref::FromImage(luts.transmittance);
             for (int j = 0; j < s.height; ++j) {

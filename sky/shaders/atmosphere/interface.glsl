@@ -60,8 +60,13 @@ layout(std140, binding = kFrameBlockBinding) uniform FrameBlock {
     int night_sky_enabled;
     int star_visibility;
     int environment_size;  // texels per side of the environment's cube faces (environment.h)
-    // std140 rounds the block up to 16 bytes
+    // Where refraction shows the disks (ApparentPlace): the apparent centres and vertical
+    // scales; the geometric ones are lights.light[0].direction and moon_direction.
+    float sun_disk_scale;
+    float moon_disk_scale;
+    vec3 sun_disk_direction;
     int frame_padding1;
+    vec3 moon_disk_direction;
     int frame_padding2;
 };
 

@@ -26,6 +26,26 @@ vec3 SunLimbDarkening(float center_to_edge) {
     return factor / disk_mean;
 }
 
+// The direction in the unrefracted sky of what is seen along `direction` near a disk that
+// refraction shows at `apparent` (its geometric centre `geometric`), squeezed vertically by
+// `vertical_scale` (ApparentPlace): the offsets from the apparent centre along the local
+// horizontal and vertical, the vertical one unsqueezed, put around the geometric centre. The
+// identity without refraction. `up` is the camera's zenith.
+vec3 UnrefractedDirection(vec3 direction, vec3 apparent, vec3 geometric, float vertical_scale,
+                          vec3 up) {
+    vec3 vertical = up - apparent * dot(up, apparent);
+    vec3 geometric_vertical = up - geometric * dot(up, geometric);
+    if (dot(vertical, vertical) < 1e-12 || dot(geometric_vertical, geometric_vertical) < 1e-12) {
+        return direction;  // at the zenith, where refraction vanishes
+    }
+    vertical = normalize(vertical);
+    geometric_vertical = normalize(geometric_vertical);
+    return normalize(dot(direction, apparent) * geometric +
+                     dot(direction, cross(vertical, apparent)) *
+                         cross(geometric_vertical, geometric) +
+                     dot(direction, vertical) / vertical_scale * geometric_vertical);
+}
+
 // Luminance of the Moon's disk along `direction`: a Lambertian sphere lit by the Sun, so the lit
 // side faces the Sun whatever the phase (Hillaire 2016 §4.2 leaves this to the artist).
 vec3 MoonLuminance(vec3 direction) {
@@ -74,16 +94,22 @@ void main() {
     if (geometry) discard;  // behind the host's geometry
   #endif
     vec3 beyond = vec3(0.0);
-    float cos_sun = dot(direction, lights.light[0].direction);
+    // Each disk in its own unrefracted sky, so its shape, limb, phase and eclipse are computed
+    // there (the transmittance below is along the ray seen).
+    vec3 sun_sky = UnrefractedDirection(direction, sun_disk_direction, lights.light[0].direction,
+                                        sun_disk_scale, sky_view_up);
+    vec3 moon_sky = UnrefractedDirection(direction, moon_disk_direction, moon_direction,
+                                         moon_disk_scale, sky_view_up);
+    float cos_sun = dot(sun_sky, lights.light[0].direction);
     if (draw_sun_disk != 0 && lights.eclipse != 0) {
-        beyond += EclipsedSunLuminance(direction);
+        beyond += EclipsedSunLuminance(sun_sky);
     } else if (draw_sun_disk != 0 && cos_sun > cos_sun_radius) {
         float angle = acos(clamp(cos_sun, -1.0, 1.0));
         float solid_angle = 2.0 * kPi * (1.0 - cos_sun_radius);
         beyond += lights.light[0].illuminance / solid_angle *
                   SunLimbDarkening(angle / atmosphere.sun_angular_radius);
     }
-    if (moon_enabled != 0) beyond += MoonLuminance(direction);
+    if (moon_enabled != 0) beyond += MoonLuminance(moon_sky);
     out_luminance = vec4(beyond * TransmittanceToSpace(atmosphere, transmittance_texture, camera_km,
                                                        camera_altitude_km, direction),
                          0.0);

@@ -122,10 +122,16 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     int night_sky_enabled;
     int star_visibility;
     int environment_size;
+    float sun_disk_scale;
+    float moon_disk_scale;
+    glm::vec3 sun_disk_direction;
     int frame_padding1;
+    glm::vec3 moon_disk_direction;
     int frame_padding2;
 };
-static_assert(sizeof(FrameUniforms) == 208);
+static_assert(sizeof(FrameUniforms) == 240);
+static_assert(offsetof(FrameUniforms, sun_disk_direction) == 208);
+static_assert(offsetof(FrameUniforms, moon_disk_direction) == 224);
 static_assert(offsetof(FrameUniforms, moon_sunlight) == 176);
 static_assert(offsetof(FrameUniforms, night_sky_enabled) == 188);
 static_assert(offsetof(FrameUniforms, scene_near_m) == 160);

@@ -41,6 +41,9 @@ struct FrameRequest {
     // (zenith/sky/night_sky.h).
     sky::NightSkySettings night_sky;
     bool force_ray_march = false;
+    // The Sun, Moon, planets and stars seen through the air's refraction (PresetRefraction's
+    // air, with the METAR's QNH and temperature when there is one); false: geometric places.
+    bool refraction = true;
     sky::LutSettings lut_settings;
     // Clouds: a built-in weather preset (clear, scattered_cumulus, broken, overcast_stratus,
     // cumulonimbus, cirrus) or a weather JSON file. A single frame has no history to reproject, so

@@ -27,6 +27,7 @@
 
 #include "zenith/base/error.h"
 #include "zenith/geo/ephemeris.h"
+#include "zenith/geo/refraction.h"
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/atmosphere_renderer.h"
@@ -46,6 +47,11 @@ using GetProcAddressFn = sky::gl::GetProcAddressFn;
 // catalogue, ...) and what it does instead. One line of text, no trailing newline.
 using NoticeFn = std::function<void(const std::string& message)>;
 
+// The air of refraction for a preset: ISA's for "earth"; none for the other built-in presets
+// (Mars's thin CO2 and the thick test atmosphere are not Earth's air) and for preset files, for
+// which a host sets its own (SkySystemSettings::refraction, SkySystem::SetRefraction).
+std::optional<geo::RefractionAir> PresetRefraction(const std::string& preset);
+
 struct SkySystemSettings {
     std::string preset = "earth";   // built-in preset name or JSON file
     sky::LutSettings lut_settings;  // LUT sizes and step counts
@@ -64,6 +70,10 @@ struct SkySystemSettings {
     // (geo::Ephemeris), so a frame depends only on its own time and place; the places drift
     // < 0.02"/s. 0: exact every frame.
     double star_refresh_s = 1.0;
+    // The air the Sun, Moon, planets and stars are seen through (zenith/geo/refraction.h):
+    // ISA's until SetMetar or SetRefraction gives another; none draws them at their geometric
+    // places (another planet's preset: this is Earth's air).
+    std::optional<geo::RefractionAir> refraction = geo::RefractionAir{};
     // Clouds: a weather preset name or JSON file ("clear": none), and how they are drawn. The
     // default traces one pixel in 16 per frame and reprojects the rest (a host's frame loop).
     std::string weather = "clear";
@@ -227,9 +237,13 @@ class SkySystem {
     // with sky::ArtificialZenithBrightness(sky::BortleZenithBrightness(n))). Throws
     // zenith::ArgumentError for a field out of range.
     void SetNightSky(const sky::NightSkySettings& night_sky);
+    // The air refraction is traced through from the next frame on (none: geometric places).
+    // Throws zenith::ArgumentError for a pressure or temperature out of range.
+    void SetRefraction(const std::optional<geo::RefractionAir>& air);
     // The weather of a METAR report (weather::DecodeMetar): its layers through SetWeather (bases
-    // above station_elevation_m, metres above the ellipsoid) and its visibility through
-    // SetVisibility. Returns the decoder's warnings and the choices the mapping made.
+    // above station_elevation_m, metres above the ellipsoid), its visibility through
+    // SetVisibility, and its QNH and temperature as the air of refraction (unless refraction is
+    // off). Returns the decoder's warnings and the choices the mapping made.
     std::vector<std::string> SetMetar(const weather::Metar& report, double station_elevation_m,
                                       const sky::CloudSettings& settings = {});
     // Clouds from now on (an empty Weather: none). Layer altitudes are metres above the WGS84

@@ -60,6 +60,7 @@ struct CloudView {
 struct SkyScene {
     Lights lights;
     bool draw_sun_disk = true;  // drawn as a point (energy-conserving) when below a pixel
+    std::optional<ApparentPlace> sun_apparent;  // where the disk is drawn; none: sun_direction
     MoonDisk moon;
     std::vector<StarPoint> stars;  // splatted into the pixel holding each, as E / pixel solid angle
     // Each pixel's stars are drawn in the share the eye sees against the sky behind them

@@ -41,10 +41,10 @@ glm::dvec3 EclipseAroundIlluminance(const Atmosphere& atmosphere, const Lights& 
 //  - A ray grazing the planet at tangent height h is bent by delta(h) = nu0 exp(-h/H)
 //    sqrt(2 pi (R + h) / H) (the refraction of a grazing ray through an exponential atmosphere,
 //    as in stellar-occultation theory, e.g. Elliot & Olkin 1996), with H the atmosphere's
-//    Rayleigh scale height and nu0 the ground's refractivity: 2.77e-4 for Earth's air at 15 C,
-//    1013 hPa, 550 nm (Ciddor 1996), scaled by the square root of the Rayleigh scattering
-//    coefficient for other atmospheres (beta_R ~ (n - 1)^2 / N at a fixed N). Earth: 1.15 deg
-//    at the ground, the ~70' of the literature.
+//    Rayleigh scale height and nu0 the ground's refractivity: geo::kAirRefractivity for Earth's
+//    air at 15 C, 1013 hPa, 550 nm (Edlen 1966), scaled by the square root of the Rayleigh
+//    scattering coefficient for other atmospheres (beta_R ~ (n - 1)^2 / N at a fixed N).
+//    Earth: 1.15 deg at the ground, the ~70' of the literature.
 //  - It arrives at rho = R + h - delta(h) D from the axis (on the far side when negative); the
 //    light of the ring of tangent heights [h, h + dh] spreads over the ring [rho, rho + drho],
 //    so the intensity is T(h) (R + h) / (|rho| drho/dh), summed over the heights that reach the

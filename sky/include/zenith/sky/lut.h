@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 #include "zenith/base/error.h"
@@ -91,6 +92,15 @@ struct Lights {
     } eclipse;
 };
 
+// Where the air's refraction shows a disk (MakeSkyState, from geo::RefractionTable): its
+// centre's apparent direction, and how much refraction squeezes it vertically (the vertical
+// scale, d apparent / d geometric elevation: ~0.8 for the Sun on a sea-level horizon). The disk
+// is lit, phased and eclipsed in its geometric direction and drawn here.
+struct ApparentPlace {
+    glm::dvec3 direction{0.0, 0.0, 1.0};  // unit
+    double vertical_scale = 1.0;
+};
+
 // The Moon drawn as a Lambertian sphere lit by the Sun (its phase and bright limb follow).
 struct MoonDisk {
     bool enabled = false;
@@ -100,6 +110,7 @@ struct MoonDisk {
     // Fraction of the Sun's light (per channel) reaching the Moon: < 1 in a lunar eclipse, the
     // sunlight past the Earth's disk plus what the air refracts into the umbra (MakeSkyState).
     glm::dvec3 sunlight{1.0};
+    std::optional<ApparentPlace> apparent;  // none: drawn in `direction`
 };
 
 // A point source: a star, or the Sun when its disk is smaller than a pixel.

@@ -19,6 +19,7 @@
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/frames.h"
 #include "zenith/geo/observer.h"
+#include "zenith/geo/refraction.h"
 #include "zenith/geo/time.h"
 #include "zenith/sky/atmosphere.h"
 #include "zenith/sky/frame.h"
@@ -57,10 +58,20 @@ double MinStarElevation(double bottom_radius, double height_m);
 
 // Builds the renderer's view of the sky from an ephemeris computed for `observer`; its stars
 // are the ephemeris's stars, then the planets above MinStarElevation. Sun and Moon
-// illuminances scale with their distances (solar_illuminance is for 1 au).
+// illuminances scale with their distances (solar_illuminance is for 1 au). With `refraction`
+// (a table for the observer's height), the stars and planets are drawn at their apparent
+// places and the Sun's and Moon's disks at theirs, squeezed (SkyScene::sun_apparent,
+// MoonDisk::apparent); their light still comes from their geometric directions (the
+// atmosphere's LUTs march straight rays), and the drawn ground's horizon stays the geometric
+// one (up to 0.1 deg below the refracted horizon at 10 km). Without it, all are geometric.
 SkyState MakeSkyState(const geo::SkyEphemeris& ephemeris, const geo::Observer& observer,
                       const Atmosphere& atmosphere, const geo::Attitude& attitude,
-                      double vertical_fov, double aspect);
+                      double vertical_fov, double aspect,
+                      const geo::RefractionTable* refraction = nullptr);
+
+// The direction (unit, ENU) of a body seen through refraction: its elevation the table's
+// apparent one, its azimuth kept; unchanged where the table says it is behind the ground.
+glm::dvec3 ApparentDirection(const geo::RefractionTable& refraction, const glm::dvec3& direction);
 
 // Throws zenith::ArgumentError for a vertical field of view (rad) outside (0, 180) deg (field
 // "fov_deg", the message in degrees) or an aspect (width / height) that is not positive and
@@ -76,17 +87,36 @@ struct FrameSetup {
     std::optional<glm::dmat3> enu_from_view;
     double vertical_fov = 1.0471975511965976;  // rad (60 deg)
     double aspect = 16.0 / 9.0;                // the viewport's width / height
+    // The air the bodies are seen through (geo/refraction.h; a METAR's QNH and temperature, or
+    // ISA's): Earth's. None: every body at its geometric place (another planet's sky).
+    std::optional<geo::RefractionAir> refraction = geo::RefractionAir{};
 
-    void Validate() const { ValidateProjection(vertical_fov, aspect); }
+    void Validate() const {
+        ValidateProjection(vertical_fov, aspect);
+        if (refraction) refraction->Validate();
+    }
 };
 
 struct SkyFrame : SkyState {
     geo::SkyEphemeris ephemeris;  // at setup.time for setup.observer, stars above the dip
 };
 
+// The refraction table of the last frames, traced again (0.8 ms) only when the air or the
+// planet changes or the observer's height moves by more than keeps the horizon's dip, the
+// quantity that changes fastest with height, within 5" (0.5 m at 100 m, 9 m at 10 km).
+class RefractionCache {
+  public:
+    const geo::RefractionTable& Get(const geo::RefractionAir& air, double height_m,
+                                    double planet_radius_m);
+
+  private:
+    std::optional<geo::RefractionTable> table_;
+};
+
 // The one frame builder: the ephemeris (from `calculator`, which holds the star catalogue and
-// caches their places), then MakeSkyState. Validates the setup first.
+// caches their places), then MakeSkyState with setup.refraction's table (from `cache` when
+// given, which a frame loop keeps). Validates the setup first.
 SkyFrame BuildSkyFrame(const geo::Ephemeris& calculator, const FrameSetup& setup,
-                       const Atmosphere& atmosphere);
+                       const Atmosphere& atmosphere, RefractionCache* cache = nullptr);
 
 }  // namespace zenith::sky
