@@ -529,14 +529,39 @@ glm::dvec3 SkySystem::SkyLuminanceEcef(const glm::dvec3& direction_ecef) const {
 }
 
 SkySystem::Fog SkySystem::FogEnu(const glm::dvec3& direction_enu, double distance_m) const {
-    const glm::dvec4 air = impl_->renderer->AirInScattering(impl_->frame.view.camera.position,
-                                                            direction_enu, distance_m);
+    const Impl& d = *impl_;
+    const glm::dvec3& camera = d.frame.view.camera.position;
+    const glm::dvec4 air = d.renderer->AirInScattering(camera, direction_enu, distance_m);
     Fog fog;
     fog.in_scattered = glm::dvec3(air);
     fog.transmittance = air.a;
-    if (distance_m > 0.0 && air.a > 0.0 && air.a < 1.0) {
-        fog.density_per_m = -std::log(air.a) / distance_m;
-        fog.colour = fog.in_scattered / (1.0 - air.a);
+    // Rain and snow on the way (the shafts under a raining layer): they dim the air's light
+    // evenly along the path, and scatter the light around them. Along a path through a
+    // homogeneous medium the scattered light is L (1 - T), L what an endless path gives; with a
+    // phase function symmetric about the horizontal that is the mean of the light from above
+    // and from below: the sky as the clouds' shade saw it from the ground (its mean over the
+    // upper hemisphere, the rain's own light in it) and the ground's albedo E / pi.
+    const double rain = d.renderer->PrecipitationTransmittance(camera, direction_enu, distance_m,
+                                                               d.frame.scene.clouds);
+    const std::optional<sky::CloudShade> shade = d.renderer->LatestCloudShade();
+    if (rain < 1.0 && shade) {
+        const SkyLighting& l = d.lighting;
+        const glm::dvec3 down = l.sun_illuminance * std::max(l.sun_direction_enu.z, 0.0) +
+                                l.moon_illuminance * std::max(l.moon_direction_enu.z, 0.0) +
+                                l.sky_irradiance;
+        const glm::dvec3 above =
+            shade->luminance +
+            (l.sky_irradiance - glm::pi<double>() * shade->ground_luminance) / glm::pi<double>();
+        const glm::dvec3 around =
+            0.5 * (above + d.atmosphere.ground_albedo * down / glm::pi<double>());
+        const double depth = -std::log(rain);
+        fog.in_scattered =
+            fog.in_scattered * (depth > 1e-9 ? (1.0 - rain) / depth : 1.0) + (1.0 - rain) * around;
+        fog.transmittance *= rain;
+    }
+    if (distance_m > 0.0 && fog.transmittance > 0.0 && fog.transmittance < 1.0) {
+        fog.density_per_m = -std::log(fog.transmittance) / distance_m;
+        fog.colour = fog.in_scattered / (1.0 - fog.transmittance);
     }
     return fog;
 }

@@ -61,6 +61,30 @@ struct CpuClouds {
         }
         return std::exp(-optical_depth);
     }
+
+    // Through the precipitation shafts of `weather` over `distance` km: `steps` midpoint
+    // samples of their density (homogeneous in height, so no finer march is needed).
+    double PrecipitationTransmittance(const clouds::Weather& weather, const CloudSettings& settings,
+                                      double bottom_radius, const glm::dvec3& position,
+                                      const glm::dvec3& direction, double distance,
+                                      const CloudView& view, int steps) const {
+        const glm::dvec3 origin = view.weather_from_world * (position / kKm);
+        const glm::dvec3 toward = view.weather_from_world * glm::normalize(direction);
+        const double step = distance / steps;
+        const double extinction = settings.extinction * kKm;
+        double optical_depth = 0.0;
+        for (std::size_t i = 0; i < weather.layers.size(); ++i) {
+            if (!weather.layers[i].precipitation_shaft) continue;
+            const auto layer = MakeCloudLayerParameters<ref::CloudLayerParameters>(
+                weather.layers[i], tops[i], settings, bottom_radius, view.time);
+            for (int k = 0; k < steps; ++k) {
+                const glm::dvec3 p = origin + toward * ((k + 0.5) * step);
+                optical_depth += ref::SampleCloudDensity(layer, maps[i], shape, detail, p).density *
+                                 extinction * step;
+            }
+        }
+        return std::exp(-optical_depth);
+    }
 };
 
 CloudShade ShadeOf(const gl::LightUniforms& u) {
@@ -82,7 +106,8 @@ struct AtmosphereRenderer::Impl {
     std::unique_ptr<CpuClouds> cpu_clouds;  // the same weather's density, for CPU queries
     // With clouds: the light block's cloud shade for LatestCloudShade.
     std::unique_ptr<gl::FencedReadback> shade_readback;
-    clouds::Weather weather;  // as last set (also when clear)
+    clouds::Weather weather;        // as last set (also when clear)
+    clouds::Weather drawn_weather;  // with its precipitation shafts (WithPrecipitationShafts)
     CloudSettings cloud_settings;
     std::unique_ptr<EnvironmentPasses> environment;  // with SetEnvironment's size > 0
     EnvironmentSettings environment_settings;
@@ -123,16 +148,19 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     // Built before the old passes go, so a bad map leaves the previous weather in place.
     std::unique_ptr<CloudPasses> passes;
     std::unique_ptr<CpuClouds> cpu;
-    if (!weather.layers.empty()) {
+    // What is drawn: the layers and the rain or snow under the lowest raining one.
+    static_assert(clouds::kMaxDrawnLayers == static_cast<std::size_t>(kCloudMaxLayers));
+    clouds::Weather drawn = clouds::WithPrecipitationShafts(weather);
+    if (!drawn.layers.empty()) {
         std::vector<clouds::WeatherMap> maps;
         std::vector<double> tops;
-        for (const clouds::CloudLayer& layer : weather.layers) {
+        for (const clouds::CloudLayer& layer : drawn.layers) {
             maps.push_back(clouds::BuildWeatherMap(layer));
             tops.push_back(clouds::LayerTopFraction(layer, maps.back()));
         }
         const clouds::CloudNoiseLoad noise =
             clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory);
-        passes = std::make_unique<CloudPasses>(weather, settings, maps, tops, noise.noise);
+        passes = std::make_unique<CloudPasses>(drawn, settings, maps, tops, noise.noise);
         cpu = std::make_unique<CpuClouds>(maps, std::move(tops), noise.noise);
         d.atmosphere.BuildCloudComposites();
     }
@@ -141,6 +169,7 @@ void AtmosphereRenderer::SetWeather(const clouds::Weather& weather, const CloudS
     d.shade_readback =
         d.clouds ? std::make_unique<gl::FencedReadback>(sizeof(gl::LightUniforms)) : nullptr;
     d.weather = weather;
+    d.drawn_weather = std::move(drawn);
     d.cloud_settings = settings;
 }
 
@@ -311,9 +340,27 @@ double AtmosphereRenderer::CloudTransmittance(const glm::dvec3& position,
     }
     if (!impl_->cpu_clouds) return 1.0;
     const Impl& d = *impl_;
-    return d.cpu_clouds->Transmittance(d.weather, d.cloud_settings,
+    return d.cpu_clouds->Transmittance(d.drawn_weather, d.cloud_settings,
                                        d.atmosphere.atmosphere().bottom_radius, position, direction,
                                        view, steps);
+}
+
+double AtmosphereRenderer::PrecipitationTransmittance(const glm::dvec3& position,
+                                                      const glm::dvec3& direction, double distance,
+                                                      const CloudView& view, int steps) const {
+    if (!(distance >= 0.0 && std::isfinite(distance))) {
+        throw ArgumentError("distance", "distance " + std::to_string(distance) +
+                                            " m is out of range (expected finite, >= 0)");
+    }
+    if (!(steps >= 1 && steps <= 4096)) {
+        throw ArgumentError("PrecipitationTransmittance: steps " + std::to_string(steps) +
+                            " is out of range (expected 1..4096)");
+    }
+    if (!impl_->cpu_clouds) return 1.0;
+    const Impl& d = *impl_;
+    return d.cpu_clouds->PrecipitationTransmittance(
+        d.drawn_weather, d.cloud_settings, d.atmosphere.atmosphere().bottom_radius, position,
+        direction, distance / kKm, view, steps);
 }
 
 // --- RendererInspection (zenith/sky/inspection.h) ----------------------------------------------

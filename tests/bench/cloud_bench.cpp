@@ -107,6 +107,24 @@ BENCHMARK(BM_Frame720p)
     ->UseRealTime()
     ->MinTime(2.0);
 
+// The precipitation shaft's cost (clouds::WithPrecipitationShafts): the overcast deck dry and
+// raining moderately (0.6), whole frames at block 4 from the ground. args: raining (0, 1)
+void BM_PrecipitationShaft720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    clouds::Weather deck = clouds::LoadWeather("overcast_stratus");
+    deck.layers[0].precipitation = state.range(0) == 0 ? 0.0 : 0.6;
+    f.renderer.SetWeather(deck, Settings(4));
+    const PassTimes t = TimeFrames(state, f, f.CameraFor(kViews[0]));
+    state.counters["cloud_trace_ms"] = t.cloud_trace;
+    state.SetLabel(state.range(0) == 0 ? "ground, dry deck" : "ground, raining deck");
+}
+BENCHMARK(BM_PrecipitationShaft720p)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
 // The light shafts' cost (CloudSettings::light_shaft_steps, 0 = none): whole frames at block 4
 // from the ground and from 12 km, with the shafts' pass timed on its own. args: view, shaft steps
 void BM_LightShafts720p(benchmark::State& state) {

@@ -153,7 +153,9 @@ TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
                                                   observer, atmosphere, geo::Attitude{}, 1.0, 1.0);
     const sky::clouds::CloudNoise noise =
         sky::clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory).noise;
-    const sky::reference::CloudField field(weather, settings, noise, atmosphere.bottom_radius);
+    // The medium the renderer draws: the deck and its drizzle (precipitation 0.2) below it.
+    const sky::reference::CloudField field(sky::clouds::WithPrecipitationShafts(weather), settings,
+                                           noise, atmosphere.bottom_radius);
     sky::reference::CloudScene scene;
     scene.atmosphere = atmosphere;
     scene.atmosphere.solar_illuminance = state.scene.lights.sun_illuminance;
@@ -175,6 +177,62 @@ TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
     EXPECT_NEAR(harmonics / reference.luminance, 1.0, 0.15);
     sky->SetWeather({});
     sky->SetEnvironment({});
+}
+
+// Drizzle under the overcast (overcast_stratus' precipitation 0.2: 0.38 /km) seen along the
+// horizontal from 300 m, against the cloud path tracer through the same medium (deck and
+// shaft, clouds::WithPrecipitationShafts): the frame's sky there, and the host's fog over a
+// distance the rain makes opaque (FogEnu: the rain's in-scattering of the light around it).
+TEST_F(SkySystemTest, RainUnderTheOvercastAgainstThePathTracer) {
+    SkySystem* sky = sky_;
+    const geo::Time time = geo::TimeFromIso8601("2024-06-21T11:00:00Z");
+    constexpr double kHeight = 300.0;
+    sky->SetTime(time);
+    sky->SetGeodetic(47.45, 8.56, kHeight);
+    sky->SetAttitude(0.0, 0.0, 0.0);  // north, level: the Sun behind
+    sky->SetProjection(0.02, 1.0);
+    sky::CloudSettings settings;
+    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    const sky::clouds::Weather weather = sky::clouds::LoadWeather("overcast_stratus");
+    sky->SetWeather(weather, settings);
+    sky->SetWeatherOrigin(47.45, 8.56);
+    sky->Prepare({8, 8});
+    sky->Update();
+    const sky::LutImage frame = sky->RenderOffscreen({8, 8});
+    const glm::dvec3 north(0.0, 1.0, 0.0);
+    const double drawn = Luminance(frame.at(4, 4));
+    const SkySystem::Fog fog = sky->FogEnu(north, 60000.0);
+    const double fog_luminance = Luminance(glm::vec4(glm::vec3(fog.in_scattered), 0.0f));
+
+    const sky::Atmosphere& atmosphere = sky->atmosphere();
+    const geo::Observer observer(47.45, 8.56, 0.0);
+    const sky::SkyState state = sky::MakeSkyState(geo::Ephemeris().Compute(time, observer),
+                                                  observer, atmosphere, geo::Attitude{}, 1.0, 1.0);
+    const sky::clouds::CloudNoise noise =
+        sky::clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory).noise;
+    const sky::reference::CloudField field(sky::clouds::WithPrecipitationShafts(weather), settings,
+                                           noise, atmosphere.bottom_radius);
+    sky::reference::CloudScene scene;
+    scene.atmosphere = atmosphere;
+    scene.atmosphere.solar_illuminance = state.scene.lights.sun_illuminance;
+    scene.clouds = &field;
+    scene.sun_direction = glm::normalize(state.scene.lights.sun_direction);
+    sky::reference::CloudPathTraceOptions options;
+    options.samples = 16000;
+    const sky::reference::CloudPathTraceResult reference = sky::reference::CloudPathTrace(
+        scene, glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + kHeight), north, options);
+    std::printf(
+        "drizzle under overcast_stratus, horizontal from 300 m: path tracer %.0f +- %.0f "
+        "cd/m^2; frame %.0f (%+.1f %%); fog over 60 km %.0f (%+.1f %%, T %.1e)\n",
+        reference.luminance, reference.luminance_error, drawn,
+        100.0 * (drawn / reference.luminance - 1.0), fog_luminance,
+        100.0 * (fog_luminance / reference.luminance - 1.0), fog.transmittance);
+    EXPECT_LT(fog.transmittance, 1e-6);
+    // Three standard errors of the reference (~3 % each).
+    const double bound = 3.0 * reference.luminance_error / reference.luminance;
+    EXPECT_NEAR(drawn / reference.luminance, 1.0, bound);
+    EXPECT_NEAR(fog_luminance / reference.luminance, 1.0, bound);
+    sky->SetWeather({});
 }
 
 TEST_F(SkySystemTest, DaylightAtNoonNightAtMidnight) {
@@ -418,7 +476,10 @@ TEST_F(SkySystemTest, HostFogAndSkyColourMatchTheFrame) {
     settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
     for (const char* weather : {"clear", "overcast_stratus"}) {
         SCOPED_TRACE(weather);
-        sky->SetWeather(sky::clouds::LoadWeather(weather), settings);
+        // A dry deck: its shade of the air, not its drizzle (RainUnderTheOvercast... has that).
+        sky::clouds::Weather drawn = sky::clouds::LoadWeather(weather);
+        for (sky::clouds::CloudLayer& layer : drawn.layers) layer.precipitation = 0.0;
+        sky->SetWeather(drawn, settings);
         sky->Prepare({kSize, kSize});  // the clouds' shade has arrived
         sky->Update();
         const std::size_t centre = static_cast<std::size_t>(kSize / 2 * kSize + kSize / 2);

@@ -599,6 +599,44 @@ TEST_F(CloudRenderGlTest, CloudTransmittanceIsTheShadowMapsMarchFromAnyHeight) {
     EXPECT_EQ(above, 1.0);
 }
 
+// Under a uniformly raining deck the shaft is homogeneous: the host's precipitation query is
+// Beer's law with clouds::PrecipitationExtinction, in any horizontal direction and over any
+// distance; 1 without weather or rain, and over no distance.
+TEST_F(CloudRenderGlTest, PrecipitationTransmittanceIsTheShaftsExtinction) {
+    const Atmosphere earth;
+    clouds::Weather weather = Cumulus(1.0);
+    clouds::CloudLayer& deck = weather.layers[0];
+    deck.map.kind = clouds::WeatherMapSource::Kind::kUniform;
+    deck.precipitation = 0.6;
+    const glm::dvec3 position(0.0, 0.0, earth.bottom_radius + 300.0);
+    const glm::dvec3 east(1.0, 0.0, 0.0);
+    const CloudView view;
+    AtmosphereRenderer renderer(earth);
+    EXPECT_EQ(renderer.PrecipitationTransmittance(position, east, 3000.0, view), 1.0);
+    renderer.SetWeather(weather, Settings());
+    for (const double distance : {500.0, 3000.0, 10000.0}) {
+        const double expected = std::exp(-clouds::PrecipitationExtinction(0.6, false) * distance);
+        EXPECT_NEAR(renderer.PrecipitationTransmittance(position, east, distance, view) / expected,
+                    1.0, 2e-3)
+            << distance;
+        EXPECT_NEAR(renderer.PrecipitationTransmittance(position, glm::dvec3(0.6, -0.8, 0.0),
+                                                        distance, view) /
+                        expected,
+                    1.0, 2e-3)
+            << distance;
+    }
+    EXPECT_EQ(renderer.PrecipitationTransmittance(position, east, 0.0, view), 1.0);
+    EXPECT_THROW(renderer.PrecipitationTransmittance(position, east, -1.0, view),
+                 zenith::ArgumentError);
+    // The whole column below the deck: the rain's optical depth adds to the deck's.
+    const glm::dvec3 up(0.0, 0.0, 1.0);
+    EXPECT_NEAR(renderer.PrecipitationTransmittance(position, up, 1200.0, view),
+                std::exp(-clouds::PrecipitationExtinction(0.6, false) * 1200.0), 2e-3);
+    weather.layers[0].precipitation = 0.0;
+    renderer.SetWeather(weather, Settings());
+    EXPECT_EQ(renderer.PrecipitationTransmittance(position, east, 3000.0, view), 1.0);
+}
+
 // The shadow map and the shade are worked out every shadow_map_interval frames; the frames
 // between keep the last shade in the light block, which is uploaded without it every frame.
 TEST_F(CloudRenderGlTest, ShadeHoldsBetweenItsUpdates) {

@@ -363,5 +363,76 @@ TEST(CloudWeatherImages, BadImagesAreRefusedWithFileProblemAndExpectation) {
     std::filesystem::remove_all(dir);
 }
 
+// The precipitation's extinction against its sources: Marshall-Palmer's drop spectrum
+// integrated here by quadrature (extinction efficiency 2 for drops far larger than the
+// wavelength), at the rates that sit inside FMH-1's light, moderate and heavy rain; snow's
+// meteorological optical range (3 / sigma) inside FMH-1's bands for its intensities.
+TEST(Precipitation, ExtinctionMatchesMarshallPalmerAndFmh1) {
+    for (const auto& [p, rate] : {std::pair{0.3, 1.587}, {0.6, 5.04}, {0.9, 16.0}}) {
+        const double lambda = 4.1 * std::pow(rate, -0.21);  // 1/mm
+        double sum = 0.0;                                   // m^2 per m^3
+        constexpr double kStep = 0.001;                     // mm
+        for (double d = 0.5 * kStep; d < 20.0; d += kStep) {
+            const double area = 0.25 * std::numbers::pi * d * d * 1e-6;  // m^2
+            sum += 2.0 * area * 8000.0 * std::exp(-lambda * d) * kStep;
+        }
+        EXPECT_NEAR(PrecipitationExtinction(p, false) / sum, 1.0, 0.005) << p;
+    }
+    EXPECT_EQ(PrecipitationExtinction(0.0, false), 0.0);
+    EXPECT_EQ(PrecipitationExtinction(0.0, true), 0.0);
+    EXPECT_GT(3.0 / PrecipitationExtinction(0.3, true), 1000.0);  // light snow: > 1 km
+    EXPECT_GT(3.0 / PrecipitationExtinction(0.6, true), 500.0);   // moderate: 0.5-1 km
+    EXPECT_LT(3.0 / PrecipitationExtinction(0.6, true), 1000.0);
+    EXPECT_LT(3.0 / PrecipitationExtinction(0.9, true), 500.0);  // heavy: < 0.5 km
+    EXPECT_DOUBLE_EQ(PrecipitationExtinction(0.9, true), HeavyPrecipitationExtinction(true));
+}
+
+// The shaft goes under the lowest raining layer, from the top of the layer below (or the
+// ground) to its base, as a copy of it; nothing else changes.
+TEST(Precipitation, ShaftsFallFromTheLowestRainingLayer) {
+    Weather weather;
+    CloudLayer low;
+    low.name = "low";
+    low.base_altitude = 500.0;
+    low.top_altitude = 900.0;
+    CloudLayer raining;
+    raining.name = "raining";
+    raining.base_altitude = 1500.0;
+    raining.top_altitude = 4000.0;
+    raining.precipitation = 0.6;
+    raining.snow = true;
+    weather.layers = {low, raining};
+    const Weather drawn = WithPrecipitationShafts(weather);
+    ASSERT_EQ(drawn.layers.size(), 3u);
+    EXPECT_EQ(drawn.layers[0], low);
+    const CloudLayer& shaft = drawn.layers[1];
+    EXPECT_TRUE(shaft.precipitation_shaft);
+    EXPECT_TRUE(shaft.snow);
+    EXPECT_EQ(shaft.base_altitude, 900.0);
+    EXPECT_EQ(shaft.top_altitude, 1500.0);
+    EXPECT_EQ(shaft.map, raining.map);
+    EXPECT_EQ(shaft.precipitation, raining.precipitation);
+    EXPECT_EQ(drawn.layers[2], raining);
+    EXPECT_NO_THROW(Validate(drawn));
+
+    // The lowest layer raining: from the ground.
+    weather.layers = {raining};
+    EXPECT_EQ(WithPrecipitationShafts(weather).layers[0].base_altitude, 0.0);
+    // Nothing falls, too little room, or the renderer's layers all taken: unchanged.
+    weather.layers = {low};
+    EXPECT_EQ(WithPrecipitationShafts(weather), weather);
+    CloudLayer touching = raining;
+    touching.base_altitude = 930.0;
+    weather.layers = {low, touching};
+    EXPECT_EQ(WithPrecipitationShafts(weather), weather);
+    CloudLayer a = low, b = low, c = low;
+    a.base_altitude = 2000.0, a.top_altitude = 2500.0;
+    b.base_altitude = 3000.0, b.top_altitude = 3500.0;
+    c.base_altitude = 5000.0, c.top_altitude = 6000.0;
+    weather.layers = {raining, a, b, c};
+    weather.layers[0].top_altitude = 1900.0;
+    EXPECT_EQ(WithPrecipitationShafts(weather), weather);
+}
+
 }  // namespace
 }  // namespace zenith::sky::clouds

@@ -204,7 +204,7 @@ void AddCloudLayer(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, cloud_top_altitude);
     ZENITH_SAME(S, extinction_scale);
     ZENITH_SAME(S, ground_fog);
-    ZENITH_SAME(S, padding1);
+    ZENITH_SAME(S, precipitation_shaft);
     ZENITH_SAME(S, padding2);
     ZENITH_SAME(S, padding3);
 }

@@ -158,11 +158,13 @@ TEST(CloudWeather, CumulonimbusRainsAndTowers) {
     EXPECT_EQ(w.clouds.layers[1].precipitation, 0.0);
     EXPECT_EQ(w.precipitation, 0.9);
     EXPECT_FALSE(w.snow);
+    EXPECT_FALSE(cb.snow);
     // Steady snow from the lowest BKN/OVC layer, a nimbostratus.
     const MetarWeather sn = FromText("KGTF 170322Z 33014KT 1 3/4SM -SN BR OVC005 A2991");
     EXPECT_EQ(sn.clouds.layers[0].name, "nimbostratus");
     EXPECT_EQ(sn.clouds.layers[0].precipitation, 0.3);
     EXPECT_TRUE(sn.snow);
+    EXPECT_TRUE(sn.clouds.layers[0].snow);  // its shaft is snow's (clouds::PrecipitationExtinction)
     const MetarWeather tcu = FromText("KXYZ 010000Z 27005KT 10SM SCT040TCU 30/20 A3000");
     EXPECT_EQ(tcu.clouds.layers[0].cloud_type, 0.75);
 }

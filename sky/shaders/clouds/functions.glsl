@@ -42,7 +42,10 @@ struct CloudLayerParameters {
     // 1: ground fog (clouds::CloudLayer::ground_fog): homogeneous (no noise), its density the
     // map's coverage from the base to kCloudFogFlat of the layer, falling to 0 at its top.
     Number ground_fog;
-    Number padding1;
+    // 1: a precipitation shaft (clouds::CloudLayer::precipitation_shaft): homogeneous, its
+    // density CloudPrecipitationShare of the map's G times extinction_scale (heavy rain's or
+    // snow's extinction over the cloud material's).
+    Number precipitation_shaft;
     Number padding2;
     Number padding3;
 };
@@ -56,6 +59,14 @@ const Number kCloudMaxErosion = 0.9;
 const Number kCloudMaxPrecipitationDarkening = 0.8;
 
 Number CloudSaturate(Number x) { return clamp(x, 0.0, 1.0); }
+
+// The extinction of precipitation of intensity p (the map's G) over that of heavy
+// precipitation (p = 0.9): rain at R(p) = 0.5 x 32^(p / 0.9) mm/h through Marshall-Palmer drops,
+// whose extinction grows as R^0.63 (clouds::PrecipitationExtinction), so
+// (R(p) / R(0.9))^0.63 = exp(0.63 ln 32 (p / 0.9 - 1)); ramped in over p < 0.1 to give 0 at 0.
+Number CloudPrecipitationShare(Number p) {
+    return exp(2.1834 * (CloudSaturate(p) / 0.9 - 1.0)) * CloudSaturate(p / 0.1);
+}
 
 // S15: linear map of [lo, hi] onto [new_lo, new_hi], clamped to the new range.
 Number CloudRemap(Number x, Number lo, Number hi, Number new_lo, Number new_hi) {
@@ -222,6 +233,13 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     if (!(altitude > layer.base_altitude && altitude < layer.top_altitude)) return s;
 
     CloudWeather weather = CloudWeatherAt(layer, weather_map, ground);
+    if (layer.precipitation_shaft > 0.5) {
+        // Rain or snow: as dense at every height as the intensity says (no darkening: that is
+        // the raining cloud's).
+        s.cloud_fraction = s.height_fraction;
+        s.density = CloudPrecipitationShare(weather.precipitation) * layer.extinction_scale;
+        return s;
+    }
     s.precipitation = weather.precipitation;
     s.type = weather.type;
     if (!(weather.coverage > 0.0)) return s;
@@ -282,8 +300,11 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
                        Number extinction) {
     Number x = CloudSaturate(s.cloud_fraction);
     if (!(x > 0.0) || !(s.density > 0.0)) return 0.0;
-    // Fog: flat below kCloudFogFlat, where the sample's density holds down to the ground.
-    if (layer.ground_fog > 0.5) return extinction * s.density * (altitude - layer.base_altitude);
+    // Fog (flat below kCloudFogFlat) and precipitation: the sample's density holds down to the
+    // layer's base.
+    if (layer.ground_fog > 0.5 || layer.precipitation_shaft > 0.5) {
+        return extinction * s.density * (altitude - layer.base_altitude);
+    }
     Number b = CloudHeightGradient(s.type, 0.0);
     Number profile = 4.0 * x * (1.0 - x) * mix(b, 1.0, x);
     Number x2 = x * x;

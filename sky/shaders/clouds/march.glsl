@@ -301,7 +301,12 @@ void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
                      Number jitter, INOUT(CloudMarchState) state) {
     Number length_km = interval.y - interval.x;
     if (!(length_km > 0.0)) return;
-    int steps = int(clamp(ceil(length_km / march.min_step), 1.0, max(march.max_steps, 1.0)));
+    // Rain and snow (a precipitation shaft) are homogeneous in height and change only with the
+    // map, over kilometres: a quarter of the steps, each at least 8 min_step.
+    bool shaft = layer.precipitation_shaft > 0.5;
+    Number min_step = shaft ? 8.0 * march.min_step : march.min_step;
+    Number max_steps = max(shaft ? 0.25 * march.max_steps : march.max_steps, 1.0);
+    int steps = int(clamp(ceil(length_km / min_step), 1.0, max_steps));
     Number dt = length_km / Number(steps);
     for (int i = 0; i < steps; ++i) {
         if (state.transmittance < march.min_transmittance) break;

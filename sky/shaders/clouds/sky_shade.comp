@@ -30,8 +30,11 @@ void main() {
             shadow += imageLoad(shadow_map_image, ivec2(x, y)).r;
         }
     }
-    float base = cloud_layers[0].base_altitude;
-    for (int k = 1; k < cloud_layer_count; ++k) base = min(base, cloud_layers[k].base_altitude);
+    // The lowest cloud's base: rain and snow shafts reach the ground but are not clouds.
+    float base = 1e9;
+    for (int k = 0; k < cloud_layer_count; ++k) {
+        if (cloud_layers[k].precipitation_shaft < 0.5) base = min(base, cloud_layers[k].base_altitude);
+    }
     shaded_lights.cloud_base = base;
     shaded_lights.cloud_direct = shadow / float(shadow_map_size * shadow_map_size);
     shaded_lights.cloud_sky = shade.a;

@@ -36,8 +36,12 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_
     p.wind_offset_y = Scalar(-drift.y / kKm);
     p.cloud_top_altitude = Scalar(
         (layer.base_altitude + (layer.top_altitude - layer.base_altitude) * top_fraction) / kKm);
-    p.extinction_scale = Scalar(layer.extinction_scale);
+    // A precipitation shaft's density scales heavy rain's or snow's extinction instead.
+    p.extinction_scale = Scalar(
+        layer.precipitation_shaft ? clouds::HeavyPrecipitationExtinction(layer.snow) / s.extinction
+                                  : layer.extinction_scale);
     p.ground_fog = Scalar(layer.ground_fog ? 1.0 : 0.0);
+    p.precipitation_shaft = Scalar(layer.precipitation_shaft ? 1.0 : 0.0);
     return p;
 }
 

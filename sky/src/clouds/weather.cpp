@@ -492,11 +492,42 @@ double CloudTopFraction(const WeatherMap& map) {
 }
 
 double LayerTopFraction(const CloudLayer& layer, const WeatherMap& map) {
-    if (!layer.ground_fog) return CloudTopFraction(map);
+    if (!layer.ground_fog && !layer.precipitation_shaft) return CloudTopFraction(map);
     for (const glm::vec4& t : map.texels) {
-        if (t.r > 0.0f) return 1.0;
+        if ((layer.ground_fog ? t.r : t.g) > 0.0f) return 1.0;
     }
     return 0.0;
+}
+
+double HeavyPrecipitationExtinction(bool snow) {
+    constexpr double kHeavySnow = 3.0 / 350.0;  // 1/m: MOR 350 m
+    // Marshall-Palmer: pi N0 / Lambda^3 = 3.647e-4 R^0.63 /m at R = 16 mm/h.
+    const double heavy_rain = 3.647e-4 * std::pow(16.0, 0.63);
+    return snow ? kHeavySnow : heavy_rain;
+}
+
+Weather WithPrecipitationShafts(const Weather& weather) {
+    const std::vector<CloudLayer>& layers = weather.layers;
+    if (layers.size() >= kMaxDrawnLayers) return weather;
+    const auto raining = std::find_if(layers.begin(), layers.end(), [](const CloudLayer& l) {
+        return l.precipitation > 0.0 && !l.ground_fog && !l.precipitation_shaft;
+    });
+    if (raining == layers.end()) return weather;
+    const double base = raining == layers.begin() ? 0.0 : std::prev(raining)->top_altitude;
+    if (raining->base_altitude - base < 50.0) return weather;
+    CloudLayer shaft = *raining;
+    shaft.name = raining->name + " (precipitation)";
+    shaft.base_altitude = base;
+    shaft.top_altitude = raining->base_altitude;
+    shaft.precipitation_shaft = true;
+    Weather out = weather;
+    out.layers.insert(out.layers.begin() + (raining - layers.begin()), shaft);
+    return out;
+}
+
+double PrecipitationExtinction(double p, bool snow) {
+    // ref::CloudPrecipitationShare is the shape, 1 at p = 0.9 (heavy).
+    return HeavyPrecipitationExtinction(snow) * ref::CloudPrecipitationShare(p);
 }
 
 namespace {

@@ -24,7 +24,7 @@ struct CloudLayerUniforms {  // clouds/functions.glsl: struct CloudLayerParamete
     float cloud_top_altitude;
     float extinction_scale;
     float ground_fog;
-    float padding1;
+    float precipitation_shaft;
     float padding2;
     float padding3;
 };

@@ -317,7 +317,10 @@ MetarWeather CloudWeatherFromMetar(const Metar& metar, double station_elevation_
             it = std::find_if(layers.begin(), layers.end(),
                               [](const Built& b) { return b.layer.name != "fog"; });
         }
-        if (it != layers.end()) it->layer.precipitation = PrecipitationAmount(rain_intensity);
+        if (it != layers.end()) {
+            it->layer.precipitation = PrecipitationAmount(rain_intensity);
+            it->layer.snow = out.snow;
+        }
     }
 
     // Bottom to top without overlap (sky::clouds::Validate).

@@ -26,7 +26,7 @@ bool IsFog(const CloudLayer& l) { return l.name == "fog"; }
 double Lerp(double a, double b, double u) { return a + (b - a) * u; }
 
 CloudLayer BlendLayer(const CloudLayer& a, const CloudLayer& b, double u) {
-    CloudLayer l = u < 0.5 ? a : b;  // name, map, period, wind, ground fog
+    CloudLayer l = u < 0.5 ? a : b;  // name, map, period, wind, ground fog, snow
     l.base_altitude = Lerp(a.base_altitude, b.base_altitude, u);
     l.top_altitude = Lerp(a.top_altitude, b.top_altitude, u);
     l.coverage = std::clamp(Lerp(a.coverage, b.coverage, u), 0.0, 1.0);

@@ -149,6 +149,10 @@ class AtmosphereRenderer {
     // GL call, nothing to wait for). 1 without weather. For a host's sunlight at the aircraft.
     double CloudTransmittance(const glm::dvec3& position, const glm::dvec3& direction,
                               const CloudView& view, int steps = 64) const;
+    // The same through the rain and snow shafts alone (clouds::WithPrecipitationShafts) over the
+    // `distance` (m) from `position`: a host's fog in precipitation. 1 without any.
+    double PrecipitationTransmittance(const glm::dvec3& position, const glm::dvec3& direction,
+                                      double distance, const CloudView& view, int steps = 32) const;
 
     // The air for a host's own shading, on the CPU: the shared functions over the renderer's own
     // LUTs (read back when the atmosphere was set), the last Update's lights and the clouds'

@@ -75,6 +75,14 @@ struct CloudLayer {
     // extinction at the ground, coverage x extinction_scale x CloudSettings::extinction, sets the
     // visibility in it. Its base is the ground.
     bool ground_fog = false;
+    // The layer's precipitation falls as snow (METAR SN, SG, PL, GR, GS, IC), not rain: its
+    // shaft (below) is denser.
+    bool snow = false;
+    // A precipitation shaft (WithPrecipitationShafts makes them): the rain or snow below the
+    // layer above it, drawn from that layer's own map (this layer is its copy), homogeneous in
+    // height, its extinction from the map's G (precipitation) channel alone:
+    // PrecipitationExtinction. Its extinction_scale is not used.
+    bool precipitation_shaft = false;
     WeatherMapSource map;
     bool operator==(const CloudLayer&) const = default;
 };
@@ -155,8 +163,29 @@ WeatherMap BuildWeatherMap(const CloudLayer& layer);
 // clouds reach 53 % of their layer, are not marched through the empty rest above them. 0 for a
 // map without cover.
 double CloudTopFraction(const WeatherMap& map);
-// The same for `layer` built from `map`: ground fog fills its whole layer (1, or 0 without cover).
+// The same for `layer` built from `map`: ground fog fills its whole layer (1, or 0 without cover)
+// and a precipitation shaft too (1, or 0 where nothing falls).
 double LayerTopFraction(const CloudLayer& layer, const WeatherMap& map);
+
+// The precipitation the weather's lowest raining layer (precipitation > 0, not fog) drops, as a
+// shaft layer (CloudLayer::precipitation_shaft) from the top of the layer below it, or the
+// ground, up to its base: what the renderer draws (AtmosphereRenderer::SetWeather). The weather
+// unchanged when nothing rains, when the shaft would be under 50 m deep, or when the weather
+// already holds the kMaxDrawnLayers layers the renderer draws.
+inline constexpr std::size_t kMaxDrawnLayers = 4;
+Weather WithPrecipitationShafts(const Weather& weather);
+
+// The extinction (1/m) of precipitation of intensity p (the map's G channel: METAR's light 0.3,
+// moderate 0.6, heavy 0.9). Rain: a rate R(p) = 0.5 x 32^(p / 0.9) mm/h (1.6, 5 and 16 mm/h,
+// inside the FAA's light (< 2.5), moderate (2.6-7.6) and heavy (> 7.6) bands, FMH-1 8.5.2), and
+// the optical extinction of its Marshall-Palmer drops (N(D) = 8000 exp(-4.1 R^-0.21 D) /m^3/mm,
+// extinction efficiency 2): pi N0 / Lambda^3 = 0.365 R^0.63 /km (MOR 8 km at 1 mm/h, 1.4 km at
+// 16 mm/h). Snow: FMH-1 names its intensity by the visibility it leaves (light > 1 km,
+// moderate 0.5-1 km, heavy < 0.5 km): the same shape in p scaled to 3 / 0.35 km at p = 0.9
+// (1.5 km at 0.3, 0.73 km at 0.6). 0 at p = 0, ramping in over p < 0.1.
+double PrecipitationExtinction(double p, bool snow);
+// PrecipitationExtinction(0.9, snow): heavy rain's 2.1e-3 /m, heavy snow's 8.6e-3 /m.
+double HeavyPrecipitationExtinction(bool snow);
 
 // Reads a weather map image: PNG (8- or 16-bit RGB: R coverage, G precipitation, B cloud type;
 // A = 1) or OpenEXR (channels R, G, B and optionally A, half or float). Throws WeatherError

@@ -46,7 +46,9 @@
 // seeds from the station and the layer's index, so the same report gives the same sky. Each
 // layer drifts with the reported surface wind.
 // Precipitation (-: 0.3, moderate: 0.6, +: 0.9) goes to the layer that rains: a CB or TCU layer
-// for showers and thunderstorms, else the lowest BKN/OVC layer, else the lowest layer.
+// for showers and thunderstorms, else the lowest BKN/OVC layer, else the lowest layer; solid
+// precipitation marks it CloudLayer::snow. The renderer draws what it drops as a shaft below it
+// (sky::clouds::WithPrecipitationShafts: Marshall-Palmer rain, FMH-1's snow visibilities).
 // Layers that overlap are cut at the next layer's base; one left thinner than 50 m is merged
 // into the next (largest coverage, type and precipitation).
 //
