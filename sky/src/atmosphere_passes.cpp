@@ -118,6 +118,7 @@ void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm
     // Tangent-plane size of one pixel; a pixel at tangent-plane (x, y) subtends
     // dx dy / (1 + x^2 + y^2)^(3/2) steradians.
     const double dx = 2.0 * tan_x / size.x, dy = 2.0 * tan_y / size.y;
+    const double pixel_angle = camera.vertical_fov / size.y;  // ResolveDisks' measure
     for (const StarPoint& point : points) {
         const glm::dvec3 v = view_from_world * point.direction;
         if (!(v.z < 0.0)) continue;  // behind the camera
@@ -133,9 +134,14 @@ void SplatPoints(const std::vector<StarPoint>& points, const Camera& camera, glm
         const double cx = ((ix + 0.5) / size.x * 2.0 - 1.0) * tan_x;
         const double cy = ((iy + 0.5) / size.y * 2.0 - 1.0) * tan_y;
         const double solid_angle = dx * dy / std::pow(1.0 + cx * cx + cy * cy, 1.5);
+        // A resolved disk's share (ResolveDisks) is an extended source, seen by its luminance,
+        // not by the eye's threshold for points (the composite reads it from alpha).
+        const glm::dvec3 luminance = t * point.illuminance / solid_angle;
+        const bool extended = point.angular_radius > 0.5 * pixel_angle;
         vertices.push_back(
             {glm::vec2((ix + 0.5) / size.x * 2.0 - 1.0, (iy + 0.5) / size.y * 2.0 - 1.0),
-             glm::vec3(t * point.illuminance / solid_angle)});
+             glm::vec4(luminance,
+                       extended ? glm::dot(luminance, glm::dvec3(0.2126, 0.7152, 0.0722)) : 0.0)});
     }
 }
 
@@ -217,7 +223,7 @@ AtmospherePasses::AtmospherePasses(const Atmosphere& atmosphere, const LutSettin
                               offsetof(StarVertex, ndc));
     glVertexArrayAttribBinding(star_vertex_array_, 0, 0);
     glEnableVertexArrayAttrib(star_vertex_array_, 1);
-    glVertexArrayAttribFormat(star_vertex_array_, 1, 3, GL_FLOAT, GL_FALSE,
+    glVertexArrayAttribFormat(star_vertex_array_, 1, 4, GL_FLOAT, GL_FALSE,
                               offsetof(StarVertex, luminance));
     glVertexArrayAttribBinding(star_vertex_array_, 1, 0);
 
@@ -470,7 +476,7 @@ void AtmospherePasses::SetTarget(const SkyScene& scene, const SkyView& view,
     const glm::ivec2 size = target.size();
     ResizeFrame(size);  // the stars' texture, and the frame when it is the target
     const bool sun_disk_resolved = SunDiskResolved(view, size);
-    std::vector<StarPoint> points = scene.stars;
+    std::vector<StarPoint> points = ResolveDisks(scene.stars, view.camera.vertical_fov / size.y);
     if (scene.draw_sun_disk && !sun_disk_resolved) {
         points.push_back({SunDiskPlace(scene).direction, scene.lights.sun_illuminance});
     }

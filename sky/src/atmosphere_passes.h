@@ -25,7 +25,7 @@ class CloudPasses;
 // One point source as atmosphere/stars.vert draws it.
 struct StarVertex {
     glm::vec2 ndc;        // its pixel's centre
-    glm::vec3 luminance;  // cd/m^2 over that pixel
+    glm::vec4 luminance;  // cd/m^2 over that pixel; a: its Y when it is part of a resolved disk
 };
 
 // The night sky's map (zenith/sky/night_sky.h) in the Sky-View LUT's parameterisation: 2.8 deg

@@ -1,5 +1,7 @@
 #include "zenith/sky/lut.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -67,6 +69,49 @@ void LutSettings::Validate() const {
             "0 < range <= 1e7 m");
     Require(aerial_perspective_steps >= 2 && aerial_perspective_steps <= 10000,
             "aerial_perspective_steps", std::to_string(aerial_perspective_steps), "2..10000");
+}
+
+std::vector<StarPoint> ResolveDisks(const std::vector<StarPoint>& points, double pixel) {
+    std::vector<StarPoint> out;
+    out.reserve(points.size());
+    for (const StarPoint& point : points) {
+        if (!(point.angular_radius > 0.5 * pixel)) {
+            out.push_back(point);
+            continue;
+        }
+        // The disk in its tangent plane: e1, e2 across it, `toward` the observer's side.
+        const glm::dvec3 d = glm::normalize(point.direction);
+        const glm::dvec3 helper = std::abs(d.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+        const glm::dvec3 e1 = glm::normalize(glm::cross(helper, d));
+        const glm::dvec3 e2 = glm::cross(d, e1);
+        const bool lit = glm::length(point.sunward) > 0.0;
+        const glm::dvec3 sun = lit ? glm::normalize(point.sunward) : glm::dvec3(0.0);
+        const int n =
+            std::clamp(static_cast<int>(std::ceil(4.0 * point.angular_radius / pixel)), 2, 64);
+        const std::size_t first = out.size();
+        double total = 0.0;
+        for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < n; ++i) {
+                const double u = -1.0 + (2.0 * i + 1.0) / n, v = -1.0 + (2.0 * j + 1.0) / n;
+                const double rho2 = u * u + v * v;
+                if (rho2 >= 1.0) continue;
+                // The sphere's normal there, facing the observer (-d).
+                const glm::dvec3 normal = u * e1 + v * e2 - std::sqrt(1.0 - rho2) * d;
+                const double weight = lit ? std::max(glm::dot(normal, sun), 0.0) : 1.0;
+                if (!(weight > 0.0)) continue;
+                StarPoint p = point;  // its disk's radius marks it as part of one
+                p.direction =
+                    glm::normalize(d + std::tan(point.angular_radius) * (u * e1 + v * e2));
+                p.illuminance = glm::dvec3(weight);
+                out.push_back(p);
+                total += weight;
+            }
+        }
+        for (std::size_t k = first; k < out.size(); ++k) {
+            out[k].illuminance = point.illuminance * (out[k].illuminance.x / total);
+        }
+    }
+    return out;
 }
 
 }  // namespace zenith::sky

@@ -132,13 +132,21 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
         s.stars.push_back({seen(star.horizontal.direction_enu),
                            star.illuminance_lux * StarColour(star.star->b_minus_v)});
     }
-    // Planets are drawn like stars (their disks, at most Venus's 66", are under a pixel at the
-    // usual fields of view): their magnitude as illuminance, their colour from B-V.
+    // Planets are drawn like stars, their magnitude as illuminance and their colour from B-V;
+    // a disk wider than a pixel (at most Venus's 66", in a narrow field of view) as a sphere lit
+    // from the Sun's side (ResolveDisks).
     const double min_elevation = MinStarElevation(atmosphere.bottom_radius, observer.height_m());
+    const glm::dvec3 sun =
+        e.sun.topocentric.horizontal.direction_enu * e.sun.topocentric.horizontal.distance;
     for (const geo::PlanetPosition& planet : e.planets) {
         if (planet.topocentric.horizontal.elevation < min_elevation) continue;
-        s.stars.push_back(
-            {seen(planet.topocentric.horizontal.direction_enu), PlanetIlluminance(planet)});
+        const glm::dvec3 toward = planet.topocentric.horizontal.direction_enu;
+        StarPoint point{seen(toward), PlanetIlluminance(planet)};
+        point.angular_radius =
+            0.5 * planet.angular_diameter_arcsec * (glm::pi<double>() / 648000.0);
+        point.sunward =
+            glm::normalize(sun - toward * (planet.distance_au * geo::kAstronomicalUnit));
+        s.stars.push_back(point);
     }
     return state;
 }

@@ -10,6 +10,8 @@
 #include "draw_frame.h"
 #include "gl_test_support.h"
 #include "luminance.h"
+#include "reference/atmosphere_functions.h"
+#include "shader_parameters.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/inspection.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
@@ -240,6 +242,39 @@ TEST_F(AtmosphereGlTest, OffAxisSunDiskIsDrawnWhole) {
     const double ratio = FrameIlluminance(frame, camera) / sun_y;
     std::printf("off-axis sun disk: integrated / true illuminance %.4f\n", ratio);
     EXPECT_NEAR(ratio, 1.0, 0.01);
+}
+
+// A planet's disk wider than a pixel (ResolveDisks) in the daytime sky: an extended source,
+// drawn whatever the eye's threshold for points, and all of its light there: the frame with it
+// minus the frame without integrates to its illuminance through the air (Venus at -4.3 mag, a
+// 60" crescent, 20 pixels across in a 0.1 deg field, 30 deg up).
+TEST_F(AtmosphereGlTest, ResolvedPlanetIsDrawnWholeInDaylight) {
+    AtmosphereRenderer gpu(Atmosphere{});
+    const glm::dvec3 toward = glm::normalize(glm::dvec3(0.0, std::cos(0.52), std::sin(0.52)));
+    Camera camera;
+    camera.position = glm::dvec3(0.0, 0.0, 6360e3 + 2.0);
+    const glm::dvec3 right = glm::normalize(glm::cross(toward, glm::dvec3(0.0, 0.0, 1.0)));
+    camera.world_from_view = glm::dmat3(right, glm::cross(right, toward), -toward);
+    camera.vertical_fov = glm::radians(0.1);
+    camera.aspect = 1.0;
+    const Lights lights = MorningLights();
+    SkyScene scene = test::LightsOnly(lights, false);
+    const LutImage sky = test::DrawFrame(gpu, scene, {camera}, {128, 128});
+    StarPoint venus;
+    venus.direction = toward;
+    venus.illuminance = glm::dvec3(1.1e-4);  // lux, -4.3 mag
+    venus.angular_radius = glm::radians(30.0 / 3600.0);
+    venus.sunward = glm::normalize(lights.sun_direction - toward);
+    scene.stars = {venus};
+    const LutImage with = test::DrawFrame(gpu, scene, {camera}, {128, 128});
+    const double drawn = FrameIlluminance(with, camera) - FrameIlluminance(sky, camera);
+    const auto a = MakeShaderParameters<ref::AtmosphereParameters>(Atmosphere{});
+    const double transmittance = glm::dot(
+        ref::ComputeTransmittanceToTopAtmosphereBoundary(a, a.bottom_radius + 0.002, toward.z, 500),
+        glm::dvec3(0.2126, 0.7152, 0.0722));  // of a grey source's luminance
+    std::printf("resolved Venus in daylight: drawn %.4g lux, expected %.4g (T %.3f)\n", drawn,
+                1.1e-4 * transmittance, transmittance);
+    EXPECT_NEAR(drawn / (1.1e-4 * transmittance), 1.0, 0.005);
 }
 
 TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {

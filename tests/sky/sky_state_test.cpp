@@ -9,6 +9,8 @@
 #include <glm/gtc/constants.hpp>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "error_matchers.h"
 #include "zenith/base/error.h"
@@ -81,6 +83,55 @@ TEST(SkyStateFromEphemeris, PlanetsAreDrawnLikeStars) {
     const double expected = geo::IlluminanceFromMagnitude(venus.magnitude_v);
     EXPECT_NEAR(brightest->illuminance.y / expected, 1.0, 0.1);
     EXPECT_GT(brightest->illuminance.y, 10.0 * geo::IlluminanceFromMagnitude(-1.46));  // Sirius
+    // Its disk (ResolveDisks draws it when wider than a pixel), lit from the Sun: the angle
+    // between the Sun and the observer seen from Venus is the ephemeris' phase angle.
+    EXPECT_NEAR(brightest->angular_radius,
+                0.5 * glm::radians(venus.angular_diameter_arcsec / 3600.0), 1e-15);
+    EXPECT_NEAR(std::acos(glm::dot(brightest->sunward, -brightest->direction)), venus.phase_angle,
+                1e-3);
+}
+
+// A disk wider than a pixel is spread over it with its light kept: at quadrature (the Sun 90
+// deg off the line of sight) the lit half of a Lambertian sphere weighs u over the half disk,
+// whose centroid is 3 pi / 16 of the radius toward the Sun; at opposition sqrt(1 - rho^2),
+// centred. Points narrower than half a pixel, and stars, stay as they are.
+TEST(ResolveDisks, SpreadsALitSphereAndKeepsItsLight) {
+    const double radius = 1e-4;  // rad, 20": 20 pixels of 1e-5 rad
+    const glm::dvec3 toward(0.0, 1.0, 0.0);
+    const glm::dvec3 east(1.0, 0.0, 0.0);
+    StarPoint planet{toward, glm::dvec3(2e-5, 3e-5, 1e-5), radius, east};
+    StarPoint star{glm::dvec3(0.0, 0.0, 1.0), glm::dvec3(1e-6), 0.0, glm::dvec3(0.0)};
+    const auto disk_of = [](const std::vector<StarPoint>& points) {
+        glm::dvec3 sum(0.0), centroid(0.0);
+        double widest = 0.0;
+        for (const StarPoint& p : points) {
+            sum += p.illuminance;
+            centroid += p.illuminance.y * p.direction;
+            widest = std::max(widest, std::acos(std::min(p.direction.y, 1.0)));
+        }
+        return std::tuple{sum, centroid / sum.y, widest};
+    };
+    const std::vector<StarPoint> quadrature = ResolveDisks({planet, star}, 1e-5);
+    ASSERT_GT(quadrature.size(), 200u);
+    EXPECT_EQ(quadrature.back().direction, star.direction);  // the star untouched
+    const std::vector<StarPoint> lit(quadrature.begin(), quadrature.end() - 1);
+    const auto [sum, centroid, widest] = disk_of(lit);
+    ExpectNear(sum, planet.illuminance, 1e-18);
+    EXPECT_NEAR(centroid.x / radius, 3.0 * glm::pi<double>() / 16.0, 0.02);
+    EXPECT_NEAR(centroid.z / radius, 0.0, 1e-3);
+    EXPECT_LE(widest, radius * 1.0001);
+    for (const StarPoint& p : lit) EXPECT_GT(p.direction.x, 0.0);  // the night side is dark
+
+    planet.sunward = -toward;  // opposition: full
+    const auto [full_sum, full_centroid, full_widest] = disk_of(ResolveDisks({planet}, 1e-5));
+    ExpectNear(full_sum, planet.illuminance, 1e-18);
+    EXPECT_NEAR(glm::length(glm::dvec2(full_centroid.x, full_centroid.z)) / radius, 0.0, 1e-3);
+    EXPECT_GT(full_widest, 0.9 * radius);
+
+    // Unresolved: one pixel of 1e-3 rad holds the whole disk.
+    const std::vector<StarPoint> small = ResolveDisks({planet}, 1e-3);
+    ASSERT_EQ(small.size(), 1u);
+    EXPECT_EQ(small[0].direction, planet.direction);
 }
 
 // From altitude the horizon dips: from 100 km the limb is 10.1 deg below the horizontal plane

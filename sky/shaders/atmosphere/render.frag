@@ -136,7 +136,8 @@ void main() {
     // same TransmittanceToSpace. Seen only as far as they stand out of the sky behind them: the
     // pixel's illuminance is its luminance times its solid angle (SplatPoints' measure).
     if (stars_enabled != 0) {
-        vec3 stars = texelFetch(star_texture, pixel, 0).rgb;
+        vec4 points = texelFetch(star_texture, pixel, 0);
+        vec3 stars = points.rgb;
         if (star_visibility != 0) {
             vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
             vec2 t = vec2(ndc.x * tan_half_fov * aspect, ndc.y * tan_half_fov);
@@ -144,7 +145,11 @@ void main() {
                                 (float(output_size.x) * float(output_size.y)) /
                                 pow(1.0 + dot(t, t), 1.5);
             vec3 y = vec3(0.2126, 0.7152, 0.0722);  // linear sRGB luminance
-            stars *= StarVisibility(dot(stars, y) * solid_angle, dot(luminance, y));
+            // Points fade in at the eye's threshold; a resolved planet's disk (its share of
+            // the pixel in alpha) is an extended source, added as it is.
+            float extended = clamp(points.a / max(dot(stars, y), 1e-30), 0.0, 1.0);
+            stars *= mix(StarVisibility(dot(stars, y) * solid_angle, dot(luminance, y)), 1.0,
+                         extended);
         }
         luminance += stars;
     }

@@ -2,8 +2,9 @@
 // centre (AtmospherePasses' SplatPoints works out where and how bright), added up by blending
 // into the points' texture that the composite reads.
 layout(location = 0) in vec2 ndc;
-layout(location = 1) in vec3 luminance;  // cd/m^2: T E over the pixel's solid angle
-layout(location = 0) flat out vec3 point_luminance;
+// cd/m^2: T E over the pixel's solid angle; a: its Y when part of a resolved disk (extended)
+layout(location = 1) in vec4 luminance;
+layout(location = 0) flat out vec4 point_luminance;
 
 void main() {
     gl_Position = vec4(ndc, 0.0, 1.0);

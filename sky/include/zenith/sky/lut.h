@@ -113,11 +113,20 @@ struct MoonDisk {
     std::optional<ApparentPlace> apparent;  // none: drawn in `direction`
 };
 
-// A point source: a star, or the Sun when its disk is smaller than a pixel.
+// A point source: a star, a planet, or the Sun when its disk is smaller than a pixel. A
+// planet's disk wider than a pixel is drawn as a disk (ResolveDisks).
 struct StarPoint {
     glm::dvec3 direction{0.0, 0.0, 1.0};  // unit
     glm::dvec3 illuminance{0.0};          // lux per channel at the top of the atmosphere
+    double angular_radius = 0.0;          // rad: a planet's disk; 0: a point
+    glm::dvec3 sunward{0.0};              // unit, from the body toward the Sun; 0: evenly lit
 };
+
+// The points with each disk wider than `pixel` (rad, the angle of a pixel) spread over it: a
+// Lambertian sphere lit from `sunward` (its phase: Venus' crescent), sampled at least twice a
+// pixel across; the disk's illuminance is kept (its magnitude already has the phase). Each
+// sample keeps its disk's angular_radius and sunward.
+std::vector<StarPoint> ResolveDisks(const std::vector<StarPoint>& points, double pixel);
 
 // A pinhole camera, OpenGL convention: it looks along -z of its view frame, +y up, +x right.
 struct Camera {
