@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <glm/gtc/constants.hpp>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -124,6 +125,36 @@ TEST_F(SkySystemTest, SkyIrradianceOnAnyNormalFromTheEnvironment) {
 // SkyLighting gives it (sky_irradiance, from the clouds' sky shade) and from the environment's
 // harmonics. The renderer's deck is ~13 % too dark seen from below (BENCHMARKS.md, issue 15);
 // the ground's light follows it.
+// The cloud path tracer's scene for what `sky` draws over (47.45 N, 8.56 E) at `time`: the
+// same atmosphere, the Sun at that day's distance and place, and the same medium, the weather's
+// layers and the precipitation shafts the renderer adds below them.
+struct ReferenceScene {
+    sky::reference::CloudField field;
+    sky::reference::CloudScene scene;
+
+    static std::unique_ptr<ReferenceScene> Of(const SkySystem& sky, const geo::Time& time,
+                                              const sky::clouds::Weather& weather,
+                                              const sky::CloudSettings& settings) {
+        const sky::Atmosphere& atmosphere = sky.atmosphere();
+        const geo::Observer observer(47.45, 8.56, 0.0);
+        const sky::SkyState state =
+            sky::MakeSkyState(geo::Ephemeris().Compute(time, observer), observer, atmosphere,
+                              geo::Attitude{}, 1.0, 1.0);
+        const sky::clouds::CloudNoise noise =
+            sky::clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory)
+                .noise;
+        auto out = std::unique_ptr<ReferenceScene>(new ReferenceScene{
+            sky::reference::CloudField(sky::clouds::WithPrecipitationShafts(weather), settings,
+                                       noise, atmosphere.bottom_radius),
+            {}});
+        out->scene.atmosphere = atmosphere;
+        out->scene.atmosphere.solar_illuminance = state.scene.lights.sun_illuminance;
+        out->scene.clouds = &out->field;
+        out->scene.sun_direction = glm::normalize(state.scene.lights.sun_direction);
+        return out;
+    }
+};
+
 TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
     SkySystem* sky = sky_;
     const geo::Time time = geo::TimeFromIso8601("2024-06-21T11:00:00Z");
@@ -146,21 +177,9 @@ TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
     const double shade = sun + Luminance(l.sky_irradiance);
     const double harmonics = sun + Luminance(l.SkyIrradianceEnu({0.0, 0.0, 1.0}));
 
-    // The reference: the same atmosphere, the Sun at today's distance and place, the same clouds.
     const sky::Atmosphere& atmosphere = sky->atmosphere();
-    const geo::Observer observer(47.45, 8.56, 0.0);
-    const sky::SkyState state = sky::MakeSkyState(geo::Ephemeris().Compute(time, observer),
-                                                  observer, atmosphere, geo::Attitude{}, 1.0, 1.0);
-    const sky::clouds::CloudNoise noise =
-        sky::clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory).noise;
-    // The medium the renderer draws: the deck and its drizzle (precipitation 0.2) below it.
-    const sky::reference::CloudField field(sky::clouds::WithPrecipitationShafts(weather), settings,
-                                           noise, atmosphere.bottom_radius);
-    sky::reference::CloudScene scene;
-    scene.atmosphere = atmosphere;
-    scene.atmosphere.solar_illuminance = state.scene.lights.sun_illuminance;
-    scene.clouds = &field;
-    scene.sun_direction = glm::normalize(state.scene.lights.sun_direction);
+    const auto reference_scene = ReferenceScene::Of(*sky, time, weather, settings);
+    const sky::reference::CloudScene& scene = reference_scene->scene;
     sky::reference::CloudPathTraceOptions options;
     options.samples = 8000;
     const sky::reference::CloudPathTraceResult reference =
@@ -205,18 +224,8 @@ TEST_F(SkySystemTest, RainUnderTheOvercastAgainstThePathTracer) {
     const double fog_luminance = Luminance(glm::vec4(glm::vec3(fog.in_scattered), 0.0f));
 
     const sky::Atmosphere& atmosphere = sky->atmosphere();
-    const geo::Observer observer(47.45, 8.56, 0.0);
-    const sky::SkyState state = sky::MakeSkyState(geo::Ephemeris().Compute(time, observer),
-                                                  observer, atmosphere, geo::Attitude{}, 1.0, 1.0);
-    const sky::clouds::CloudNoise noise =
-        sky::clouds::LoadOrGenerateCloudNoise(settings.noise, settings.noise_cache_directory).noise;
-    const sky::reference::CloudField field(sky::clouds::WithPrecipitationShafts(weather), settings,
-                                           noise, atmosphere.bottom_radius);
-    sky::reference::CloudScene scene;
-    scene.atmosphere = atmosphere;
-    scene.atmosphere.solar_illuminance = state.scene.lights.sun_illuminance;
-    scene.clouds = &field;
-    scene.sun_direction = glm::normalize(state.scene.lights.sun_direction);
+    const auto reference_scene = ReferenceScene::Of(*sky, time, weather, settings);
+    const sky::reference::CloudScene& scene = reference_scene->scene;
     sky::reference::CloudPathTraceOptions options;
     options.samples = 16000;
     const sky::reference::CloudPathTraceResult reference = sky::reference::CloudPathTrace(
