@@ -96,6 +96,15 @@ struct SkySystem::Impl {
     bool reset_adaptation = false;
     bool display_rendered = false;  // a Render has run the display pass (not only Prepare)
 
+    // The clear sky's light on a horizontal surface (the ground-irradiance LUT), lux.
+    glm::dvec3 ClearSkyIrradiance() const {
+        const sky::Lights& lights = frame.scene.lights;
+        return lights.sun_illuminance *
+                   sky::SampleGroundIrradiance(ground_irradiance, lights.sun_direction.z) +
+               lights.moon_illuminance *
+                   sky::SampleGroundIrradiance(ground_irradiance, lights.moon_direction.z);
+    }
+
     sky::DisplayPass& DisplayPassMade() {
         if (!display) {
             display = std::make_unique<sky::DisplayPass>();
@@ -416,10 +425,7 @@ void SkySystem::Update() {
     l.sun_illuminance *= l.sun_cloud_transmittance;
     l.moon_illuminance *= l.moon_cloud_transmittance;
     l.venus_illuminance *= l.venus_cloud_transmittance;
-    l.sky_irradiance = lights.sun_illuminance *
-                           sky::SampleGroundIrradiance(d.ground_irradiance, l.sun_direction_enu.z) +
-                       lights.moon_illuminance *
-                           sky::SampleGroundIrradiance(d.ground_irradiance, l.moon_direction_enu.z);
+    l.sky_irradiance = d.ClearSkyIrradiance();
     // Under the clouds: their sky transmittance and their own light, as the renderer lights its
     // ground (functions.glsl's ground term), from the newest shade the GPU has finished.
     if (const std::optional<sky::CloudShade> shade = d.renderer->LatestCloudShade();
@@ -539,21 +545,23 @@ SkySystem::Fog SkySystem::FogEnu(const glm::dvec3& direction_enu, double distanc
     // evenly along the path, and scatter the light around them. Along a path through a
     // homogeneous medium the scattered light is L (1 - T), L what an endless path gives; with a
     // phase function symmetric about the horizontal that is the mean of the light from above
-    // and from below: the sky as the clouds' shade saw it from the ground (its mean over the
-    // upper hemisphere, the rain's own light in it) and the ground's albedo E / pi.
+    // and from below, both as the clouds' shade has them on the ground: the sky's mean over
+    // the upper hemisphere (the rain's own light in it), and the ground's albedo E / pi.
     const double rain = d.renderer->PrecipitationTransmittance(camera, direction_enu, distance_m,
                                                                d.frame.scene.clouds);
     const std::optional<sky::CloudShade> shade = d.renderer->LatestCloudShade();
     if (rain < 1.0 && shade) {
-        const SkyLighting& l = d.lighting;
-        const glm::dvec3 down = l.sun_illuminance * std::max(l.sun_direction_enu.z, 0.0) +
-                                l.moon_illuminance * std::max(l.moon_direction_enu.z, 0.0) +
-                                l.sky_irradiance;
-        const glm::dvec3 above =
-            shade->luminance +
-            (l.sky_irradiance - glm::pi<double>() * shade->ground_luminance) / glm::pi<double>();
-        const glm::dvec3 around =
-            0.5 * (above + d.atmosphere.ground_albedo * down / glm::pi<double>());
+        constexpr double kPi = glm::pi<double>();
+        const sky::Lights& lights = d.frame.scene.lights;
+        const glm::dvec3 clear = d.ClearSkyIrradiance();
+        const double sun_up = std::max(lights.sun_direction.z, 0.0);
+        const glm::dvec3 sun =
+            lights.sun_illuminance * shade->direct_transmittance * sun_up *
+            sky::TransmittanceToLight(d.atmosphere, 0.0, sun_up, d.atmosphere.sun_angular_radius);
+        const glm::dvec3 ground_light =
+            sun + clear * shade->ground_sky_transmittance + kPi * shade->ground_luminance;
+        const glm::dvec3 above = shade->luminance + shade->sky_transmittance * clear / kPi;
+        const glm::dvec3 around = 0.5 * (above + d.atmosphere.ground_albedo * ground_light / kPi);
         const double depth = -std::log(rain);
         fog.in_scattered =
             fog.in_scattered * (depth > 1e-9 ? (1.0 - rain) / depth : 1.0) + (1.0 - rain) * around;
