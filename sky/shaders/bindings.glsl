@@ -21,6 +21,8 @@ const int kLightBlockBinding = 1;       // LightBlock
 const int kSettingsBlockBinding = 2;    // SettingsBlock
 const int kFrameBlockBinding = 3;       // FrameBlock
 const int kCloudBlockBinding = 4;       // clouds/interface.glsl: CloudBlock
+// atmosphere/precipitation_block.glsl: PrecipitationBlock
+const int kPrecipitationBlockBinding = 5;
 
 // Shader storage block binding points (std140).
 const int kLightStorageBinding = 1;  // clouds/sky_shade.comp: LightStorage (a LightSet)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -86,6 +87,13 @@ gl::Program StarProgram() {
     return gl::Program::Graphics(
         version + std::string(gl::EmbeddedShaderFile("atmosphere/stars.vert")),
         version + std::string(gl::EmbeddedShaderFile("atmosphere/stars.frag")), "atmosphere/stars");
+}
+
+gl::Program PrecipitationProgram() {
+    constexpr std::string_view kBlock[] = {"atmosphere/precipitation_block.glsl"};
+    return gl::Program::Graphics(gl::ComposeShader("atmosphere/precipitation.vert", {}, kBlock),
+                                 gl::ComposeShader("atmosphere/precipitation.frag", {}, kBlock),
+                                 "atmosphere/precipitation");
 }
 
 // The six composites again, laying the clouds over the sky and the disks.
@@ -186,6 +194,7 @@ std::vector<gl::Program> BuildRendererPrograms() {
     std::vector<gl::Program> programs;
     for (gl::Program& p : BuildPrograms()) programs.push_back(std::move(p));
     programs.push_back(StarProgram());
+    programs.push_back(PrecipitationProgram());
     for (gl::Program& p : CloudComposites()) programs.push_back(std::move(p));
     for (gl::Program& p : CloudPasses::BuildPrograms()) programs.push_back(std::move(p));
     for (gl::Program& p : gl::BuildDisplayPrograms()) programs.push_back(std::move(p));
@@ -197,7 +206,8 @@ AtmospherePasses::AtmospherePasses(const Atmosphere& atmosphere, const LutSettin
     : atmosphere_(atmosphere),
       settings_(s),
       programs_(BuildPrograms()),
-      star_program_(StarProgram()) {
+      star_program_(StarProgram()),
+      precipitation_program_(PrecipitationProgram()) {
     glCreateBuffers(static_cast<GLsizei>(buffers_.size()), buffers_.data());
     glNamedBufferStorage(buffers_[0], sizeof(gl::AtmosphereUniforms), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
@@ -216,6 +226,9 @@ AtmospherePasses::AtmospherePasses(const Atmosphere& atmosphere, const LutSettin
     glCreateVertexArrays(1, &vertex_array_);  // core profile draws need one, even empty
     glCreateFramebuffers(1, &star_framebuffer_);
     glCreateBuffers(1, &star_buffer_);
+    glCreateBuffers(1, &precipitation_buffer_);
+    glNamedBufferStorage(precipitation_buffer_, sizeof(gl::PrecipitationUniforms), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
     glCreateVertexArrays(1, &star_vertex_array_);
     glVertexArrayVertexBuffer(star_vertex_array_, 0, star_buffer_, 0, sizeof(StarVertex));
     glEnableVertexArrayAttrib(star_vertex_array_, 0);
@@ -251,6 +264,7 @@ AtmospherePasses::~AtmospherePasses() {
     glDeleteVertexArrays(1, &star_vertex_array_);
     glDeleteFramebuffers(1, &star_framebuffer_);
     glDeleteBuffers(1, &star_buffer_);
+    glDeleteBuffers(1, &precipitation_buffer_);
     glDeleteQueries(static_cast<GLsizei>(queries_.size()), queries_.data());
     for (GLuint t : {transmittance_, multiple_scattering_, irradiance_, sky_view_,
                      aerial_perspective_, frame_, stars_, night_sky_}) {
@@ -552,6 +566,49 @@ void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
         Draw(disk_pass, i == 0 ? disk_pass : kSecondDiskQuery, framebuffer, viewport, clouds, depth,
              boxes[i]);
     }
+}
+
+void AtmospherePasses::DrawPrecipitation(const PrecipitationDraw& p, const RenderTarget& target) {
+    if (!(p.intensity > 0.0)) return;
+    // Drops of one representative size, as many as the shaft's extinction sigma says
+    // (sigma = n pi D^2 / 2: efficiency 2), at their terminal speed: raindrops of 1.5 mm
+    // (5.5 m/s, Atlas et al. 1973), snowflakes of 5 mm (1 m/s). At most kMaxDrops in a
+    // kBoxSize box around the camera, each drawn covering for the ones left out.
+    constexpr double kBoxSize = 6.0;  // m
+    constexpr double kMaxDrops = 32768.0;
+    constexpr double kExposure = 1.0 / 60.0;  // s: a frame's
+    const double diameter = p.snow ? 5e-3 : 1.5e-3;
+    const glm::dvec3 velocity = p.wind - (p.snow ? 1.0 : 5.5) * p.up;
+    const double sigma = clouds::PrecipitationExtinction(p.intensity, p.snow);
+    const double count =
+        sigma / (0.5 * std::numbers::pi * diameter * diameter) * kBoxSize * kBoxSize * kBoxSize;
+    const double drawn = std::clamp(std::round(count), 1.0, kMaxDrops);
+    // (v t - camera) mod L, + L / 2: a drop's wrapped place is (L h + phase) mod L - L / 2.
+    glm::dvec3 phase = velocity * p.time_s - p.camera + 0.5 * kBoxSize;
+    phase -= kBoxSize * glm::floor(phase / kBoxSize);
+
+    const glm::ivec2 size = target.size();
+    const GLuint framebuffer = target.framebuffer ? *target.framebuffer : framebuffer_;
+    const glm::ivec4 viewport =
+        target.framebuffer ? target.viewport : glm::ivec4(0, 0, size.x, size.y);
+    BindInputs();
+    if (target.scene_depth) glBindTextureUnit(kSceneDepthUnit, target.scene_depth->texture);
+    gl::SetDrawTarget(framebuffer, viewport, gl::Blend::kPremultiplied);
+    gl::PrecipitationUniforms u{};
+    for (int c = 0; c < 3; ++c) u.world_from_box[c] = glm::vec4(p.world_from_box[c], 0.0);
+    u.phase = glm::vec3(phase);
+    u.box_size = static_cast<float>(kBoxSize);
+    u.box_velocity = glm::vec3(velocity);
+    u.exposure_s = static_cast<float>(kExposure);
+    u.diameter_m = static_cast<float>(diameter);
+    u.coverage_scale = static_cast<float>(std::max(count / drawn, 1.0));
+    u.snow = p.snow ? 1 : 0;
+    u.has_scene_depth = target.scene_depth ? 1 : 0;
+    glNamedBufferSubData(precipitation_buffer_, 0, sizeof(u), &u);
+    glBindBufferBase(GL_UNIFORM_BUFFER, kPrecipitationBlockBinding, precipitation_buffer_);
+    precipitation_program_.Use();
+    glBindVertexArray(vertex_array_);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(6.0 * drawn));
 }
 
 double AtmospherePasses::QueryMilliseconds(std::size_t query) const {

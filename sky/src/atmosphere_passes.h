@@ -28,6 +28,18 @@ struct StarVertex {
     glm::vec4 luminance;  // cd/m^2 over that pixel; a: its Y when it is part of a resolved disk
 };
 
+// Rain or snow falling at the camera (AtmosphereRenderer::Update works it out from the
+// precipitation shafts): a box of drops around the camera, fixed in the weather's frame.
+struct PrecipitationDraw {
+    double intensity = 0.0;  // the map's precipitation at the camera (0: none)
+    bool snow = false;
+    glm::dmat3 world_from_box{1.0};  // the weather frame's axes in the renderer's frame
+    glm::dvec3 camera{0.0};          // m, the camera in the weather frame
+    glm::dvec3 up{0.0, 0.0, 1.0};    // the camera's vertical in the weather frame
+    glm::dvec3 wind{0.0};            // m/s, the raining layer's, in the weather frame
+    double time_s = 0.0;             // CloudView::time
+};
+
 // The night sky's map (zenith/sky/night_sky.h) in the Sky-View LUT's parameterisation: 2.8 deg
 // in azimuth, finer toward the horizon.
 inline constexpr glm::ivec2 kNightSkyMapSize{128, 64};
@@ -85,6 +97,8 @@ class AtmospherePasses {
     // Sun's and the Moon's disks. The target's size is checked by the caller.
     void Composite(const SkyScene& scene, const SkyView& view, const RenderTarget& target,
                    const CloudPasses* clouds);
+    // Then the rain or snow falling at the camera, over what Composite drew (precipitation.vert).
+    void DrawPrecipitation(const PrecipitationDraw& precipitation, const RenderTarget& target);
 
     GLuint transmittance() const { return transmittance_; }
     GLuint multiple_scattering() const { return multiple_scattering_; }
@@ -122,6 +136,8 @@ class AtmospherePasses {
     GLuint framebuffer_ = 0, vertex_array_ = 0;  // the composite draws a triangle into frame_
     // The stars as points into stars_ (DrawPoints).
     gl::Program star_program_;
+    gl::Program precipitation_program_;
+    GLuint precipitation_buffer_ = 0;  // PrecipitationBlock
     GLuint star_framebuffer_ = 0, star_buffer_ = 0, star_vertex_array_ = 0;
     std::vector<StarVertex> star_vertices_;
     std::vector<glm::vec4> night_sky_pixels_;  // the night sky's map, filled on the CPU...

@@ -85,6 +85,34 @@ struct CpuClouds {
         }
         return std::exp(-optical_depth);
     }
+
+    // The rain or snow falling at `position` (m): the map's precipitation there in the
+    // precipitation shaft it is in; none outside them.
+    PrecipitationDraw PrecipitationAt(const clouds::Weather& weather, const CloudSettings& settings,
+                                      double bottom_radius, const glm::dvec3& position,
+                                      const CloudView& view) const {
+        PrecipitationDraw p;
+        const double altitude = glm::length(position) - bottom_radius;
+        for (std::size_t i = 0; i < weather.layers.size(); ++i) {
+            const clouds::CloudLayer& l = weather.layers[i];
+            if (!l.precipitation_shaft || altitude < l.base_altitude || altitude > l.top_altitude) {
+                continue;
+            }
+            const auto layer = MakeCloudLayerParameters<ref::CloudLayerParameters>(
+                l, tops[i], settings, bottom_radius, view.time);
+            const glm::dvec3 at = view.weather_from_world * position;
+            p.intensity =
+                ref::CloudWeatherAt(layer, maps[i], ref::CloudGroundCoordinates(layer, at / kKm))
+                    .precipitation;
+            p.snow = l.snow;
+            p.world_from_box = glm::transpose(view.weather_from_world);
+            p.camera = at;
+            p.up = glm::normalize(at);
+            p.wind = glm::dvec3(clouds::WindDisplacement(l, 1.0), 0.0);
+            p.time_s = view.time;
+        }
+        return p;
+    }
 };
 
 CloudShade ShadeOf(const gl::LightUniforms& u) {
@@ -106,8 +134,9 @@ struct AtmosphereRenderer::Impl {
     std::unique_ptr<CpuClouds> cpu_clouds;  // the same weather's density, for CPU queries
     // With clouds: the light block's cloud shade for LatestCloudShade.
     std::unique_ptr<gl::FencedReadback> shade_readback;
-    clouds::Weather weather;        // as last set (also when clear)
-    clouds::Weather drawn_weather;  // with its precipitation shafts (WithPrecipitationShafts)
+    clouds::Weather weather;          // as last set (also when clear)
+    clouds::Weather drawn_weather;    // with its precipitation shafts (WithPrecipitationShafts)
+    PrecipitationDraw precipitation;  // falling at the camera at the last Update
     CloudSettings cloud_settings;
     std::unique_ptr<EnvironmentPasses> environment;  // with SetEnvironment's size > 0
     EnvironmentSettings environment_settings;
@@ -215,6 +244,11 @@ void AtmosphereRenderer::Update(const SkyScene& scene, const SkyView& view) {
     }
     d.scene = scene;
     d.view = view;
+    d.precipitation = d.cpu_clouds && d.cloud_settings.precipitation_streaks
+                          ? d.cpu_clouds->PrecipitationAt(d.drawn_weather, d.cloud_settings,
+                                                          d.atmosphere.atmosphere().bottom_radius,
+                                                          view.camera.position, scene.clouds)
+                          : PrecipitationDraw{};
 }
 
 void AtmosphereRenderer::Render(const RenderTarget& target) {
@@ -243,6 +277,7 @@ void AtmosphereRenderer::Render(const RenderTarget& target) {
                          d.scene->clouds);
     }
     d.atmosphere.Composite(*d.scene, view, target, d.clouds.get());
+    d.atmosphere.DrawPrecipitation(d.precipitation, target);
     d.scene->clouds.reset_history = false;  // a cut applies to the first Render only
 }
 

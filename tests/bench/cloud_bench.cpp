@@ -107,20 +107,26 @@ BENCHMARK(BM_Frame720p)
     ->UseRealTime()
     ->MinTime(2.0);
 
-// The precipitation shaft's cost (clouds::WithPrecipitationShafts): the overcast deck dry and
-// raining moderately (0.6), whole frames at block 4 from the ground. args: raining (0, 1)
+// The precipitation's cost (clouds::WithPrecipitationShafts, and the streaks of the rain at the
+// camera): the overcast deck dry and raining moderately (0.6), whole frames at block 4 from the
+// ground. args: 0 dry, 1 raining without streaks, 2 raining with them (the default)
 void BM_PrecipitationShaft720p(benchmark::State& state) {
     Fixture& f = Shared();
     clouds::Weather deck = clouds::LoadWeather("overcast_stratus");
     deck.layers[0].precipitation = state.range(0) == 0 ? 0.0 : 0.6;
-    f.renderer.SetWeather(deck, Settings(4));
+    CloudSettings settings = Settings(4);
+    settings.precipitation_streaks = state.range(0) == 2;
+    f.renderer.SetWeather(deck, settings);
     const PassTimes t = TimeFrames(state, f, f.CameraFor(kViews[0]));
     state.counters["cloud_trace_ms"] = t.cloud_trace;
-    state.SetLabel(state.range(0) == 0 ? "ground, dry deck" : "ground, raining deck");
+    state.SetLabel(state.range(0) == 0   ? "ground, dry deck"
+                   : state.range(0) == 1 ? "ground, raining deck, no streaks"
+                                         : "ground, raining deck, streaks");
 }
 BENCHMARK(BM_PrecipitationShaft720p)
     ->Arg(0)
     ->Arg(1)
+    ->Arg(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "zenith/base/error.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/inspection.h"
+#include "zenith/sky/lighting.h"
 
 namespace zenith::sky {
 namespace {
@@ -635,6 +637,73 @@ TEST_F(CloudRenderGlTest, PrecipitationTransmittanceIsTheShaftsExtinction) {
     weather.layers[0].precipitation = 0.0;
     renderer.SetWeather(weather, Settings());
     EXPECT_EQ(renderer.PrecipitationTransmittance(position, east, 3000.0, view), 1.0);
+}
+
+// Snow at the camera (moderate, under a uniform deck) drawn as streaks: where the frame shows
+// the ground, each pixel changed by alpha (L_flake - L_behind), alpha the flakes' cover. Summed
+// over those pixels the cover is the closed form's: along a ray the flakes cover sigma / 2 per
+// metre (their cross-section; the shaft's sigma counts diffraction too) from 0.1 m to the side
+// of the 6 m box of flakes around the camera; L_flake is a white Lambertian (0.9) under the
+// shade's light on the ground.
+TEST_F(CloudRenderGlTest, SnowAtTheCameraCoversWhatItsExtinctionSays) {
+    const Atmosphere earth;
+    clouds::Weather weather = Cumulus(1.0);
+    clouds::CloudLayer& deck = weather.layers[0];
+    deck.base_altitude = 800.0;
+    deck.map.kind = clouds::WeatherMapSource::Kind::kUniform;
+    deck.precipitation = 0.6;
+    deck.snow = true;
+    Camera camera = CameraAt(2.0, 0.0, -0.35, 1.2);  // looking down at the ground
+    const Lights lights = Afternoon();
+    AtmosphereRenderer renderer(earth);
+    CloudSettings settings = Settings();
+    constexpr glm::ivec2 kSize(320, 180);
+    const auto frame = [&](bool streaks) {
+        settings.precipitation_streaks = streaks;
+        renderer.SetWeather(weather, settings);
+        for (int i = 0; i < 3; ++i)
+            test::DrawFrame(renderer, test::LightsOnly(lights), {camera}, kSize);
+        return test::DrawFrame(renderer, test::LightsOnly(lights), {camera}, kSize);
+    };
+    const LutImage without = frame(false);
+    const LutImage with = frame(true);
+    const std::optional<CloudShade> shade = renderer.LatestCloudShade();
+    ASSERT_TRUE(shade);
+    const glm::dvec3 clear =
+        lights.sun_illuminance * SampleGroundIrradiance(Inspect(renderer).ReadGroundIrradiance(),
+                                                        glm::normalize(lights.sun_direction).z);
+    const double flake =
+        Luminance(glm::vec4(glm::vec3(0.9 *
+                                      (clear * shade->ground_sky_transmittance +
+                                       std::numbers::pi * shade->ground_luminance) /
+                                      std::numbers::pi),
+                            0.0f));
+    const double sigma = clouds::PrecipitationExtinction(0.6, true);
+    const double tan_y = std::tan(0.5 * camera.vertical_fov), tan_x = tan_y * camera.aspect;
+    double cover = 0.0, expected = 0.0;
+    for (int y = 0; y < kSize.y; ++y) {
+        for (int x = 0; x < kSize.x; ++x) {
+            const double behind = Luminance(without.at(x, y));
+            if (!(flake - behind > 0.5 * flake)) continue;  // the dark ground: a clear contrast
+            cover += (Luminance(with.at(x, y)) - behind) / (flake - behind);
+            const glm::dvec3 ray =
+                glm::normalize(camera.world_from_view *
+                               glm::dvec3(((x + 0.5) / kSize.x * 2.0 - 1.0) * tan_x,
+                                          ((y + 0.5) / kSize.y * 2.0 - 1.0) * tan_y, -1.0));
+            // To the box's side or the ground, in depth along the view's axis (a pixel's
+            // frustum holds z^2 of them per depth, each covering 1 / z^2 of it), from 0.1 m.
+            double reach = 3.0 / std::max({std::abs(ray.x), std::abs(ray.y), std::abs(ray.z)});
+            if (ray.z < 0.0) reach = std::min(reach, 2.0 / -ray.z);
+            const double axial = reach * glm::dot(ray, -camera.world_from_view[2]);
+            expected += 0.5 * sigma * std::max(axial - 0.1, 0.0);
+        }
+    }
+    std::printf(
+        "snow at the camera: flakes' cover summed over the ground's pixels %.2f, "
+        "closed form %.2f (flake %.0f cd/m^2)\n",
+        cover, expected, flake);
+    ASSERT_GT(expected, 10.0);
+    EXPECT_NEAR(cover / expected, 1.0, 0.06);
 }
 
 // The shadow map and the shade are worked out every shadow_map_interval frames; the frames

@@ -151,6 +151,19 @@ void AddSettings(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, aerial_perspective_range_km);
 }
 
+void AddPrecipitation(Layout& layout, const std::string& prefix, std::size_t base) {
+    using S = PrecipitationUniforms;
+    ZENITH_SAME(S, world_from_box);
+    ZENITH_SAME(S, phase);
+    ZENITH_SAME(S, box_size);
+    ZENITH_SAME(S, box_velocity);
+    ZENITH_SAME(S, exposure_s);
+    ZENITH_SAME(S, diameter_m);
+    ZENITH_SAME(S, coverage_scale);
+    ZENITH_SAME(S, snow);
+    ZENITH_SAME(S, has_scene_depth);
+}
+
 void AddFrame(Layout& layout, const std::string& prefix, std::size_t base) {
     using S = FrameUniforms;
     ZENITH_SAME(S, camera_km);
@@ -322,6 +335,9 @@ std::map<std::string, BlockMirror> Mirrors() {
               MakeBlock<FrameUniforms>(GL_UNIFORM_BLOCK, kFrameBlockBinding, AddFrame, ""));
     m.emplace("CloudBlock",
               MakeBlock<CloudUniforms>(GL_UNIFORM_BLOCK, kCloudBlockBinding, AddCloud, ""));
+    m.emplace("PrecipitationBlock",
+              MakeBlock<PrecipitationUniforms>(GL_UNIFORM_BLOCK, kPrecipitationBlockBinding,
+                                               AddPrecipitation, ""));
     m.emplace("LightStorage",
               MakeBlock<LightUniforms>(GL_SHADER_STORAGE_BLOCK, kLightStorageBinding, AddLights,
                                        "shaded_lights."));
@@ -587,10 +603,10 @@ std::string Join(const std::vector<std::string>& lines) {
 }
 
 TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
-    // 5 LUT passes, 6 composites, the stars' points, the 6 composites again with clouds, 7 cloud
-    // programs, 3 display programs, 4 environment faces (with and without clouds, ray march) and
-    // its projection.
-    ASSERT_EQ(programs_.size(), 33u);
+    // 5 LUT passes, 6 composites, the stars' points, the precipitation's streaks, the 6
+    // composites again with clouds, 7 cloud programs, 3 display programs, 4 environment faces
+    // (with and without clouds, ray march) and its projection.
+    ASSERT_EQ(programs_.size(), 34u);
     const std::map<std::string, BlockMirror> mirrors = Mirrors();
     std::set<std::string> seen;
     std::vector<std::string> errors;

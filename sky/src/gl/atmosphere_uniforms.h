@@ -144,6 +144,22 @@ static_assert(offsetof(FrameUniforms, output_size) == 64);
 static_assert(offsetof(FrameUniforms, viewport_x) == 80);
 static_assert(offsetof(FrameUniforms, viewport_y) == 156);
 
+struct PrecipitationUniforms {  // atmosphere/precipitation_block.glsl: PrecipitationBlock
+    glm::vec4 world_from_box[3];
+    glm::vec3 phase;
+    float box_size;
+    glm::vec3 box_velocity;
+    float exposure_s;
+    float diameter_m;
+    float coverage_scale;
+    int snow;
+    int has_scene_depth;
+};
+static_assert(sizeof(PrecipitationUniforms) == 96);
+static_assert(offsetof(PrecipitationUniforms, phase) == 48);
+static_assert(offsetof(PrecipitationUniforms, box_velocity) == 64);
+static_assert(offsetof(PrecipitationUniforms, diameter_m) == 80);
+
 // atmosphere/environment_sh.comp: EnvironmentShStorage (std430), the environment's spherical
 // harmonics, coefficient i in environment_sh[i].rgb (zenith/sky/environment.h's order).
 struct EnvironmentShStorage {

@@ -22,7 +22,7 @@ class StateGuard {
     // Texture units 0..23, uniform blocks 0..4, storage block 1 and image units 0..1: every one
     // the passes bind (sky/shaders/bindings.glsl).
     static constexpr int kTextureUnits = kTextureUnitCount;
-    static constexpr int kUniformBindings = kCloudBlockBinding + 1;
+    static constexpr int kUniformBindings = kPrecipitationBlockBinding + 1;
     static constexpr int kImageUnits = kShadowMapImageUnit + 1;
     static constexpr int kMaxDrawBuffers = 8;  // GL 4.5's minimum; more are left alone
     static constexpr int kMaxClipDistances = 8;

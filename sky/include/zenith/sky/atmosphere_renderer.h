@@ -62,6 +62,10 @@ struct CloudSettings {
     // per 2x2 trace cells; 0 draws the air under the clouds evenly dimmed (the shadow map's
     // mean), as before.
     int light_shaft_steps = 24;
+    // Rain or snow falling at the camera (inside a precipitation shaft), drawn over the frame as
+    // motion-blurred streaks (sky/shaders/atmosphere/precipitation.vert); false: only the
+    // shaft's veil.
+    bool precipitation_streaks = true;
     // Reconstruction (H16 §6.1): each frame traces one pixel of every block x block (a Bayer
     // order over block^2 frames) and reprojects the rest from the previous frames. 1 traces
     // every pixel every frame (the reference, and single still frames).
