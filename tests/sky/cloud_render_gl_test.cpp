@@ -643,7 +643,7 @@ TEST_F(CloudRenderGlTest, PrecipitationTransmittanceIsTheShaftsExtinction) {
 // the ground, each pixel changed by alpha (L_flake - L_behind), alpha the flakes' cover. Summed
 // over those pixels the cover is the closed form's: along a ray the flakes cover sigma / 2 per
 // metre (their cross-section; the shaft's sigma counts diffraction too) from 0.1 m to the side
-// of the 6 m box of flakes around the camera; L_flake is a white Lambertian (0.9) under the
+// of the 3 m sphere of flakes around the camera; L_flake is a white Lambertian (0.9) under the
 // shade's light on the ground.
 TEST_F(CloudRenderGlTest, SnowAtTheCameraCoversWhatItsExtinctionSays) {
     const Atmosphere earth;
@@ -690,9 +690,9 @@ TEST_F(CloudRenderGlTest, SnowAtTheCameraCoversWhatItsExtinctionSays) {
                 glm::normalize(camera.world_from_view *
                                glm::dvec3(((x + 0.5) / kSize.x * 2.0 - 1.0) * tan_x,
                                           ((y + 0.5) / kSize.y * 2.0 - 1.0) * tan_y, -1.0));
-            // To the box's side or the ground, in depth along the view's axis (a pixel's
+            // To the sphere of flakes or the ground, in depth along the view's axis (a pixel's
             // frustum holds z^2 of them per depth, each covering 1 / z^2 of it), from 0.1 m.
-            double reach = 3.0 / std::max({std::abs(ray.x), std::abs(ray.y), std::abs(ray.z)});
+            double reach = 3.0;
             if (ray.z < 0.0) reach = std::min(reach, 2.0 / -ray.z);
             const double axial = reach * glm::dot(ray, -camera.world_from_view[2]);
             expected += 0.5 * sigma * std::max(axial - 0.1, 0.0);

@@ -6,7 +6,7 @@
 // 1 / (streak's length in pixels) of the exposure and D / f of its width and length, so its
 // streak carries its projected area (pi / 4) (D / f)^2 in all, whatever the exposure: along a
 // ray the drops cover sigma / 2 per metre (sigma, the shaft's extinction, is twice their
-// cross-section: the other half is diffraction, forward) out to the box's side.
+// cross-section: the other half is diffraction, forward) out to the box's inscribed sphere.
 layout(location = 0) flat out vec4 drop;            // rgb: alpha x luminance (cd/m^2), a: alpha
 layout(location = 1) out float eye_depth;           // m along the view axis
 
@@ -58,7 +58,10 @@ void main() {
     eye_depth = 0.0;
     const float kNear = 0.1;  // m: a drop nearer the lens is out of focus, not drawn
     float altitude = 1000.0 * camera_altitude_km + dot(world_from_box_m * box, sky_view_up);
-    if (head.z > -kNear || tail.z > -kNear || altitude < 0.0) {  // or under the ground
+    // Out to the box's inscribed sphere, so every ray meets them for the same distance (the
+    // cube's corners would show as a pattern), and not under the ground.
+    if (head.z > -kNear || tail.z > -kNear || altitude < 0.0 ||
+        length(box) > 0.5 * box_size) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // clipped
         return;
     }
