@@ -530,9 +530,7 @@ void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
     const bool ray_march = !inside || view.force_ray_march;
     const Pass pass = target.scene_depth ? (ray_march ? kRenderRayMarchDepthPass : kRenderDepthPass)
                                          : (ray_march ? kRenderRayMarchPass : kRenderPass);
-    const GLuint framebuffer = target.framebuffer ? *target.framebuffer : framebuffer_;
-    const glm::ivec4 viewport =
-        target.framebuffer ? target.viewport : glm::ivec4(0, 0, size.x, size.y);
+    const auto [framebuffer, viewport] = Destination(target);
     const GLuint depth = target.scene_depth ? target.scene_depth->texture : 0;
     // LastPassTimes reports this frame's composite draws only.
     std::fill(query_used_.begin() + kRenderPass, query_used_.end(), false);
@@ -568,12 +566,18 @@ void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
     }
 }
 
+std::pair<GLuint, glm::ivec4> AtmospherePasses::Destination(const RenderTarget& target) const {
+    if (target.framebuffer) return {*target.framebuffer, target.viewport};
+    return {framebuffer_, glm::ivec4(0, 0, target.size())};
+}
+
 void AtmospherePasses::DrawPrecipitation(const PrecipitationDraw& p, const RenderTarget& target) {
     if (!(p.intensity > 0.0)) return;
     // Drops of one representative size, as many as the shaft's extinction sigma says
     // (sigma = n pi D^2 / 2: efficiency 2), at their terminal speed: raindrops of 1.5 mm
     // (5.5 m/s, Atlas et al. 1973), snowflakes of 5 mm (1 m/s). At most kMaxDrops in a
-    // kBoxSize box around the camera, each drawn covering for the ones left out.
+    // kBoxSize box around the camera, each drawn covering for the ones left out; the shader
+    // keeps those in its inscribed sphere.
     constexpr double kBoxSize = 6.0;  // m
     constexpr double kMaxDrops = 32768.0;
     constexpr double kExposure = 1.0 / 60.0;  // s: a frame's
@@ -587,10 +591,7 @@ void AtmospherePasses::DrawPrecipitation(const PrecipitationDraw& p, const Rende
     glm::dvec3 phase = velocity * p.time_s - p.camera + 0.5 * kBoxSize;
     phase -= kBoxSize * glm::floor(phase / kBoxSize);
 
-    const glm::ivec2 size = target.size();
-    const GLuint framebuffer = target.framebuffer ? *target.framebuffer : framebuffer_;
-    const glm::ivec4 viewport =
-        target.framebuffer ? target.viewport : glm::ivec4(0, 0, size.x, size.y);
+    const auto [framebuffer, viewport] = Destination(target);
     BindInputs();
     if (target.scene_depth) glBindTextureUnit(kSceneDepthUnit, target.scene_depth->texture);
     gl::SetDrawTarget(framebuffer, viewport, gl::Blend::kPremultiplied);

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "gl/atmosphere_uniforms.h"
@@ -123,6 +124,8 @@ class AtmospherePasses {
     void BuildStaticLuts();
     void ResizeFrame(glm::ivec2 size);
     bool SunDiskResolved(const SkyView& view, glm::ivec2 size) const;
+    // The framebuffer and viewport a target draws into: the host's, or the own frame's.
+    std::pair<GLuint, glm::ivec4> Destination(const RenderTarget& target) const;
     bool NightSkyMapHolds(const SkyScene& scene, const glm::dvec3& camera_position) const;
     void DrawPoints(glm::ivec2 size);
 
