@@ -262,7 +262,7 @@ void AddCloud(Layout& layout, const std::string& prefix, std::size_t base) {
     AddLights(layout, prefix + "cloud_lights.", base + offsetof(S, lights));
     ZENITH_SAME(S, weather_from_frame);
     ZENITH_SAME(S, previous_view_from_frame);
-    ZENITH_SAME(S, previous_camera_km);
+    ZENITH_SAME(S, previous_camera_offset_km);
     ZENITH_SAME(S, previous_tan_half_fov);
     ZENITH_SAME(S, trace_size);
     ZENITH_SAME(S, trace_offset);

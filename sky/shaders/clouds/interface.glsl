@@ -10,7 +10,9 @@ layout(std140, binding = kCloudBlockBinding) uniform CloudBlock {
     LightSet cloud_lights;               // the lights with directions in the weather frame
     vec4 weather_from_frame[3];          // rotation, columns (xyz)
     vec4 previous_view_from_frame[3];    // rotation: this frame -> the previous camera's view
-    vec3 previous_camera_km;             // the previous camera in this frame
+    // The previous camera minus this one, in this frame: computed in double on the CPU, since
+    // camera_km is thousands of km from the planet's centre, where a float's step is 0.5 m.
+    vec3 previous_camera_offset_km;
     float previous_tan_half_fov;
     ivec2 trace_size;                    // cells of the trace, each block x block pixels
     ivec2 trace_offset;                  // the pixel of each block traced this frame

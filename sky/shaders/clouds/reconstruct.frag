@@ -16,7 +16,7 @@ layout(location = 0) out vec4 out_cloud;
 bool Reproject(vec3 view, float depth, out vec2 uv) {
     mat3 previous_view = mat3(previous_view_from_frame[0].xyz, previous_view_from_frame[1].xyz,
                               previous_view_from_frame[2].xyz);
-    vec3 v = depth > 0.0 ? previous_view * (camera_km + view * depth - previous_camera_km)
+    vec3 v = depth > 0.0 ? previous_view * (view * depth - previous_camera_offset_km)
                          : previous_view * view;
     if (!(v.z < 0.0)) return false;
     vec2 ndc = vec2(v.x / (-v.z * previous_tan_half_fov * previous_aspect),

@@ -259,8 +259,9 @@ void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& cam
         for (int i = 0; i < 3; ++i) {
             u.previous_view_from_frame[i] = glm::vec4(glm::vec3(previous_view[i]), 0.0f);
         }
-        u.previous_camera_km =
-            glm::vec3(glm::transpose(previous_from_current) * previous_->camera.position / kKm);
+        u.previous_camera_offset_km = glm::vec3(
+            (glm::transpose(previous_from_current) * previous_->camera.position - camera.position) /
+            kKm);
         u.previous_tan_half_fov =
             static_cast<float>(std::tan(0.5 * previous_->camera.vertical_fov));
         u.previous_aspect = static_cast<float>(previous_->camera.aspect);

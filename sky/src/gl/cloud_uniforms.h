@@ -65,7 +65,7 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     LightUniforms lights;
     glm::vec4 weather_from_frame[3];
     glm::vec4 previous_view_from_frame[3];
-    glm::vec3 previous_camera_km;
+    glm::vec3 previous_camera_offset_km;
     float previous_tan_half_fov;
     glm::ivec2 trace_size;
     glm::ivec2 trace_offset;
@@ -89,7 +89,7 @@ static_assert(offsetof(CloudUniforms, march) == 288);
 static_assert(offsetof(CloudUniforms, lights) == 336);
 static_assert(offsetof(CloudUniforms, weather_from_frame) == 640);
 static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 688);
-static_assert(offsetof(CloudUniforms, previous_camera_km) == 736);
+static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 736);
 static_assert(offsetof(CloudUniforms, trace_size) == 752);
 static_assert(offsetof(CloudUniforms, block) == 768);
 static_assert(offsetof(CloudUniforms, frame_jitter) == 784);
