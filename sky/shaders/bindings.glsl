@@ -32,6 +32,9 @@ const int kDisplayStorageBinding = 1;
 // atmosphere/environment_sh.comp: EnvironmentShStorage (the environment's nine coefficients).
 // The same binding point again, for the same reason.
 const int kEnvironmentStorageBinding = 1;
+// clouds/geometry_list.glsl: CloudGeometryList (the pixels of a host's geometry marched on their
+// own rays, and the indirect draw that marches them). Again the same binding point.
+const int kCloudGeometryListBinding = 1;
 
 // Texture units of the samplers. The atmosphere's (0-6) are bound by AtmosphereRenderer before
 // every pass, the clouds' (7-18) by CloudPasses.
@@ -54,7 +57,8 @@ const int kCloudGroundShadowUnit = 18;
 const int kNightSkyUnit = 19;  // atmosphere/render.frag: the night sky's light (night_sky.h)
 const int kCloudAirShadowUnit = 20;  // clouds/light_shafts.frag's 4 outputs (20-23)
 const int kCloudTraceProfileUnit = 24;  // clouds/trace.frag's transmittance profile
-const int kTextureUnitCount = 25;       // units 0 .. kTextureUnitCount - 1 are zenith's
+const int kCloudGeometryUnit = 25;      // clouds/geometry_march.frag's (L, T) at host geometry
+const int kTextureUnitCount = 26;       // units 0 .. kTextureUnitCount - 1 are zenith's
 
 // Image units.
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write

@@ -523,7 +523,7 @@ void AtmospherePasses::SetTarget(const SkyScene& scene, const SkyView& view,
 }
 
 void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
-                                 const RenderTarget& target, const CloudPasses* clouds) {
+                                 const RenderTarget& target, CloudPasses* clouds) {
     const Camera& camera = view.camera;
     const glm::ivec2 size = target.size();
     const bool inside = glm::length(camera.position) < atmosphere_.top_radius;
@@ -534,6 +534,13 @@ void AtmospherePasses::Composite(const SkyScene& scene, const SkyView& view,
     const GLuint depth = target.scene_depth ? target.scene_depth->texture : 0;
     // LastPassTimes reports this frame's composite draws only.
     std::fill(query_used_.begin() + kRenderPass, query_used_.end(), false);
+    if (clouds != nullptr && depth != 0) {
+        // The clouds in front of the host's geometry where its trace cells disagree.
+        BindInputs();
+        clouds->BindForComposite();
+        glBindTextureUnit(kSceneDepthUnit, depth);
+        clouds->MarchToGeometry();
+    }
     Draw(pass, pass, framebuffer, viewport, clouds, depth);
 
     // The Sun and the Moon, each over its own box (one box when they overlap, so an eclipse is

@@ -95,9 +95,10 @@ class AtmospherePasses {
     void SetTarget(const SkyScene& scene, const SkyView& view, const RenderTarget& target);
     // ...and, once CloudPasses has traced, the composite into `target`: the sky (over the host's
     // depth, if the view has one) with `clouds`' last trace laid over it when given, then the
-    // Sun's and the Moon's disks. The target's size is checked by the caller.
+    // Sun's and the Moon's disks; over the host's geometry, first CloudPasses::MarchToGeometry.
+    // The target's size is checked by the caller.
     void Composite(const SkyScene& scene, const SkyView& view, const RenderTarget& target,
-                   const CloudPasses* clouds);
+                   CloudPasses* clouds);
     // Then the rain or snow falling at the camera, over what Composite drew (precipitation.vert).
     void DrawPrecipitation(const PrecipitationDraw& precipitation, const RenderTarget& target);
 

@@ -505,6 +505,7 @@ PassTimes RendererInspection::LastPassTimes() const {
         times.cloud_reconstruct = clouds[3];
         times.cloud_ground_shadow = clouds[4];
         times.cloud_light_shafts = clouds[5];
+        times.cloud_geometry = clouds[6];
     }
     if (d.environment) times.environment = d.environment->LastMilliseconds();
     return times;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "colour_target.h"
 #include "draw_frame.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
@@ -103,6 +104,57 @@ void BM_Frame720p(benchmark::State& state) {
 }
 BENCHMARK(BM_Frame720p)
     ->ArgsProduct({{0, 1, 2}, {0, 4, 8, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
+// The composite over a host's geometry in the clouds: a ridge 8 km away fills the frame's lower
+// part up to a line that rises and falls by 10 % of the height, rendered into the host's
+// framebuffer with its depth. From inside the cumulus layer the ridge's edge and face meet the
+// clouds' edges (where MarchToGeometry marches pixels on their own rays); from the ground the
+// clouds lie behind it. args: view (kViews), 0 the far plane everywhere (no geometry) or 1 the
+// ridge.
+void BM_HostGeometryInClouds720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    f.renderer.SetWeather(f.weather, Settings(4));
+    constexpr int kWidth = 1280, kHeight = 720;
+    constexpr double kNear = 1.0, kFar = 100000.0, kEyeDepth = 8000.0;
+    const float ridge_depth = static_cast<float>(
+        0.5 * ((kFar + kNear - 2.0 * kNear * kFar / kEyeDepth) / (kFar - kNear) + 1.0));
+    std::vector<float> depth(static_cast<std::size_t>(kWidth * kHeight), 1.0f);
+    for (int y = 0; y < kHeight && state.range(1) == 1; ++y) {
+        for (int x = 0; x < kWidth; ++x) {
+            if (y < kHeight * (0.45 + 0.1 * std::sin(x / 60.0))) {
+                depth[static_cast<std::size_t>(y * kWidth + x)] = ridge_depth;
+            }
+        }
+    }
+    const zenith::test::ColourTarget target(GL_RGBA16F, kWidth, kHeight);
+    GLuint depth_texture = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture);
+    glTextureStorage2D(depth_texture, 1, GL_DEPTH_COMPONENT32F, kWidth, kHeight);
+    glTextureSubImage2D(depth_texture, 0, 0, 0, kWidth, kHeight, GL_DEPTH_COMPONENT, GL_FLOAT,
+                        depth.data());
+    const RenderTarget host = RenderTarget::Host(target.framebuffer(), {0, 0, kWidth, kHeight},
+                                                 SceneDepth{depth_texture, kNear, kFar});
+    const View& view = kViews[state.range(0)];
+    f.renderer.Update(zenith::test::SceneOf(f.lights, {}), {f.CameraFor(view)});
+    f.renderer.Render(host);
+    glFinish();
+    for (auto _ : state) {
+        f.renderer.Render(host);
+        glFinish();
+    }
+    glDeleteTextures(1, &depth_texture);
+    const PassTimes t = Inspect(f.renderer).LastPassTimes();
+    state.counters["composite_ms"] = t.render;
+    state.counters["cloud_trace_ms"] = t.cloud_trace;
+    state.counters["cloud_geometry_ms"] = t.cloud_geometry;
+    state.SetLabel(std::string(view.name) +
+                   (state.range(1) == 0 ? ", no geometry" : ", ridge at 8 km"));
+}
+BENCHMARK(BM_HostGeometryInClouds720p)
+    ->ArgsProduct({{0, 1}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);

@@ -638,6 +638,34 @@ TEST_F(GlStateContractTest, CloudsUnderAHostileHostState) {
     CheckEveryCall(*sky, host, reference, offscreen);
 }
 
+// Over the host's depth, the clouds in front of its geometry: the cells where they disagree are
+// listed in a storage buffer and marched by an indirect draw (CloudPasses::MarchToGeometry), the
+// host's own indirect and storage bindings restored after.
+TEST_F(GlStateContractTest, CloudsOverTheHostsDepthUnderAHostileHostState) {
+    const Host host;
+    const auto sky = MakeSky(true);
+    sky::CloudSettings settings;
+    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+    sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
+    // The lower half 1.5 km away, the upper half at the far plane (near 1 m, far 100 km).
+    GLuint depth = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &depth);
+    glTextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, kWidth, kHeight);
+    constexpr double kNear = 1.0, kFar = 100000.0, kEyeDepth = 1500.0;
+    const float geometry = static_cast<float>(
+        0.5 * ((kFar + kNear - 2.0 * kNear * kFar / kEyeDepth) / (kFar - kNear) + 1.0));
+    std::vector<float> values(static_cast<std::size_t>(kWidth * kHeight), 1.0f);
+    std::fill(values.begin(), values.begin() + kWidth * kHeight / 2, geometry);
+    glTextureSubImage2D(depth, 0, 0, 0, kWidth, kHeight, GL_DEPTH_COMPONENT, GL_FLOAT,
+                        values.data());
+    sky->SetSceneDepth(depth, kNear, kFar);
+    const std::vector<glm::vec4> reference = Reference(*sky, host);
+    const sky::LutImage offscreen = ReferenceOffscreen(*sky);
+    CheckEveryCall(*sky, host, reference, offscreen);
+    sky->ClearSceneDepth();
+    glDeleteTextures(1, &depth);
+}
+
 // The display pass (metered, night adaptation on) is under the same contract: Render then draws
 // into zenith's own frame, meters it (compute passes, a storage buffer) and writes display values.
 TEST_F(GlStateContractTest, DisplayPassUnderAHostileHostState) {

@@ -146,16 +146,23 @@ TEST_F(CloudRenderGlTest, CoverageZeroIsExactlyTheClearSky) {
     for (const glm::vec4& t : Inspect(renderer).ReadCloudShadowMap().texels) ASSERT_EQ(t.r, 1.0f);
 }
 
-// The host's framebuffer after Render over geometry at `eye_depth` m everywhere, filled with
-// `colour` before: L + T colour per pixel.
+std::vector<double> Everywhere(glm::ivec2 size, double eye_depth) {
+    return std::vector<double>(static_cast<std::size_t>(size.x * size.y), eye_depth);
+}
+
+// The host's framebuffer after Render over geometry at eye_depths[pixel] m (rows from the
+// bottom; 0: none, the far plane), filled with `colour` before: L + T colour per pixel.
 std::vector<glm::vec4> RenderOverGeometry(AtmosphereRenderer& renderer, const Camera& camera,
                                           const Lights& lights, FrameOptions options,
-                                          double eye_depth, float colour) {
+                                          const std::vector<double>& eye_depths, float colour) {
     constexpr double kNear = 1.0, kFar = 100000.0;
     const glm::ivec2 size = options.size;
-    const double z_ndc = (kFar + kNear - 2.0 * kNear * kFar / eye_depth) / (kFar - kNear);
-    const std::vector<float> depth(static_cast<std::size_t>(size.x * size.y),
-                                   static_cast<float>(0.5 * (z_ndc + 1.0)));
+    std::vector<float> depth(eye_depths.size(), 1.0f);
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+        if (!(eye_depths[i] > 0.0)) continue;
+        const double z_ndc = (kFar + kNear - 2.0 * kNear * kFar / eye_depths[i]) / (kFar - kNear);
+        depth[i] = static_cast<float>(0.5 * (z_ndc + 1.0));
+    }
     const zenith::test::ColourTarget target(GL_RGBA32F, size.x, size.y);
     GLuint depth_texture = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &depth_texture);
@@ -169,6 +176,20 @@ std::vector<glm::vec4> RenderOverGeometry(AtmosphereRenderer& renderer, const Ca
                                        SceneDepth{depth_texture, kNear, kFar}));
     glDeleteTextures(1, &depth_texture);
     return target.ReadFloat();
+}
+
+// The transmittance over the host's geometry (RenderOverGeometry): the difference of two host
+// colours.
+std::vector<double> TransmittanceOverGeometry(AtmosphereRenderer& renderer, const Camera& camera,
+                                              const Lights& lights, const FrameOptions& options,
+                                              const std::vector<double>& eye_depths) {
+    const std::vector<glm::vec4> black =
+        RenderOverGeometry(renderer, camera, lights, options, eye_depths, 0.0f);
+    const std::vector<glm::vec4> white =
+        RenderOverGeometry(renderer, camera, lights, options, eye_depths, 1000.0f);
+    std::vector<double> t(black.size());
+    for (std::size_t i = 0; i < t.size(); ++i) t[i] = (white[i].g - black[i].g) / 1000.0;
+    return t;
 }
 
 // The composite lays the clouds, (L, T) as ReadClouds gives them, over what they hide: the
@@ -214,20 +235,13 @@ TEST_F(CloudRenderGlTest, CompositeHidesTheSunAndOnlyGeometryBehindTheClouds) {
         }
     }
 
-    // The transmittance over the geometry: the difference of two host colours.
-    const auto transmittance = [&](AtmosphereRenderer& renderer, double eye_depth) {
-        const std::vector<glm::vec4> black =
-            RenderOverGeometry(renderer, camera, lights, options, eye_depth, 0.0f);
-        const std::vector<glm::vec4> white =
-            RenderOverGeometry(renderer, camera, lights, options, eye_depth, 1000.0f);
-        std::vector<double> t(black.size());
-        for (std::size_t i = 0; i < t.size(); ++i) t[i] = (white[i].g - black[i].g) / 1000.0;
-        return t;
-    };
     int covered = 0;
     for (const double eye_depth : {1000.0, 20000.0}) {
-        const std::vector<double> air = transmittance(clear, eye_depth);
-        const std::vector<double> seen = transmittance(cloudy, eye_depth);
+        const std::vector<double> depths = Everywhere(options.size, eye_depth);
+        const std::vector<double> air =
+            TransmittanceOverGeometry(clear, camera, lights, options, depths);
+        const std::vector<double> seen =
+            TransmittanceOverGeometry(cloudy, camera, lights, options, depths);
         for (std::size_t i = 0; i < air.size(); ++i) {
             const double cloud = eye_depth < 2000.0 ? 1.0 : clouds.texels[i].a;
             ASSERT_NEAR(seen[i], cloud * air[i], 1e-4) << eye_depth << " m, pixel " << i;
@@ -241,6 +255,83 @@ TEST_F(CloudRenderGlTest, CompositeHidesTheSunAndOnlyGeometryBehindTheClouds) {
     EXPECT_GT(disk_pixels, 10);
     EXPECT_GT(hidden, 0);
     EXPECT_GT(covered, 100);
+}
+
+// A peak rising out of a deck, seen from 300 m above the deck's top: geometry 2 km ahead in the
+// frame's middle columns, its lower rows inside the deck, its upper rows above it. Over the
+// geometry the composite must dim the host's colour by the clouds' transmittance up to it,
+// exp(-tau), tau integrated here along each pixel's ray through the deck's density profile (the
+// fog's: flat to kCloudFogFlat of the layer, then falling to 0 at its top). Before, each trace
+// cell's one ray spoke for its 4 x 4 pixels, and the edge where the peak leaves the deck came
+// out in blocks of cloud over the peak or peak through the cloud, changing with the traced pixel.
+TEST_F(CloudRenderGlTest, GeometryRisingOutOfADeckIsSeenPixelByPixel) {
+    const Atmosphere earth;
+    const Lights lights = Afternoon();
+    clouds::CloudLayer deck;
+    deck.name = "deck";
+    deck.base_altitude = 1000.0;
+    deck.top_altitude = 1500.0;
+    deck.coverage = 1.0;
+    deck.cloud_type = 0.0;
+    deck.ground_fog = true;  // homogeneous: the density a closed form can follow
+    deck.extinction_scale = 0.125;
+    clouds::Weather weather;
+    weather.name = "test_deck";
+    weather.layers = {deck};
+    const double sigma = deck.extinction_scale * CloudSettings{}.extinction;  // 1/m
+
+    const Camera camera = CameraAt(1800.0, 0.3, -0.15);
+    const glm::ivec2 size(96, 54);
+    FrameOptions options = Options(size);
+    options.clouds.reset_history = true;
+    constexpr double kEyeDepth = 2000.0;
+    std::vector<double> depths(static_cast<std::size_t>(size.x * size.y), 0.0);
+    for (int y = 0; y < size.y; ++y) {
+        for (int x = 30; x < 66; ++x) depths[static_cast<std::size_t>(y * size.x + x)] = kEyeDepth;
+    }
+    AtmosphereRenderer clear(earth);
+    const std::vector<double> air =
+        TransmittanceOverGeometry(clear, camera, lights, options, depths);
+    const auto tau = [&](const glm::dvec3& view, double distance) {
+        constexpr int kSteps = 4000;
+        double sum = 0.0;
+        for (int i = 0; i < kSteps; ++i) {
+            const glm::dvec3 p = camera.position + view * (distance * (i + 0.5) / kSteps);
+            const double h = (glm::length(p) - 6360e3 - deck.base_altitude) /
+                             (deck.top_altitude - deck.base_altitude);
+            if (h > 0.0 && h < 1.0)
+                sum += std::clamp((1.0 - h) / (1.0 - ref::kCloudFogFlat), 0.0, 1.0);
+        }
+        return sigma * sum * distance / kSteps;
+    };
+    for (const int block : {1, 4}) {
+        AtmosphereRenderer cloudy(earth);
+        cloudy.SetWeather(weather, Settings(block));
+        const std::vector<double> seen =
+            TransmittanceOverGeometry(cloudy, camera, lights, options, depths);
+        int pixels = 0, partly = 0, wrong = 0;
+        double worst = 0.0;
+        for (int y = 0; y < size.y; ++y) {
+            for (int x = 30; x < 66; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y * size.x + x);
+                const glm::dvec3 view = camera.Direction(2.0 * (x + 0.5) / size.x - 1.0,
+                                                         2.0 * (y + 0.5) / size.y - 1.0);
+                const double distance = kEyeDepth / glm::dot(view, -camera.world_from_view[2]);
+                const double expected = std::exp(-tau(view, distance));
+                const double error = std::abs(seen[i] / air[i] - expected);
+                ++pixels;
+                if (expected > 0.05 && expected < 0.95) ++partly;
+                if (error > 0.05) ++wrong;
+                worst = std::max(worst, error);
+            }
+        }
+        std::printf(
+            "block %d: %d pixels of geometry, %d of them partly behind the deck; clouds' "
+            "transmittance in front of them off by > 0.05 at %d, worst %.3f\n",
+            block, pixels, partly, wrong, worst);
+        EXPECT_GT(partly, 36) << block;
+        EXPECT_EQ(wrong, 0) << block;
+    }
 }
 
 // GPU trace (block 1, first frame: no history) vs ref::TraceClouds at every pixel.
@@ -537,9 +628,9 @@ TEST_F(CloudRenderGlTest, LightShaftsReachTheHostsGeometry) {
     without.SetWeather(weather, settings);
     const double eye_depth = 700.0;  // m: in front of the ground, 1.0-1.6 km along the rays
     const std::vector<glm::vec4> shafted =
-        RenderOverGeometry(with, camera, lights, options, eye_depth, 0.0f);
+        RenderOverGeometry(with, camera, lights, options, Everywhere(size, eye_depth), 0.0f);
     const std::vector<glm::vec4> plain =
-        RenderOverGeometry(without, camera, lights, options, eye_depth, 0.0f);
+        RenderOverGeometry(without, camera, lights, options, Everywhere(size, eye_depth), 0.0f);
 
     settings.light_shaft_steps = CloudSettings{}.light_shaft_steps;
     const ref::Texture2D shadow_map = ref::FromImage(Inspect(with).ReadCloudShadowMap());

@@ -296,6 +296,17 @@ void AddEnvironmentSh(Layout& layout, const std::string& prefix, std::size_t bas
     ZENITH_SAME(S, environment_sh);
 }
 
+void AddCloudGeometryList(Layout& layout, const std::string& prefix, std::size_t base) {
+    using S = CloudGeometryList;
+    ZENITH_MEMBER("geometry_vertices", S, vertices);
+    ZENITH_MEMBER("geometry_instances", S, instances);
+    ZENITH_MEMBER("geometry_first", S, first);
+    ZENITH_MEMBER("geometry_base_instance", S, base_instance);
+    ZENITH_MEMBER("geometry_capacity", S, capacity);
+    ZENITH_MEMBER("geometry_unused", S, unused);
+    ZENITH_MEMBER("geometry_cells", S, cells);
+}
+
 #undef ZENITH_SAME
 #undef ZENITH_MEMBER
 
@@ -347,6 +358,9 @@ std::map<std::string, BlockMirror> Mirrors() {
     m.emplace("EnvironmentShStorage",
               MakeBlock<EnvironmentShStorage>(GL_SHADER_STORAGE_BLOCK, kEnvironmentStorageBinding,
                                               AddEnvironmentSh, ""));
+    m.emplace("CloudGeometryList",
+              MakeBlock<CloudGeometryList>(GL_SHADER_STORAGE_BLOCK, kCloudGeometryListBinding,
+                                           AddCloudGeometryList, ""));
     return m;
 }
 
@@ -371,6 +385,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"cloud_shadow_map", kCloudShadowMapUnit},
         {"cloud_ground_shadow", kCloudGroundShadowUnit},
         {"cloud_air_shadow[0]", kCloudAirShadowUnit},  // and the next 3
+        {"cloud_geometry", kCloudGeometryUnit},
         {"display_input", kDisplayInputUnit},
         {"display_scene_depth", kSceneDepthUnit},
         // Images.
@@ -604,9 +619,9 @@ std::string Join(const std::vector<std::string>& lines) {
 
 TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
     // 5 LUT passes, 6 composites, the stars' points, the precipitation's streaks, the 6
-    // composites again with clouds, 7 cloud programs, 3 display programs, 4 environment faces
+    // composites again with clouds, 9 cloud programs, 3 display programs, 4 environment faces
     // (with and without clouds, ray march) and its projection.
-    ASSERT_EQ(programs_.size(), 34u);
+    ASSERT_EQ(programs_.size(), 36u);
     const std::map<std::string, BlockMirror> mirrors = Mirrors();
     std::set<std::string> seen;
     std::vector<std::string> errors;

@@ -25,7 +25,7 @@ void main() {
     }
 #if ZENITH_CLOUDS
     CloudMarchState state;
-    vec4 clouds = TraceClouds(direction, 0.5, state);
+    vec4 clouds = TraceClouds(direction, 1e9, 0.5, cloud_march, state);
     luminance = clouds.rgb + clouds.a * (luminance + GroundShadowCorrection(direction));
 #endif
     out_luminance = vec4(luminance, 1.0);

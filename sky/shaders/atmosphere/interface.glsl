@@ -89,6 +89,18 @@ vec3 CameraDirection(vec2 cell, vec2 grid) {
                      world_from_view[2].xyz * view.z);
 }
 
+// The distance (km) along pixel `pixel`'s ray to the host's geometry, from its depth (SceneDepth:
+// scene_depth_* above), or -1 where the depth is at the far plane (sky).
+float SceneDistanceKm(ivec2 pixel) {
+    float depth = texelFetch(scene_depth_texture, pixel, 0).r;
+    bool geometry = scene_depth_reversed != 0 ? depth > 0.0 : depth < 1.0;
+    if (!geometry) return -1.0;
+    float eye_depth = scene_near_m / (scene_depth_offset + scene_depth_slope * depth);
+    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
+    return eye_depth * length(vec3(ndc.x * tan_half_fov * aspect, ndc.y * tan_half_fov, 1.0)) /
+           1000.0;
+}
+
 // The direction through the centre of texel `texel` of the environment's atlas (environment.frag):
 // face texel.y / environment_size, OpenGL's cube map orientation (CubeFaceDirection on the CPU).
 vec3 EnvironmentDirection(ivec2 texel) {

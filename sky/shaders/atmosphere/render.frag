@@ -82,8 +82,8 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy) - ivec2(viewport_x, viewport_y);
     vec3 direction = CameraDirection(vec2(pixel), vec2(output_size));
 #if ZENITH_SCENE_DEPTH
-    float depth = texelFetch(scene_depth_texture, pixel, 0).r;
-    bool geometry = scene_depth_reversed != 0 ? depth > 0.0 : depth < 1.0;  // nearer than far
+    float distance_km = SceneDistanceKm(pixel);
+    bool geometry = distance_km > 0.0;  // nearer than the far plane
 #endif
 
 #if ZENITH_DISKS
@@ -162,19 +162,13 @@ void main() {
     // aerial perspective in front of it, premultiplied for blending (ONE, SRC_ALPHA):
     // framebuffer = in-scattered + transmittance * the host's colour (H20 §5.4).
     if (geometry) {
-        float eye_depth = scene_near_m / (scene_depth_offset + scene_depth_slope * depth);
-        vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(output_size) - 1.0;
-        float distance_km = eye_depth * length(vec3(ndc.x * tan_half_fov * aspect,
-                                                    ndc.y * tan_half_fov, 1.0)) / 1000.0;
         vec4 air = SampleAerialPerspective(
             aerial_perspective_texture, (vec2(pixel) + 0.5) / vec2(output_size), distance_km,
             aerial_perspective_range_km, aerial_perspective_size.z);
     #if ZENITH_CLOUDS
-        // Only the clouds in front of the geometry: their share of the opacity before it, from
-        // the trace cell's transmittance profile (all of it behind a cloud, none in front, a
-        // part inside one or in fog).
-        float share = CloudShareInFront(pixel, distance_km);
-        clouds = vec4(clouds.rgb * share, 1.0 - (1.0 - clouds.a) * share);
+        // Only the clouds in front of the geometry (all of them behind a cloud, none in front,
+        // a part inside one or in fog).
+        clouds = CloudsInFrontOf(pixel, distance_km, clouds);
         // The light shafts up to the geometry: in front of those clouds from below the base.
         vec3 shafts = CloudLightShaftsTo(pixel, direction, distance_km);
         float behind = camera_altitude_km < lights.cloud_base ? 1.0 : clouds.a;

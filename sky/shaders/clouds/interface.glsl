@@ -46,6 +46,9 @@ layout(binding = kWeatherMapsUnit) uniform sampler2D weather_maps[kCloudMaxLayer
 layout(binding = kCloudTraceUnit) uniform sampler2D cloud_trace;
 layout(binding = kCloudTraceDepthUnit) uniform sampler2D cloud_trace_depth;
 layout(binding = kCloudTraceProfileUnit) uniform sampler2D cloud_trace_profile;
+// (L, T) of the clouds in front of a host's geometry at the pixels marched on their own rays
+// (clouds/geometry_march.frag), T = -1 elsewhere; full resolution.
+layout(binding = kCloudGeometryUnit) uniform sampler2D cloud_geometry;
 layout(binding = kCloudHistoryUnit) uniform sampler2D cloud_history;
 layout(binding = kCloudShadowMapUnit) uniform sampler2D cloud_shadow_map;
 layout(binding = kCloudGroundShadowUnit) uniform sampler2D cloud_ground_shadow;
@@ -58,16 +61,30 @@ float CloudTraceDepth(ivec2 pixel) {
     return texelFetch(cloud_trace_depth, min(pixel / block, trace_size - 1), 0).r;
 }
 
-// The share of the clouds' opacity in front of a host's geometry `distance` km along a
-// full-resolution pixel's ray (CloudOpacityShareInFront over its trace cell's ray: its profile
-// and transmittance): 0 for geometry in front of the clouds, 1 behind them, and in between
-// inside them (fog around the camera, a cloud the geometry pierces).
-float CloudShareInFront(ivec2 pixel, float distance) {
-    ivec2 cell = min(pixel / block, trace_size - 1);
-    vec2 depth = texelFetch(cloud_trace_depth, cell, 0).rg;
-    if (!(depth.r > 0.0)) return 0.0;
-    return CloudOpacityShareInFront(depth.g, depth.r, texelFetch(cloud_trace_profile, cell, 0),
-                                    texelFetch(cloud_trace, cell, 0).a, distance);
+// A trace cell's ray: the clouds' mean depth and entry (km), the transmittance's profile and
+// the transmittance.
+struct CloudCellRay {
+    vec2 depth;
+    vec4 crossing;
+    float transmittance;
+};
+
+CloudCellRay CloudCellRayAt(ivec2 cell) {
+    CloudCellRay ray;
+    ray.depth = texelFetch(cloud_trace_depth, cell, 0).rg;
+    ray.crossing = texelFetch(cloud_trace_profile, cell, 0);
+    ray.transmittance = texelFetch(cloud_trace, cell, 0).a;
+    return ray;
+}
+
+// The share of the clouds' opacity in front of a host's geometry `distance` km along a trace
+// cell's ray (CloudOpacityShareInFront over its profile and transmittance): 0 for geometry in
+// front of the clouds, 1 behind them, and in between inside them (fog around the camera, a cloud
+// the geometry pierces).
+float CloudCellShareInFront(CloudCellRay ray, float distance) {
+    if (!(ray.depth.r > 0.0)) return 0.0;
+    return CloudOpacityShareInFront(ray.depth.g, ray.depth.r, ray.crossing, ray.transmittance,
+                                    distance);
 }
 
 // The change of our own ground's luminance by the clouds' shadow at a full-resolution pixel whose
@@ -115,36 +132,111 @@ mat3 WeatherFromFrame() {
 }
 
 // Marches every layer, in `order`, along `direction` from `origin` (both in the cloud frame;
-// `altitude` km above the ground, exact): the clouds alone, front to back.
-CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, float jitter,
-                                 ivec4 order) {
+// `altitude` km above the ground, exact) up to `distance` km with `march`'s steps: the clouds
+// alone, front to back.
+CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, float distance,
+                                 float jitter, ivec4 order, CloudMarchParameters march) {
     float r = length(origin);
     float mu = dot(origin, direction) / r;
     CloudMarchState state = CloudMarchStart();
     for (int k = 0; k < cloud_layer_count; ++k) {
         int i = order[k];
-        vec2 interval = CloudLayerInterval(cloud_layers[i], r, mu, altitude,
-                                           cloud_march.max_distance);
+        vec2 interval = CloudLayerInterval(cloud_layers[i], r, mu, altitude, march.max_distance);
+        interval.y = min(interval.y, distance);
         MarchCloudLayer(atmosphere, transmittance_texture, irradiance_texture, cloud_layers[i],
-                        weather_maps[i], shape_noise, detail_noise, cloud_scattering, cloud_march,
+                        weather_maps[i], shape_noise, detail_noise, cloud_scattering, march,
                         cloud_lights, cloud_light_count, origin, direction, interval, jitter,
                         state);
     }
     return state;
 }
 
-// The clouds along `view` (this frame's world direction) from the camera, with the aerial
-// perspective at their mean depth. Returns (L, T), and the march's state (CloudMeanDepth: the
-// mean depth in km, -1 where no cloud was met; the transmittance's profile).
-vec4 TraceClouds(vec3 view, float jitter, out CloudMarchState state) {
+// The clouds along `view` (this frame's world direction) from the camera up to `distance` km
+// (a host's geometry; 1e9 for the whole ray), with the aerial perspective at their mean depth.
+// Returns (L, T), and the march's state (CloudMeanDepth: the mean depth in km, -1 where no cloud
+// was met; the transmittance's profile).
+vec4 TraceClouds(vec3 view, float distance, float jitter, CloudMarchParameters march,
+                 out CloudMarchState state) {
     mat3 to_weather = WeatherFromFrame();
-    state = MarchCloudLayers(to_weather * camera_km, camera_altitude_km, to_weather * view, jitter,
-                             cloud_layer_order);
+    state = MarchCloudLayers(to_weather * camera_km, camera_altitude_km, to_weather * view,
+                             distance, jitter, cloud_layer_order, march);
     return CloudApplyAerialPerspective(atmosphere, transmittance_texture,
                                        multiple_scattering_texture,
                                        irradiance_texture, lights, camera_km,
                                        camera_altitude_km, view, state,
                                        cloud_aerial_perspective_steps);
+}
+
+// A host's geometry `distance` km along a full-resolution pixel's ray, and the clouds in front of
+// it. One trace ray speaks for each cell of block x block pixels: the clouds' share of opacity in
+// front of the geometry is its cell's (CloudCellShareInFront). Where the geometry's edge meets a
+// cloud's (a peak rising out of a deck, a tower's top in fog), that one ray would draw the cloud
+// over all of the cell's pixels or none, in blocks that change with the traced pixel (halos,
+// combs): there the cells around the pixel disagree, and the pixel's own ray is marched
+// (clouds/geometry_list.frag lists the cells holding such pixels, clouds/geometry_march.* march
+// them). The disagreement is the spread of the shares of the pixel's cell and its four
+// neighbours times the opacity of the clouds along the pixel's whole ray (where that is small,
+// the share hardly matters); the marched clouds take over from the cell's between spreads of
+// kCloudShareSpread / 2 and 3 kCloudShareSpread / 2, so that a pixel whose spread lies near the
+// limit does not flip between the two (a depth differing in its last bits did).
+const float kCloudShareSpread = 0.1;
+
+// The rays of a cell and its four neighbours (the same for all its pixels).
+struct CloudCellNeighbourhood {
+    CloudCellRay ray[5];
+};
+
+CloudCellNeighbourhood CloudCellNeighbourhoodAt(ivec2 cell) {
+    const ivec2 kOffsets[5] =
+        ivec2[5](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
+    CloudCellNeighbourhood n;
+    for (int k = 0; k < 5; ++k) {
+        n.ray[k] = CloudCellRayAt(clamp(cell + kOffsets[k], ivec2(0), trace_size - 1));
+    }
+    return n;
+}
+
+// The weight of the pixel's own ray (0: its cell's share alone).
+float CloudOwnRayWeight(CloudCellNeighbourhood cells, ivec2 pixel, float distance) {
+    float opacity = 1.0 - texelFetch(cloud_history, pixel, 0).a;
+    float least = 1.0, most = 0.0;
+    for (int k = 0; k < 5; ++k) {
+        float s = CloudCellShareInFront(cells.ray[k], distance);
+        least = min(least, s);
+        most = max(most, s);
+    }
+    return smoothstep(0.5 * kCloudShareSpread, 1.5 * kCloudShareSpread, (most - least) * opacity);
+}
+
+// `clouds`, the pixel's clouds along the whole ray, times its cell's share (cells.ray[0]).
+vec4 CloudsByShare(CloudCellRay cell, float distance, vec4 clouds) {
+    float share = CloudCellShareInFront(cell, distance);
+    return vec4(clouds.rgb * share, 1.0 - (1.0 - clouds.a) * share);
+}
+
+// The pixel's own ray marched up to the geometry, (L, T) premultiplied, this frame's jitter
+// placing its samples, with a quarter of the trace's shortest step: its result is not averaged
+// over frames like the trace's (one in 25 geometry pixels where a peak leaves a deck's top was
+// 0.05-0.1 off in transmittance with the trace's steps); mixed with CloudsByShare by the weight.
+vec4 CloudsToGeometry(ivec2 pixel, float distance) {
+    CloudCellNeighbourhood cells = CloudCellNeighbourhoodAt(min(pixel / block, trace_size - 1));
+    vec4 by_share = CloudsByShare(cells.ray[0], distance, texelFetch(cloud_history, pixel, 0));
+    float weight = CloudOwnRayWeight(cells, pixel, distance);
+    if (!(weight > 0.0)) return by_share;
+    CloudMarchParameters march = cloud_march;
+    march.min_step *= 0.25;
+    CloudMarchState state;
+    vec4 own = TraceClouds(CameraDirection(vec2(pixel), vec2(output_size)), distance,
+                           CloudJitter(pixel, frame_jitter), march, state);
+    return mix(by_share, own, weight);
+}
+
+// The clouds in front of the geometry, (L, T) premultiplied: those geometry_march.frag found for
+// the pixel, or `clouds` times its cell's share.
+vec4 CloudsInFrontOf(ivec2 pixel, float distance, vec4 clouds) {
+    vec4 marched = texelFetch(cloud_geometry, pixel, 0);
+    if (marched.a >= 0.0) return marched;
+    return CloudsByShare(CloudCellRayAt(min(pixel / block, trace_size - 1)), distance, clouds);
 }
 
 // The clouds' shadow on the ground the atmosphere drew (F16 §5.9), as a change of what the

@@ -12,7 +12,7 @@ void main() {
     vec3 direction =
         CloudSkyShadeDirection(texel.y * sky_shade_size + texel.x, sky_shade_size, up);
     CloudMarchState state = MarchCloudLayers(to_weather * (up * atmosphere.bottom_radius), 0.0,
-                                             to_weather * direction, 0.5,
-                                             cloud_ground_layer_order);
+                                             to_weather * direction, 1e9, 0.5,
+                                             cloud_ground_layer_order, cloud_march);
     out_shade = vec4(state.luminance, state.transmittance);
 }

@@ -10,7 +10,7 @@ void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy) * block + trace_offset;
     vec3 view = CameraDirection(vec2(pixel), vec2(output_size));
     CloudMarchState state;
-    out_cloud = TraceClouds(view, CloudJitter(pixel, frame_jitter), state);
+    out_cloud = TraceClouds(view, 1e9, CloudJitter(pixel, frame_jitter), cloud_march, state);
     out_depth = vec4(CloudMeanDepth(state), state.entry, 0.0, 0.0);
     out_profile = state.crossing;
 }

@@ -53,6 +53,12 @@ class CloudPasses {
     // `size` is the frame's; `view` the one Prepare was given this frame.
     void Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
                 glm::ivec2 size, const CloudView& view);
+    // Over a host's geometry (its depth bound at kSceneDepthUnit, the atmosphere's blocks and
+    // this frame's clouds bound for the composite), after Render: marches the pixels whose trace
+    // cells disagree about the clouds in front of the geometry on their own rays
+    // (clouds/interface.glsl CloudOwnRayWeight), cell by cell, at most twice the trace's rays in
+    // number, so that it never costs more than two more traces.
+    void MarchToGeometry();
     // Binds what the sky pass reads to composite the last Render's clouds.
     void BindForComposite() const;
     // Binds what TraceClouds and GroundShadowCorrection read, as Prepare left them this frame
@@ -64,8 +70,8 @@ class CloudPasses {
     GLuint shadow_map_texture() const { return shadow_map_; }
 
     // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, the ground's
-    // shadow, the light shafts.
-    static constexpr std::size_t kPassCount = 6;
+    // shadow, the light shafts, the march to a host's geometry (listing and marching).
+    static constexpr std::size_t kPassCount = 7;
     std::array<double, kPassCount> LastPassTimes() const;
 
   private:
@@ -97,6 +103,13 @@ class CloudPasses {
     GLuint shade_ = 0;             // a LightSet whose cloud members sky_shade.comp writes
     GLuint shade_framebuffer_ = 0;
     GLuint vertex_array_ = 0;
+    // MarchToGeometry's: its programs (built on first use), the clouds in front of the geometry
+    // at the pixels marched ((L, T), T = -1 elsewhere; full resolution) and the list of the
+    // cells marched (clouds/geometry_list.glsl), which holds the indirect draw.
+    std::optional<gl::Program> geometry_list_, geometry_march_;
+    GLuint geometry_color_ = 0, geometry_framebuffer_ = 0, geometry_list_framebuffer_ = 0;
+    GLuint geometry_list_buffer_ = 0;
+    GLuint geometry_capacity_ = 0;
     std::array<GLuint, kPassCount> queries_{};
     std::array<bool, kPassCount> query_used_{};
     glm::ivec2 size_{0, 0};

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <glm/glm.hpp>
 
 #include "bindings.h"
@@ -97,5 +98,21 @@ static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 800);
 static_assert(offsetof(CloudUniforms, layer_order) == 816);
 static_assert(offsetof(CloudUniforms, ground_layer_order) == 832);
 static_assert(sizeof(CloudUniforms) == 848);
+
+// clouds/geometry_list.glsl: CloudGeometryList, a storage block: a glDrawArraysIndirect command
+// (its vertex count, 6 per cell listed, written by the shader), the capacity in cells, then the
+// cells (x | y << 16; as many as the capacity). Four here: GL (Mesa) gives the block's size
+// with its runtime-sized array as one element rounded up to 16 bytes.
+struct CloudGeometryList {
+    std::uint32_t vertices;
+    std::uint32_t instances;
+    std::uint32_t first;
+    std::uint32_t base_instance;
+    std::uint32_t capacity;
+    std::uint32_t unused[3];
+    std::uint32_t cells[4];
+};
+static_assert(offsetof(CloudGeometryList, capacity) == 16);
+static_assert(offsetof(CloudGeometryList, cells) == 32);
 
 }  // namespace zenith::sky::gl

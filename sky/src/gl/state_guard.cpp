@@ -159,6 +159,7 @@ void StateGuard::Save() {
     glGetInteger64i_v(GL_SHADER_STORAGE_BUFFER_SIZE, static_cast<GLuint>(kLightStorageBinding),
                       &storage_.size);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_BINDING, &storage_buffer_);
+    glGetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &draw_indirect_buffer_);
     for (std::size_t i = 0; i < kImageUnits; ++i) {
         const GLuint index = static_cast<GLuint>(i);
         ImageUnit& u = image_[i];
@@ -228,6 +229,7 @@ void StateGuard::Restore() const {
     glBindBuffer(GL_UNIFORM_BUFFER, U(uniform_buffer_));
     bind(GL_SHADER_STORAGE_BUFFER, static_cast<GLuint>(kLightStorageBinding), storage_);
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, U(storage_buffer_));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, U(draw_indirect_buffer_));
     for (std::size_t i = 0; i < kImageUnits; ++i) {
         const ImageUnit& u = image_[i];
         glBindImageTexture(static_cast<GLuint>(i), U(u.texture), u.level,

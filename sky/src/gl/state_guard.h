@@ -19,8 +19,9 @@ namespace zenith::sky::gl {
 
 class StateGuard {
   public:
-    // Texture units 0..23, uniform blocks 0..4, storage block 1 and image units 0..1: every one
-    // the passes bind (sky/shaders/bindings.glsl).
+    // Texture units 0..kTextureUnitCount - 1, uniform blocks 0..kPrecipitationBlockBinding,
+    // storage block 1, image units 0..1 and the indirect draw buffer: every one the passes bind
+    // (sky/shaders/bindings.glsl).
     static constexpr int kTextureUnits = kTextureUnitCount;
     static constexpr int kUniformBindings = kPrecipitationBlockBinding + 1;
     static constexpr int kImageUnits = kShadowMapImageUnit + 1;
@@ -73,6 +74,7 @@ class StateGuard {
     std::array<BufferRange, kUniformBindings> uniform_{};
     BufferRange storage_{};  // kLightStorageBinding
     GLint uniform_buffer_ = 0, storage_buffer_ = 0;
+    GLint draw_indirect_buffer_ = 0;  // clouds/geometry_march.*'s draw
 
     struct ImageUnit {
         GLint texture = 0, level = 0, layered = 0, layer = 0, access = 0, format = 0;

@@ -25,6 +25,7 @@ struct PassTimes {
     double cloud_reconstruct = 0.0;
     double cloud_ground_shadow = 0.0;  // per trace cell, which the composite interpolates
     double cloud_light_shafts = 0.0;   // per 2x2 trace cells, likewise
+    double cloud_geometry = 0.0;       // host geometry's pixels marched on their own rays, if any
     double environment = 0.0;          // the environment's faces and, after a round, its projection
 };
 
