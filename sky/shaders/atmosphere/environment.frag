@@ -10,19 +10,7 @@ layout(location = 0) out vec4 out_luminance;
 
 void main() {
     vec3 direction = EnvironmentDirection(ivec2(gl_FragCoord.xy));
-#if ZENITH_RAY_MARCH
-    vec3 luminance = IntegrateScatteredLuminance(
-                         atmosphere, transmittance_texture, multiple_scattering_texture,
-                         irradiance_texture, lights, camera_km, camera_altitude_km, direction,
-                         0.0, 1e9, ray_march_steps, true).luminance;
-#else
-    vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_up, sky_view_x,
-                                          horizon_zenith, direction);
-#endif
-    if (night_sky_enabled != 0) {
-        luminance += SampleSkyViewInFrame(night_sky_texture, sky_view_up, sky_view_x,
-                                          horizon_zenith, direction);
-    }
+    vec3 luminance = SkyLuminance(direction, ZENITH_RAY_MARCH != 0);
 #if ZENITH_CLOUDS
     CloudMarchState state;
     vec4 clouds = TraceClouds(direction, 1e9, 0.5, cloud_march, state);

@@ -101,6 +101,25 @@ float SceneDistanceKm(ivec2 pixel) {
            1000.0;
 }
 
+// The sky's luminance along `direction` from the camera, as the composite and the environment
+// draw it: the Sky-View LUT inside the atmosphere, or (`ray_march`, a constant of the program:
+// above it, or asked for) a ray march, plus the night sky's diffuse light through the atmosphere
+// (computed on the CPU per frame).
+vec3 SkyLuminance(vec3 direction, bool ray_march) {
+    vec3 luminance = ray_march
+                         ? IntegrateScatteredLuminance(
+                               atmosphere, transmittance_texture, multiple_scattering_texture,
+                               irradiance_texture, lights, camera_km, camera_altitude_km,
+                               direction, 0.0, 1e9, ray_march_steps, true).luminance
+                         : SampleSkyViewInFrame(sky_view_texture, sky_view_up, sky_view_x,
+                                                horizon_zenith, direction);
+    if (night_sky_enabled != 0) {
+        luminance += SampleSkyViewInFrame(night_sky_texture, sky_view_up, sky_view_x,
+                                          horizon_zenith, direction);
+    }
+    return luminance;
+}
+
 // The direction through the centre of texel `texel` of the environment's atlas (environment.frag):
 // face texel.y / environment_size, OpenGL's cube map orientation (CubeFaceDirection on the CPU).
 vec3 EnvironmentDirection(ivec2 texel) {

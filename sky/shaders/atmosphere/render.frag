@@ -117,21 +117,7 @@ void main() {
     out_luminance.rgb *= texelFetch(cloud_history, pixel, 0).a;
   #endif
 #else
-  #if ZENITH_RAY_MARCH
-    vec3 luminance = IntegrateScatteredLuminance(
-                         atmosphere, transmittance_texture, multiple_scattering_texture,
-                         irradiance_texture, lights, camera_km,
-                         camera_altitude_km, direction, 0.0, 1e9, ray_march_steps,
-                         true).luminance;
-  #else
-    vec3 luminance = SampleSkyViewInFrame(sky_view_texture, sky_view_up,
-                                          sky_view_x, horizon_zenith, direction);
-  #endif
-    // The night sky's diffuse light, through the atmosphere (computed on the CPU per frame).
-    if (night_sky_enabled != 0) {
-        luminance += SampleSkyViewInFrame(night_sky_texture, sky_view_up,
-                                          sky_view_x, horizon_zenith, direction);
-    }
+    vec3 luminance = SkyLuminance(direction, ZENITH_RAY_MARCH != 0);
     // Stars (and a Sun narrower than a pixel): luminance already attenuated on the CPU by the
     // same TransmittanceToSpace. Seen only as far as they stand out of the sky behind them: the
     // pixel's illuminance is its luminance times its solid angle (SplatPoints' measure).
