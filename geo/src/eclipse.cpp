@@ -134,13 +134,16 @@ SolarEclipse ComputeSolarEclipse(const SkyEphemeris& e) {
 }
 
 LunarEclipse ComputeLunarEclipse(const SkyEphemeris& e, double shadow_radius) {
+    return LunarEclipseAt(e.moon.geocentric_distance, e.moon_phase.elongation,
+                          e.sun.geocentric_distance, shadow_radius);
+}
+
+LunarEclipse LunarEclipseAt(double moon_distance, double elongation, double sun_distance,
+                            double shadow_radius) {
     LunarEclipse l;
     // The triangle Earth-Moon-Sun from the geocentric distances and elongation: the antisolar
     // point is pi - elongation from the Moon, and the angle at the Moon between the Earth and
     // the Sun follows (atan2: exact near 0, where an acos would lose half the digits).
-    const double elongation = e.moon_phase.elongation;
-    const double moon_distance = e.moon.geocentric_distance;
-    const double sun_distance = e.sun.geocentric_distance;
     l.moon_distance = moon_distance;
     l.axis_angle = kPi - elongation;
     l.axis_distance = moon_distance * std::sin(l.axis_angle);

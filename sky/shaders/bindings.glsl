@@ -14,6 +14,7 @@
 const int kMaxLights = 2;       // LightSet.light[]: the Sun and the Moon (H20's N_light = 2)
 const int kEclipseLimbSamples = 8;  // LightSet.eclipse_limb[]: its table of the Sun's limb
 const int kCloudMaxLayers = 4;  // CloudBlock.cloud_layers[], weather_maps[]
+const int kMoonShadowSamples = 64;  // FrameBlock.moon_shadow[]: the Earth's shadow on the Moon
 
 // Uniform block binding points (std140).
 const int kAtmosphereBlockBinding = 0;  // atmosphere/interface.glsl: AtmosphereBlock

@@ -402,6 +402,16 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view, int 
     u.moon_angular_radius = static_cast<float>(scene.moon.angular_radius);
     u.moon_albedo = static_cast<float>(scene.moon.albedo);
     u.moon_sunlight = glm::vec3(scene.moon.sunlight);
+    u.moon_distance_km = static_cast<float>(scene.moon.distance_m / kKm);
+    u.moon_shadow_enabled = scene.moon.shadow ? 1 : 0;
+    if (scene.moon.shadow) {
+        const MoonDisk::Shadow& shadow = *scene.moon.shadow;
+        u.moon_shadow_axis_min_km = static_cast<float>(shadow.axis_min_m / kKm);
+        u.moon_shadow_axis_max_km = static_cast<float>(shadow.axis_max_m / kKm);
+        for (std::size_t i = 0; i < shadow.sunlight.size(); ++i) {
+            u.moon_shadow[i] = glm::vec4(glm::vec3(shadow.sunlight[i]), 0.0f);
+        }
+    }
     const ApparentPlace sun_disk = SunDiskPlace(scene);
     const ApparentPlace moon_disk = MoonDiskPlace(scene.moon);
     u.sun_disk_direction = glm::vec3(glm::normalize(sun_disk.direction));

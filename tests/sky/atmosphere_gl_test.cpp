@@ -286,7 +286,9 @@ TEST_F(AtmosphereGlTest, MoonIsLitOnTheSideFacingTheSun) {
     Lights lights;
     lights.sun_direction = right;  // perpendicular to the line of sight: quarter phase
     SkyScene scene = test::LightsOnly(lights, false);
-    scene.moon = {true, forward, 0.0045, 0.12, glm::dvec3(1.0), std::nullopt};
+    scene.moon.enabled = true;
+    scene.moon.direction = forward;
+    scene.moon.angular_radius = 0.0045;
     const LutImage frame = test::DrawFrame(gpu, scene, {camera}, {128, 128});
     double left_sum = 0.0, right_sum = 0.0;
     for (int y = 0; y < 128; ++y) {

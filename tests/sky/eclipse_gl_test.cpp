@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/constants.hpp>
+#include <optional>
 #include <string>
 #include <tuple>
 
@@ -16,6 +17,7 @@
 #include "luminance.h"
 #include "zenith/geo/eclipse.h"
 #include "zenith/geo/ephemeris.h"
+#include "zenith/geo/moon.h"
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/inspection.h"
 #include "zenith/sky/lighting.h"
@@ -44,6 +46,20 @@ Lights Uneclipsed(Lights lights) {
     if (lights.eclipse.active) lights.sun_illuminance = lights.eclipse.unobscured_illuminance;
     lights.eclipse = {};
     return lights;
+}
+
+// The distance (m) from the Earth's shadow's axis (the Earth-Sun line through the planet's centre)
+// of the point of the Moon, `moon_distance` m away, seen along `direction` from the state's
+// camera; none off the Moon.
+std::optional<double> MoonPointAxisDistance(const SkyState& state, double moon_distance,
+                                            const glm::dvec3& direction) {
+    const glm::dvec3 c = moon_distance * state.scene.moon.direction;
+    const double b = glm::dot(direction, c);
+    const double disc = b * b - (glm::dot(c, c) - geo::kMoonRadius * geo::kMoonRadius);
+    if (disc <= 0.0) return std::nullopt;
+    const glm::dvec3 point = state.view.camera.position + direction * (b - std::sqrt(disc));
+    const glm::dvec3 sun = state.scene.lights.sun_direction;
+    return glm::length(point - glm::dot(point, sun) * sun);
 }
 
 class EclipseFrames : public gl::test::HeadlessGlTest {
@@ -212,7 +228,9 @@ TEST_F(EclipseFrames, EclipsedSkyViewMatchesTheCpuReference) {
 
 // The 2022-11-08 lunar eclipse: the Moon's light through the penumbra follows the direct
 // sunlight reaching it, and in the umbra it is the refracted light, reddened by the air's own
-// transmittance (red over blue >> 1) and 1e-5-1e-3 of the full Moon's.
+// transmittance (red over blue >> 1) and 1e-5-1e-3 of the full Moon's. The Moon's centre's share
+// is the shadow's table's (MoonDisk::Shadow) at its distance from the axis; the Moon's light is
+// the mean over its face.
 TEST_F(EclipseFrames, EclipsedMoonFollowsThePenumbraAndIsRedInTheUmbra) {
     const auto moon_state = [](const char* utc) {
         // Honolulu, where the Moon was high.
@@ -227,27 +245,31 @@ TEST_F(EclipseFrames, EclipsedMoonFollowsThePenumbraAndIsRedInTheUmbra) {
     for (const char* utc : {"2022-11-08T08:40:00Z", "2022-11-08T08:55:00Z", "2022-11-08T09:10:00Z",
                             "2022-11-08T09:25:00Z"}) {
         const auto [state, geometry] = moon_state(utc);
+        ASSERT_TRUE(state.scene.moon.shadow.has_value()) << utc;
         const double direct = Luminance(geometry.direct_sunlight);
-        const double refracted = Luminance(state.scene.moon.sunlight - geometry.direct_sunlight);
+        const double refracted =
+            Luminance(ShadowSunlight(*state.scene.moon.shadow, geometry.axis_distance) -
+                      geometry.direct_sunlight);
+        const double mean = Luminance(state.scene.moon.sunlight);
         const double ratio = Luminance(state.scene.lights.moon_illuminance) /
                              Luminance(before.scene.lights.moon_illuminance);
         std::printf(
-            "%s: direct sunlight %.4f + refracted %.4f, Moon illuminance / uneclipsed "
-            "%.4f\n",
-            utc, direct, refracted, ratio);
+            "%s: at the centre direct sunlight %.4f + refracted %.4f; over the face %.4f; Moon "
+            "illuminance / uneclipsed %.4f\n",
+            utc, direct, refracted, mean, ratio);
         EXPECT_GT(direct, 0.0);
         EXPECT_LT(direct, previous);
         previous = direct;
         // The distance and phase change the uneclipsed light by < 1 % over these two hours.
-        EXPECT_NEAR(ratio, direct + refracted, 0.01);
+        EXPECT_NEAR(ratio, mean, 0.01);
         // The refracted light: a few % of the Sun's at most, where the air's upper, clear layers
         // bend it into the inner penumbra.
-        EXPECT_GE(refracted, 0.0);
+        EXPECT_GE(refracted, -0.005);
         EXPECT_LT(refracted, 0.1);
     }
     const auto [total, total_geometry] = moon_state("2022-11-08T10:59:08Z");
     EXPECT_EQ(total_geometry.direct_sunlight, glm::dvec3(0.0));
-    const glm::dvec3 umbra = total.scene.moon.sunlight;
+    glm::dvec3 umbra = ShadowSunlight(*total.scene.moon.shadow, total_geometry.axis_distance);
     std::printf("umbra: refracted light %.3g %.3g %.3g (rgb) of the Sun's, red/blue %.1f\n",
                 umbra.x, umbra.y, umbra.z, umbra.x / umbra.z);
     EXPECT_GT(Luminance(umbra), 1e-5);
@@ -263,14 +285,111 @@ TEST_F(EclipseFrames, EclipsedMoonFollowsThePenumbraAndIsRedInTheUmbra) {
                                        {moon.azimuth, moon.elevation, 0.0}, fov, 1.0);
     SkyState uneclipsed = view;
     uneclipsed.scene.moon.sunlight = glm::dvec3(1.0);
+    uneclipsed.scene.moon.shadow.reset();
     const glm::ivec2 size(64, 64);
     const LutImage eclipsed_frame = Render(view, view.scene.lights, size);
     const LutImage full_frame = Render(uneclipsed, view.scene.lights, size);
     const glm::vec4 e = eclipsed_frame.at(32, 32), f = full_frame.at(32, 32);
     std::printf("Moon's centre: %.4g cd/m^2 eclipsed, %.4g full\n", Luminance(e), Luminance(f));
+    // The refracted light varies across the umbra: the table's at the point the pixel shows.
+    const std::optional<double> axis = MoonPointAxisDistance(
+        view, moon.distance, view.view.camera.Direction(1.0 / size.x, 1.0 / size.y));
+    ASSERT_TRUE(axis.has_value());
+    umbra = ShadowSunlight(*view.scene.moon.shadow, *axis);
     for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(e[c] / f[c], umbra[c], 0.02 * umbra[c] + 1e-7) << c;
     }
+}
+
+// The umbra's edge across the Moon's face, 2022-11-08T09:50Z from Honolulu (the umbra over
+// part of the disk): every pixel of the disk, eclipsed over uneclipsed, is the sunlight reaching
+// the point of the Moon it shows, worked out here from the geometry alone (the point's distance
+// from the Earth-Sun line, geo::LunarEclipseAt's direct light past the Earth and its air plus
+// UmbraRefractedLight), not from the renderer's table, within the interpolation of the table's
+// 64 samples across the disk; and the dark part is nearer the shadow's centre (its axis at the
+// Moon's distance, as seen from the camera) than the lit part. Near the umbra's edge, where the
+// air bends light into it, the refracted light the table interpolates from 16 points differs
+// from UmbraRefractedLight's value at a point, whose quadrature over 16 offsets of the Sun's
+// disk moves by 0.02 of the Sun's light between points 15 km apart: there the pixel is checked
+// to lie between the direct light and it plus twice the refracted. Pixels within 95 % of the disk's
+// radius, the night sky's light taken off (a frame without the Moon).
+TEST_F(EclipseFrames, TheUmbrasEdgeCrossesTheMoonsFace) {
+    const Scene scene = At("2022-11-08T09:50:00Z", 21.3, -157.86, 10.0);
+    const auto& moon = scene.ephemeris.moon.topocentric.horizontal;
+    const Atmosphere air;
+    const SkyState view = MakeSkyState(scene.ephemeris, scene.observer, air,
+                                       {moon.azimuth, moon.elevation, 0.0}, glm::radians(0.6), 1.0);
+    ASSERT_TRUE(view.scene.moon.shadow.has_value());
+    SkyState uneclipsed = view;
+    uneclipsed.scene.moon.sunlight = glm::dvec3(1.0);
+    uneclipsed.scene.moon.shadow.reset();
+    const glm::ivec2 size(96, 96);
+    const LutImage eclipsed_frame = Render(view, view.scene.lights, size, false);
+    const LutImage full_frame = Render(uneclipsed, view.scene.lights, size, false);
+    SkyState moonless = view;
+    moonless.scene.moon.enabled = false;
+    const LutImage sky_frame = Render(moonless, view.scene.lights, size, false);
+
+    const double shadow_radius = geo::kEarthShadowRadius + air.top_radius - air.bottom_radius;
+    const geo::LunarEclipse centre = geo::ComputeLunarEclipse(scene.ephemeris, shadow_radius);
+    const double along = centre.moon_distance * std::cos(centre.axis_angle);
+    const Camera& camera = view.view.camera;
+    const glm::dvec3 sun = view.scene.lights.sun_direction;
+    const glm::dvec3 axis_seen = glm::normalize(-sun * along - camera.position);
+    int pixels = 0, dark = 0, near_the_edge = 0;
+    double worst = 0.0, farthest_dark = 0.0, nearest_lit = 1.0;
+    for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+            const glm::dvec3 d =
+                camera.Direction(2.0 * (x + 0.5) / size.x - 1.0, 2.0 * (y + 0.5) / size.y - 1.0);
+            // The Moon's sphere, from the camera (planet-centred, m).
+            if (glm::length(d - view.scene.moon.direction) >
+                0.95 * view.scene.moon.angular_radius) {
+                continue;
+            }
+            const std::optional<double> on_moon = MoonPointAxisDistance(view, moon.distance, d);
+            if (!on_moon) continue;
+            const double axis = *on_moon;
+            const geo::LunarEclipse at = geo::LunarEclipseAt(
+                std::hypot(along, axis), glm::pi<double>() - std::atan2(axis, along),
+                scene.ephemeris.sun.geocentric_distance, shadow_radius);
+            const double direct = Luminance(at.direct_sunlight);
+            const double refracted =
+                Luminance(UmbraRefractedLight(air, axis, at.moon_distance, at.sun_radius));
+            const double expected = direct + refracted;
+            const double sky = Luminance(sky_frame.at(x, y));
+            const double seen =
+                (Luminance(eclipsed_frame.at(x, y)) - sky) / (Luminance(full_frame.at(x, y)) - sky);
+            ++pixels;
+            if (refracted < 0.005) {
+                worst = std::max(worst, std::abs(seen - expected));
+            } else {
+                ++near_the_edge;
+                EXPECT_GT(seen, direct - 0.02) << x << ", " << y;
+                EXPECT_LT(seen, direct + 2.0 * refracted + 0.02) << x << ", " << y;
+            }
+            const double from_axis = glm::length(d - axis_seen);
+            if (seen < 0.01) {
+                ++dark;
+                farthest_dark = std::max(farthest_dark, from_axis);
+            } else if (seen > 0.05) {
+                nearest_lit = std::min(nearest_lit, from_axis);
+            }
+        }
+    }
+    std::printf(
+        "umbral magnitude %.3f: %d pixels of the Moon, %d dark (< 1 %% of the Sun's light) out to "
+        "%.4f deg from the shadow's centre, lit (> 5 %%) from %.4f deg; worst |eclipsed / full - "
+        "expected| %.4f where the refracted light is < 0.005 (%d pixels near the edge)\n",
+        centre.umbral_magnitude, pixels, dark, glm::degrees(farthest_dark),
+        glm::degrees(nearest_lit), worst, near_the_edge);
+    ASSERT_GT(centre.umbral_magnitude, 0.2);
+    ASSERT_LT(centre.umbral_magnitude, 0.8);
+    EXPECT_GT(pixels, 3000);
+    EXPECT_GT(dark, pixels / 10);
+    EXPECT_LT(dark, pixels * 9 / 10);
+    EXPECT_LT(farthest_dark, nearest_lit);
+    EXPECT_LT(worst, 0.02);
 }
 
 }  // namespace

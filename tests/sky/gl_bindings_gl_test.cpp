@@ -200,6 +200,11 @@ void AddFrame(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, frame_padding1);
     ZENITH_SAME(S, moon_disk_direction);
     ZENITH_SAME(S, frame_padding2);
+    ZENITH_SAME(S, moon_shadow);
+    ZENITH_SAME(S, moon_shadow_axis_min_km);
+    ZENITH_SAME(S, moon_shadow_axis_max_km);
+    ZENITH_SAME(S, moon_distance_km);
+    ZENITH_SAME(S, moon_shadow_enabled);
 }
 
 void AddCloudLayer(Layout& layout, const std::string& prefix, std::size_t base) {

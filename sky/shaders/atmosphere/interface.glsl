@@ -68,6 +68,14 @@ layout(std140, binding = kFrameBlockBinding) uniform FrameBlock {
     int frame_padding1;
     vec3 moon_disk_direction;
     int frame_padding2;
+    // In a lunar eclipse (moon_shadow_enabled), the sunlight reaching the Moon at
+    // kMoonShadowSamples distances from the Earth's shadow's axis (MoonDisk::Shadow), from
+    // moon_shadow_axis_min_km to moon_shadow_axis_max_km; moon_distance_km places the disk.
+    vec4 moon_shadow[kMoonShadowSamples];
+    float moon_shadow_axis_min_km;
+    float moon_shadow_axis_max_km;
+    float moon_distance_km;
+    int moon_shadow_enabled;
 };
 
 // Units and bindings: bindings.glsl.

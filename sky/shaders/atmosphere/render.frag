@@ -46,8 +46,23 @@ vec3 UnrefractedDirection(vec3 direction, vec3 apparent, vec3 geometric, float v
                      dot(direction, vertical) / vertical_scale * geometric_vertical);
 }
 
+// The sunlight reaching the point of the Moon at `moon_km` (planet-centred): in a lunar eclipse
+// the table's value at its distance from the shadow's axis, the Earth-Sun line (ShadowSunlight
+// on the CPU); else moon_sunlight.
+vec3 MoonSunlight(vec3 moon_km) {
+    if (moon_shadow_enabled == 0) return moon_sunlight;
+    vec3 sun = lights.light[0].direction;
+    float axis = length(moon_km - dot(moon_km, sun) * sun);
+    float span = moon_shadow_axis_max_km - moon_shadow_axis_min_km;
+    float f = clamp(span > 0.0 ? (axis - moon_shadow_axis_min_km) / span : 0.0, 0.0, 1.0) *
+              float(kMoonShadowSamples - 1);
+    int i = min(int(f), kMoonShadowSamples - 2);
+    return mix(moon_shadow[i].rgb, moon_shadow[i + 1].rgb, f - float(i));
+}
+
 // Luminance of the Moon's disk along `direction`: a Lambertian sphere lit by the Sun, so the lit
-// side faces the Sun whatever the phase (Hillaire 2016 §4.2 leaves this to the artist).
+// side faces the Sun whatever the phase (Hillaire 2016 §4.2 leaves this to the artist), and in a
+// lunar eclipse each point by the sunlight the Earth's shadow leaves it.
 vec3 MoonLuminance(vec3 direction) {
     if (dot(direction, moon_direction) <= cos_moon_radius) return vec3(0.0);
     // The sphere at unit distance with radius sin(angular radius); nearest hit along the ray.
@@ -55,8 +70,8 @@ vec3 MoonLuminance(vec3 direction) {
     float b = dot(direction, moon_direction);
     float t = b - sqrt(max(b * b - (1.0 - rho * rho), 0.0));
     vec3 normal = normalize(direction * t - moon_direction);
-    return lights.light[0].illuminance * moon_sunlight * (moon_albedo / kPi) *
-           max(dot(normal, lights.light[0].direction), 0.0);
+    return lights.light[0].illuminance * MoonSunlight(camera_km + direction * (t * moon_distance_km)) *
+           (moon_albedo / kPi) * max(dot(normal, lights.light[0].direction), 0.0);
 }
 
 // The Sun in a solar eclipse (LightSet.eclipse): the disk at its unobscured luminance where the

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "bindings.h"
+#include "zenith/sky/lut.h"
 
 namespace zenith::sky::gl {
 
@@ -128,8 +129,15 @@ struct FrameUniforms {  // interface.glsl: FrameBlock
     int frame_padding1;
     glm::vec3 moon_disk_direction;
     int frame_padding2;
+    glm::vec4 moon_shadow[kMoonShadowSamples];
+    float moon_shadow_axis_min_km;
+    float moon_shadow_axis_max_km;
+    float moon_distance_km;
+    int moon_shadow_enabled;
 };
-static_assert(sizeof(FrameUniforms) == 240);
+static_assert(MoonDisk::kShadowSamples == kMoonShadowSamples);
+static_assert(sizeof(FrameUniforms) == 1280);
+static_assert(offsetof(FrameUniforms, moon_shadow) == 240);
 static_assert(offsetof(FrameUniforms, sun_disk_direction) == 208);
 static_assert(offsetof(FrameUniforms, moon_disk_direction) == 224);
 static_assert(offsetof(FrameUniforms, moon_sunlight) == 176);

@@ -89,5 +89,10 @@ struct LunarEclipse {
 // air's thickness, since it adds the light through the air itself, refracted and filtered
 // (sky::UmbraRefractedLight); so the straight rays count only above the air.
 LunarEclipse ComputeLunarEclipse(const SkyEphemeris& e, double shadow_radius = kEarthShadowRadius);
+// The same for a point `moon_distance` m from the Earth's centre at `elongation` rad from the Sun
+// (seen from the Earth's centre), the Sun `sun_distance` m away: a point of the Moon's surface
+// as well as its centre (the Earth's shadow's edge across the Moon's disk).
+LunarEclipse LunarEclipseAt(double moon_distance, double elongation, double sun_distance,
+                            double shadow_radius = kEarthShadowRadius);
 
 }  // namespace zenith::geo

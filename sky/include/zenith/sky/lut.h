@@ -108,9 +108,22 @@ struct MoonDisk {
     double angular_radius = 0.0045;       // rad
     double albedo = 0.12;                 // Lambertian reflectance (the Moon's mean albedo)
     // Fraction of the Sun's light (per channel) reaching the Moon: < 1 in a lunar eclipse, the
-    // sunlight past the Earth's disk plus what the air refracts into the umbra (MakeSkyState).
+    // sunlight past the Earth's disk plus what the air refracts into the umbra (MakeSkyState),
+    // the mean over the disk. Drawn so where there is no `shadow`.
     glm::dvec3 sunlight{1.0};
     std::optional<ApparentPlace> apparent;  // none: drawn in `direction`
+    // In a lunar eclipse, the Earth's shadow across the disk: the sunlight reaching a point of
+    // the Moon at kShadowSamples distances from the shadow's axis (the Earth-Sun line), evenly
+    // from axis_min_m to axis_max_m (the disk's nearest and farthest), interpolated in between.
+    // `distance_m` places the disk's points (from the camera).
+    static constexpr int kShadowSamples = 64;
+    struct Shadow {
+        double axis_min_m = 0.0;
+        double axis_max_m = 0.0;
+        std::array<glm::dvec3, kShadowSamples> sunlight{};
+    };
+    std::optional<Shadow> shadow;
+    double distance_m = 3.844e8;
 };
 
 // A point source: a star, a planet, or the Sun when its disk is smaller than a pixel. A

@@ -73,6 +73,10 @@ SkyState MakeSkyState(const geo::SkyEphemeris& ephemeris, const geo::Observer& o
 // apparent one, its azimuth kept; unchanged where the table says it is behind the ground.
 glm::dvec3 ApparentDirection(const geo::RefractionTable& refraction, const glm::dvec3& direction);
 
+// The sunlight reaching a point of the Moon `axis_distance` m from the Earth's shadow's axis: the
+// table's linear interpolation, clamped to its ends (render.frag's MoonLuminance does the same).
+glm::dvec3 ShadowSunlight(const MoonDisk::Shadow& shadow, double axis_distance);
+
 // Throws zenith::ArgumentError for a vertical field of view (rad) outside (0, 180) deg (field
 // "fov_deg", the message in degrees) or an aspect (width / height) that is not positive and
 // finite (field "aspect"). What every front end checks a projection with.
