@@ -533,6 +533,16 @@ class GlStateContractTest : public ::testing::Test {
         return sky;
     }
 
+    // MakeSky's, under the overcast_stratus deck.
+    static std::unique_ptr<SkySystem> MakeOvercastSky() {
+        auto sky = MakeSky(true);
+        sky::CloudSettings settings;
+        settings.noise_cache_directory =
+            std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
+        sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
+        return sky;
+    }
+
     // One frame into the host's framebuffer under the state in force; the first history.
     static void Frame(SkySystem& sky, const Host& host) {
         sky.ResetCloudHistory();
@@ -624,10 +634,7 @@ TEST_F(GlStateContractTest, ClearSkyUnderAHostileHostState) {
 
 TEST_F(GlStateContractTest, CloudsUnderAHostileHostState) {
     const Host host;
-    const auto sky = MakeSky(true);
-    sky::CloudSettings settings;
-    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
-    sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
+    const auto sky = MakeOvercastSky();
     // With the environment's faces (all six each Update), mip levels, projection and read-back.
     sky::EnvironmentSettings environment;
     environment.size = 16;
@@ -643,10 +650,7 @@ TEST_F(GlStateContractTest, CloudsUnderAHostileHostState) {
 // host's own indirect and storage bindings restored after.
 TEST_F(GlStateContractTest, CloudsOverTheHostsDepthUnderAHostileHostState) {
     const Host host;
-    const auto sky = MakeSky(true);
-    sky::CloudSettings settings;
-    settings.noise_cache_directory = std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
-    sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
+    const auto sky = MakeOvercastSky();
     // The lower half 1.5 km away, the upper half at the far plane (near 1 m, far 100 km).
     GLuint depth = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &depth);

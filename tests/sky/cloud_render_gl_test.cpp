@@ -257,6 +257,28 @@ TEST_F(CloudRenderGlTest, CompositeHidesTheSunAndOnlyGeometryBehindTheClouds) {
     EXPECT_GT(covered, 100);
 }
 
+// A homogeneous layer from `base` to `top` m of `extinction` /m: fog's density (ground_fog),
+// flat to kCloudFogFlat of the layer, then falling to 0 at its top.
+clouds::Weather FogLayer(double base, double top, double extinction) {
+    clouds::CloudLayer layer;
+    layer.name = "fog";
+    layer.base_altitude = base;
+    layer.top_altitude = top;
+    layer.coverage = 1.0;
+    layer.cloud_type = 0.0;
+    layer.ground_fog = true;
+    layer.extinction_scale = extinction / CloudSettings{}.extinction;
+    layer.map_period = 20000.0;
+    clouds::Weather weather;
+    weather.name = "test_fog";
+    weather.layers = {layer};
+    return weather;
+}
+
+// Fog at the ground, 50 m deep with 200 m visibility (15 /km): the densest weather next to the
+// camera.
+clouds::Weather GroundFog() { return FogLayer(0.0, 50.0, 15.0e-3); }
+
 // A peak rising out of a deck, seen from 300 m above the deck's top: geometry 2 km ahead in the
 // frame's middle columns, its lower rows inside the deck, its upper rows above it. Over the
 // geometry the composite must dim the host's colour by the clouds' transmittance up to it,
@@ -267,18 +289,9 @@ TEST_F(CloudRenderGlTest, CompositeHidesTheSunAndOnlyGeometryBehindTheClouds) {
 TEST_F(CloudRenderGlTest, GeometryRisingOutOfADeckIsSeenPixelByPixel) {
     const Atmosphere earth;
     const Lights lights = Afternoon();
-    clouds::CloudLayer deck;
-    deck.name = "deck";
-    deck.base_altitude = 1000.0;
-    deck.top_altitude = 1500.0;
-    deck.coverage = 1.0;
-    deck.cloud_type = 0.0;
-    deck.ground_fog = true;  // homogeneous: the density a closed form can follow
-    deck.extinction_scale = 0.125;
-    clouds::Weather weather;
-    weather.name = "test_deck";
-    weather.layers = {deck};
-    const double sigma = deck.extinction_scale * CloudSettings{}.extinction;  // 1/m
+    constexpr double kSigma = 5e-3;  // 1/m
+    const clouds::Weather weather = FogLayer(1000.0, 1500.0, kSigma);
+    const clouds::CloudLayer& deck = weather.layers[0];
 
     const Camera camera = CameraAt(1800.0, 0.3, -0.15);
     const glm::ivec2 size(96, 54);
@@ -302,7 +315,7 @@ TEST_F(CloudRenderGlTest, GeometryRisingOutOfADeckIsSeenPixelByPixel) {
             if (h > 0.0 && h < 1.0)
                 sum += std::clamp((1.0 - h) / (1.0 - ref::kCloudFogFlat), 0.0, 1.0);
         }
-        return sigma * sum * distance / kSteps;
+        return kSigma * sum * distance / kSteps;
     };
     for (const int block : {1, 4}) {
         AtmosphereRenderer cloudy(earth);
@@ -406,24 +419,6 @@ TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbi
         EXPECT_LT(d.luminance, 0.02) << v.name;
         EXPECT_LT(d.transmittance, 0.005) << v.name;
     }
-}
-
-// Fog at the ground, 50 m deep with 200 m visibility (15 /km): the densest weather next to the
-// camera.
-clouds::Weather GroundFog() {
-    clouds::CloudLayer layer;
-    layer.name = "fog";
-    layer.base_altitude = 0.0;
-    layer.top_altitude = 50.0;
-    layer.coverage = 1.0;
-    layer.cloud_type = 0.0;
-    layer.ground_fog = true;
-    layer.extinction_scale = 15.0e-3 / CloudSettings{}.extinction;
-    layer.map_period = 20000.0;
-    clouds::Weather weather;
-    weather.name = "test_fog";
-    weather.layers = {layer};
-    return weather;
 }
 
 // The reduced-resolution trace (one pixel in 16 per frame, reprojected) once converged, against
