@@ -89,8 +89,9 @@ std::string WeatherFingerprint(const sky::clouds::Weather& weather) {
     std::string text;
     for (const sky::clouds::CloudLayer& l : weather.layers) {
         text += fmt::format(
-            "{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{};", l.base_altitude, l.top_altitude,
-            l.coverage, l.cloud_type, l.precipitation, l.wind_speed, l.wind_from, l.map_period,
+            "{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{};", l.base_altitude,
+            l.top_altitude, l.coverage, l.cloud_type, l.precipitation, l.wind_speed, l.wind_from,
+            l.shear, l.extinction_scale, l.ground_fog, l.snow, l.map_period,
             static_cast<int>(l.map.kind), l.map.seed, l.map.cells_per_tile, l.map.variation,
             l.map.size, l.map.file.string(),
             l.map.kind == sky::clouds::WeatherMapSource::Kind::kFile ? HashFile(l.map.file) : "");

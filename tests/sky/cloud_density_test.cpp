@@ -10,6 +10,7 @@
 
 #include "cloud_test_support.h"
 #include "reference/cloud_functions.h"
+#include "reference/cloud_march.h"
 
 namespace zenith::sky::ref {
 namespace {
@@ -294,6 +295,66 @@ TEST(CloudDensity, CumulonimbusSpreadsAnAnvilWiderThanItsTower) {
                                                    CloudTypeHeightFraction(0.75);
     for (const Point& p : RandomPoints(20000, top, uniform.top_altitude, 5)) {
         ASSERT_EQ(Density(uniform, congestus, p), 0.0) << p.altitude;
+    }
+}
+
+// The wind's shear leans the clouds downwind by the square of the height's share h of the layer:
+// with a shear of 10 km east over the cumulonimbus preset's tile, the clouds' envelope (the
+// weather's, without the noise) at h is the unsheared one moved h^2 x 10 km east, exactly, at
+// 20,000 random points; the cloud cover at each height is kept (the noise stays in place); and
+// the anvil's centroid (circular: the tile repeats) at 0.95 of the layer moves 9.0 km east.
+TEST(CloudDensity, ShearLeansTheCloudsDownwind) {
+    const CloudLayer cb = clouds::LoadWeather("cumulonimbus").layers.at(0);
+    CloudLayerParameters layer = Layer();
+    layer.base_altitude = cb.base_altitude / 1000.0;
+    layer.top_altitude = cb.top_altitude / 1000.0;
+    layer.weather_period = cb.map_period / 1000.0;
+    CloudLayerParameters sheared = layer;
+    sheared.shear_x = 10.0;  // km, east
+    const RepeatTexture2D weather = ToTexture(clouds::BuildWeatherMap(cb));
+    const auto fraction = [&](double altitude) {
+        return (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
+    };
+    for (const Point& p : RandomPoints(20000, layer.base_altitude, layer.top_altitude, 7)) {
+        const double lean = fraction(p.altitude) * fraction(p.altitude) * 10.0;
+        ASSERT_EQ(CloudEnvelope(sheared, weather, p.ground, p.altitude),
+                  CloudEnvelope(layer, weather, p.ground - vec2(lean, 0.0), p.altitude));
+    }
+    struct Centroid {
+        double east_km;
+        double cover;
+    };
+    const auto centroid = [&](const CloudLayerParameters& l, double height_fraction) {
+        const double altitude =
+            l.base_altitude + height_fraction * (l.top_altitude - l.base_altitude);
+        const double period = l.weather_period;
+        double c = 0.0, s = 0.0;
+        int n = 0;
+        const int side = 160;
+        for (int y = 0; y < side; ++y) {
+            for (int x = 0; x < side; ++x) {
+                const vec2 ground((x + 0.5) / side * period, (y + 0.5) / side * period);
+                const double d = Density(l, weather, {ground, altitude});
+                c += d * std::cos(2.0 * kPi * ground.x / period);
+                s += d * std::sin(2.0 * kPi * ground.x / period);
+                if (d > 0.0) ++n;
+            }
+        }
+        return Centroid{std::atan2(s, c) / (2.0 * kPi) * period, double(n) / (side * side)};
+    };
+    for (const double h : {0.3, 0.6, 0.95}) {
+        const Centroid plain = centroid(layer, h), leaning = centroid(sheared, h);
+        double moved = leaning.east_km - plain.east_km;
+        moved -= layer.weather_period * std::round(moved / layer.weather_period);
+        std::printf(
+            "at %.2f of the layer: cover %.3f -> %.3f, centroid moved %.2f km east "
+            "(h^2 x 10 km = %.2f)\n",
+            h, plain.cover, leaning.cover, moved, h * h * 10.0);
+        EXPECT_NEAR(leaning.cover, plain.cover, 0.02 * plain.cover) << h;
+        // The anvil is the weather's: there the noise hardly moves the centroid.
+        if (h > 0.9) {
+            EXPECT_NEAR(moved, h * h * 10.0, 0.05 * h * h * 10.0);
+        }
     }
 }
 

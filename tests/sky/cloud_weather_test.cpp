@@ -93,6 +93,10 @@ TEST(CloudWeatherPresets, BadFieldsAreNamedWithValueAndRange) {
     ExpectMentions(
         ErrorOf([] { ParseWeatherJson(LayerJson(", \"wind_speed_m_s\": 400"), "w.json"); }),
         {"wind_speed_m_s = 400 m/s", "150 m/s"});
+    ExpectMentions(ErrorOf([] { ParseWeatherJson(LayerJson(", \"shear_m\": -5"), "w.json"); }),
+                   {"layers[0].shear_m = -5 m", "0 <= value <= 100 km"});
+    EXPECT_EQ(ParseWeatherJson(LayerJson(", \"shear_m\": 12000"), "w.json").layers[0].shear,
+              12000.0);
     for (const char* scale : {"0", "4.5", "-0.1"}) {
         ExpectMentions(ErrorOf([&] {
                            ParseWeatherJson(

@@ -223,8 +223,8 @@ void AddCloudLayer(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, extinction_scale);
     ZENITH_SAME(S, ground_fog);
     ZENITH_SAME(S, precipitation_shaft);
-    ZENITH_SAME(S, padding2);
-    ZENITH_SAME(S, padding3);
+    ZENITH_SAME(S, shear_x);
+    ZENITH_SAME(S, shear_y);
 }
 
 void AddCloudScattering(Layout& layout, const std::string& prefix, std::size_t base) {

@@ -46,8 +46,10 @@ struct CloudLayerParameters {
     // density CloudPrecipitationShare of the map's G times extinction_scale (heavy rain's or
     // snow's extinction over the cloud material's).
     Number precipitation_shaft;
-    Number padding2;
-    Number padding3;
+    // km: how far downwind the clouds reach at the layer's top (clouds::CloudLayer::shear),
+    // along ground x and y.
+    Number shear_x;
+    Number shear_y;
 };
 
 // Ground fog is flat to this share of its layer's thickness, then thins linearly to its top.
@@ -106,6 +108,15 @@ struct CloudWeather {
 // clouds drift whole instead of boiling.
 vec2 CloudWindShiftedGround(IN(CloudLayerParameters) layer, vec2 ground) {
     return vec2(ground.x + layer.wind_offset_x, ground.y + layer.wind_offset_y);
+}
+
+// The wind's shear leans the clouds downwind: at height share h of the layer a column shows the
+// weather of the column h^2 shear upwind of it, so a cumulonimbus' anvil spreads downwind of its
+// cell and its tower tilts. The noise stays in place: sheared with the weather, its features
+// stretched into streaks along the leaning faces.
+vec2 CloudLeanedGround(IN(CloudLayerParameters) layer, vec2 ground, Number height_fraction) {
+    Number lean = CloudSaturate(height_fraction) * CloudSaturate(height_fraction);
+    return ground - lean * vec2(layer.shear_x, layer.shear_y);
 }
 
 CloudWeather CloudWeatherAt(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
@@ -232,7 +243,8 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     s.type = 0.0;
     if (!(altitude > layer.base_altitude && altitude < layer.top_altitude)) return s;
 
-    CloudWeather weather = CloudWeatherAt(layer, weather_map, ground);
+    CloudWeather weather =
+        CloudWeatherAt(layer, weather_map, CloudLeanedGround(layer, ground, s.height_fraction));
     if (layer.precipitation_shaft > 0.5) {
         // Rain or snow: as dense at every height as the intensity says (no darkening: that is
         // the raining cloud's).

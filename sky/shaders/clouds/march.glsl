@@ -187,12 +187,13 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture
 // envelope's orientation without the noise's small-scale structure.
 Number CloudEnvelope(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map, vec2 ground,
                      Number altitude) {
-    CloudWeather w = CloudWeatherAt(layer, weather_map, ground);
+    Number height_fraction =
+        (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
+    CloudWeather w =
+        CloudWeatherAt(layer, weather_map, CloudLeanedGround(layer, ground, height_fraction));
     Number cloud_height =
         (layer.top_altitude - layer.base_altitude) * CloudTypeHeightFraction(w.type) * w.height;
     Number convection = CloudConvection(w.type);
-    Number height_fraction =
-        (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
     return max(CloudTowerSignal(altitude, layer.base_altitude, cloud_height, convection) +
                    w.coverage - 1.0,
                CloudAnvilSignal(convection, height_fraction) *

@@ -42,6 +42,9 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_
                                   : layer.extinction_scale);
     p.ground_fog = Scalar(layer.ground_fog ? 1.0 : 0.0);
     p.precipitation_shaft = Scalar(layer.precipitation_shaft ? 1.0 : 0.0);
+    // Downwind, whatever the wind's speed.
+    p.shear_x = Scalar(-layer.shear * std::sin(layer.wind_from) / kKm);
+    p.shear_y = Scalar(-layer.shear * std::cos(layer.wind_from) / kKm);
     return p;
 }
 

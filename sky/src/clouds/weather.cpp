@@ -35,6 +35,7 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kMaxTopAltitude = 20000.0;  // m: the troposphere, with room for anvils
 constexpr double kMinThickness = 50.0;       // m
 constexpr double kMaxWindSpeed = 150.0;      // m/s
+constexpr double kMaxShear = 100000.0;       // m: an anvil's reach downwind
 constexpr double kMinMapPeriod = 1e3;        // m
 constexpr double kMaxMapPeriod = 1e7;        // m
 constexpr int kMinMapSize = 16;
@@ -127,6 +128,11 @@ void Check(const Weather& weather, const Checker& check) {
                        "0 <= value <= " + FormatNumber(kMaxWindSpeed) +
                            " m/s (twice the strongest jet stream)");
         }
+        if (!(l.shear >= 0.0 && l.shear <= kMaxShear)) {
+            check.Fail(i, l.name, "shear_m", "shear", metres(l.shear),
+                       "0 <= value <= " + FormatNumber(kMaxShear / 1000.0) +
+                           " km (an anvil's reach downwind)");
+        }
         if (!(l.extinction_scale > 0.0 && l.extinction_scale <= kMaxExtinctionScale)) {
             check.Fail(i, l.name, "extinction_scale", "extinction_scale", unit(l.extinction_scale),
                        "0 < value <= " + FormatNumber(kMaxExtinctionScale) +
@@ -212,7 +218,8 @@ constexpr const char* kTopKeys[] = {"name", "description", "layers"};
 constexpr const char* kLayerKeys[] = {"name",           "base_altitude_m", "top_altitude_m",
                                       "coverage",       "cloud_type",      "precipitation",
                                       "wind_speed_m_s", "wind_from_deg",   "extinction_scale",
-                                      "ground_fog",     "map_period_m",    "map"};
+                                      "ground_fog",     "map_period_m",    "map",
+                                      "shear_m"};
 constexpr const char* kProceduralKeys[] = {"procedural", "seed", "cells_per_tile", "variation",
                                            "size"};
 constexpr const char* kFileKeys[] = {"file"};
@@ -319,6 +326,7 @@ Weather ParseWeatherDocument(std::string_view json_text, const std::string& sour
         layer.precipitation = read.Number(l, prefix, "precipitation");
         layer.wind_speed = read.Number(l, prefix, "wind_speed_m_s", 0.0);
         layer.wind_from = read.Number(l, prefix, "wind_from_deg", 0.0) * kDeg;
+        layer.shear = read.Number(l, prefix, "shear_m", 0.0);
         layer.extinction_scale = read.Number(l, prefix, "extinction_scale", 1.0);
         if (const auto it = l.find("ground_fog"); it != l.end()) {
             if (!it->is_boolean()) {
@@ -520,6 +528,7 @@ Weather WithPrecipitationShafts(const Weather& weather) {
     shaft.base_altitude = base;
     shaft.top_altitude = raining->base_altitude;
     shaft.precipitation_shaft = true;
+    shaft.shear = 0.0;  // it falls from the cloud's base, where the cloud does not lean
     Weather out = weather;
     out.layers.insert(out.layers.begin() + (raining - layers.begin()), shaft);
     return out;

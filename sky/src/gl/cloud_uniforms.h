@@ -26,8 +26,8 @@ struct CloudLayerUniforms {  // clouds/functions.glsl: struct CloudLayerParamete
     float extinction_scale;
     float ground_fog;
     float precipitation_shaft;
-    float padding2;
-    float padding3;
+    float shear_x;
+    float shear_y;
 };
 static_assert(sizeof(CloudLayerUniforms) == 64);
 

@@ -65,7 +65,11 @@ struct CloudLayer {
     double wind_speed = 0.0;        // m/s
     double wind_from = 0.0;         // rad, meteorological: where the wind blows from, clockwise
                                     // from north (pi / 2: an east wind, clouds move west)
-    double map_period = 50000.0;    // m of ground covered by one tile of the weather map
+    // m: how far downwind of their bases the clouds reach at the layer's top, the wind's shear
+    // over the layer (the upper winds blowing harder): a cumulonimbus' anvil spreads downwind
+    // of its cell. The clouds lean by the square of the height's share of the layer.
+    double shear = 0.0;
+    double map_period = 50000.0;  // m of ground covered by one tile of the weather map
     // The layer's cloud material's extinction relative to CloudSettings::extinction, (0, 4]:
     // 1 for water droplets (cumulus, stratus: 40 /km), ~0.02 for the ice of cirrus (~1 /km:
     // fewer, larger crystals; vertical optical depths 0.03-3, Sassen & Cho 1992).
@@ -110,9 +114,9 @@ struct WeatherMap {
 // the allowed range. Ranges: 0 <= base_altitude < top_altitude <= 20 km with top - base >= 50 m
 // (the troposphere; a thinner layer is below the ray march's resolution); coverage, cloud_type,
 // precipitation, map.variation in [0, 1]; 0 <= wind_speed <= 150 m/s (twice the strongest jet
-// stream); wind_from finite; 1 km <= map_period <= 10000 km; map.size a power of two in
-// [16, 4096]; 1 <= map.cells_per_tile <= map.size / 2; layers ordered bottom to top without
-// overlap; a kFile map names a file.
+// stream); wind_from finite; 0 <= shear <= 100 km; 1 km <= map_period <= 10000 km; map.size a power
+// of two in [16, 4096]; 1 <= map.cells_per_tile <= map.size / 2; layers ordered bottom to top
+// without overlap; a kFile map names a file.
 void Validate(const Weather& weather);
 
 // Reads a preset: a built-in name ("clear", "scattered_cumulus", "broken", "overcast_stratus",
@@ -134,6 +138,8 @@ void Validate(const Weather& weather);
 //         "precipitation": 0,
 //         "wind_speed_m_s": 8,              optional, default 0
 //         "wind_from_deg": 270,             optional, default 0
+//         "shear_m": 15000,                 optional, default 0: how far downwind the clouds
+//                                           reach at the layer's top (0 <= value <= 100 km)
 //         "map_period_m": 60000,
 //         "extinction_scale": 1,            optional, default 1 (water); ~0.02 for cirrus' ice
 //         "ground_fog": false,              optional: homogeneous fog from the layer's base
