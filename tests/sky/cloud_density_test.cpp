@@ -258,16 +258,27 @@ TEST(CloudDensity, NothingAboveTheMapsCloudTopWhichIsTight) {
     EXPECT_EQ(clouds::CloudTopFraction(clouds::BuildWeatherMap(clear)), 0.0);
 }
 
+// The cumulonimbus preset's layer, its shear left out, and its map.
+struct Cumulonimbus {
+    CloudLayerParameters layer = Layer();
+    RepeatTexture2D weather;
+};
+Cumulonimbus CumulonimbusPreset() {
+    const CloudLayer cb = clouds::LoadWeather("cumulonimbus").layers.at(0);
+    Cumulonimbus c{Layer(), ToTexture(clouds::BuildWeatherMap(cb))};
+    c.layer.base_altitude = cb.base_altitude / 1000.0;
+    c.layer.top_altitude = cb.top_altitude / 1000.0;
+    c.layer.weather_period = cb.map_period / 1000.0;
+    return c;
+}
+
 // A cumulonimbus spreads an anvil under the layer's top (the tropopause), wider than its tower:
 // over the cumulonimbus preset's map, more columns hold cloud at 90 % of the layer than at 50 %.
 // Congestus, the type below, has none: a uniform congestus layer keeps below its type's height.
 TEST(CloudDensity, CumulonimbusSpreadsAnAnvilWiderThanItsTower) {
-    const CloudLayer cb = clouds::LoadWeather("cumulonimbus").layers.at(0);
-    CloudLayerParameters layer = Layer();
-    layer.base_altitude = cb.base_altitude / 1000.0;
-    layer.top_altitude = cb.top_altitude / 1000.0;
-    layer.weather_period = cb.map_period / 1000.0;
-    const RepeatTexture2D weather = ToTexture(clouds::BuildWeatherMap(cb));
+    const Cumulonimbus cb = CumulonimbusPreset();
+    const CloudLayerParameters& layer = cb.layer;
+    const RepeatTexture2D& weather = cb.weather;
     const auto covered = [&](double height_fraction) {
         const double altitude =
             layer.base_altitude + height_fraction * (layer.top_altitude - layer.base_altitude);
@@ -304,14 +315,11 @@ TEST(CloudDensity, CumulonimbusSpreadsAnAnvilWiderThanItsTower) {
 // 20,000 random points; the cloud cover at each height is kept (the noise stays in place); and
 // the anvil's centroid (circular: the tile repeats) at 0.95 of the layer moves 9.0 km east.
 TEST(CloudDensity, ShearLeansTheCloudsDownwind) {
-    const CloudLayer cb = clouds::LoadWeather("cumulonimbus").layers.at(0);
-    CloudLayerParameters layer = Layer();
-    layer.base_altitude = cb.base_altitude / 1000.0;
-    layer.top_altitude = cb.top_altitude / 1000.0;
-    layer.weather_period = cb.map_period / 1000.0;
+    const Cumulonimbus cb = CumulonimbusPreset();
+    const CloudLayerParameters& layer = cb.layer;
+    const RepeatTexture2D& weather = cb.weather;
     CloudLayerParameters sheared = layer;
     sheared.shear_x = 10.0;  // km, east
-    const RepeatTexture2D weather = ToTexture(clouds::BuildWeatherMap(cb));
     const auto fraction = [&](double altitude) {
         return (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
     };
