@@ -72,9 +72,8 @@ std::optional<MoonDisk::Shadow> EarthShadowOnTheMoon(const geo::SkyEphemeris& e,
 // The sunlight reaching the Moon's face seen from the Earth, averaged over it weighted as a full
 // Moon's Lambertian face is bright (the cosine of the angle from the disk's centre, as the Sun
 // lies behind the Earth in an eclipse): a 32 x 32 grid over the disk.
-glm::dvec3 MeanSunlightOnTheMoon(const MoonDisk::Shadow& shadow, const geo::SkyEphemeris& e) {
-    const geo::LunarEclipse centre = geo::ComputeLunarEclipse(e);
-    const double axis = centre.moon_distance * std::sin(centre.axis_angle);
+glm::dvec3 MeanSunlightOnTheMoon(const MoonDisk::Shadow& shadow) {
+    const double axis = shadow.axis_max_m - geo::kMoonRadius;  // the centre's (the table's span)
     constexpr int kGrid = 32;
     glm::dvec3 sum(0.0);
     double weights = 0.0;
@@ -197,7 +196,7 @@ SkyState MakeSkyState(const geo::SkyEphemeris& e, const geo::Observer& observer,
     // lines, plus what the air refracts and filters into the shadow, across the disk (computed
     // only while a part of the Moon is in the penumbra).
     if (std::optional<MoonDisk::Shadow> shadow = EarthShadowOnTheMoon(e, atmosphere)) {
-        s.moon.sunlight = MeanSunlightOnTheMoon(*shadow, e);
+        s.moon.sunlight = MeanSunlightOnTheMoon(*shadow);
         s.moon.shadow = *shadow;
         s.lights.moon_illuminance *= s.moon.sunlight;
     }
