@@ -69,7 +69,7 @@ const int kEnvironmentImageUnit = 0;      // atmosphere/environment_sh.comp read
 
 // Compute work-group sizes, which the host's dispatches divide by.
 const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations
-const int kIrradianceGroupSize = 64;  // the irradiance LUT: 64 x 1
+const int kIrradianceGroupSize = 64;  // the irradiance LUT: 256 x 1, four groups
 const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
 const int kEnvironmentShGroupSize = 64;  // atmosphere/environment_sh.comp: one group of 64
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "reference/atmosphere_functions.h"
+#include "reference/lut_texture.h"
 #include "shader_parameters.h"
 #include "zenith/geo/eclipse.h"
 #include "zenith/geo/refraction.h"
@@ -27,13 +28,8 @@ glm::dvec3 TransmittanceToLight(const Atmosphere& atmosphere, double altitude, d
 }
 
 glm::dvec3 SampleGroundIrradiance(const LutImage& irradiance, double mu) {
-    const int n = irradiance.size.x;
-    if (n <= 0) return glm::dvec3(0.0);
-    // Texel i holds mu = 2 (i / (n - 1)) - 1 (GetTextureCoordFromUnitRange's centres).
-    const double x = std::clamp(0.5 + 0.5 * mu, 0.0, 1.0) * (n - 1);
-    const int i0 = std::min(static_cast<int>(x), n - 1), i1 = std::min(i0 + 1, n - 1);
-    const double f = x - i0;
-    return glm::mix(glm::dvec3(irradiance.at(i0, 0)), glm::dvec3(irradiance.at(i1, 0)), f);
+    if (irradiance.size.x <= 0) return glm::dvec3(0.0);
+    return glm::dvec3(ref::GetGroundSkyIrradiance(ref::FromImage(irradiance), mu));
 }
 
 std::array<glm::dvec3, 8> EclipseLimbTable(double moon_over_sun) {

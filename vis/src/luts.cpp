@@ -170,7 +170,7 @@ void MultipleScatteringTexelMuSAltitude(const Luts& luts, int x, int y, double* 
                                         double* altitude) {
     const glm::ivec2 size(luts.multiple_scattering.size);
     const ref::AtmosphereParameters p = Parameters(luts);
-    *mu_s = ref::MuSFromMultipleScatteringU(
+    *mu_s = ref::SunCosineFromUnitRange(
         ref::GetUnitRangeFromTextureCoord(TexelCentre(x, size.x), size.x));
     // v = h / (R_t - R) (H20 §5.5), the inverse of GetMultipleScatteringTextureUv's x_h.
     *altitude = ref::GetUnitRangeFromTextureCoord(TexelCentre(y, size.y), size.y) *
@@ -178,9 +178,9 @@ void MultipleScatteringTexelMuSAltitude(const Luts& luts, int x, int y, double* 
 }
 
 double IrradianceTexelMuS(const Luts& luts, int x) {
-    // u = 0.5 + 0.5 mu_s (GetGroundSkyIrradiance), inverted.
+    // GetGroundSkyIrradiance's u, inverted.
     const int n = luts.irradiance.size.x;
-    return 2.0 * ref::GetUnitRangeFromTextureCoord(TexelCentre(x, n), n) - 1.0;
+    return ref::SunCosineFromUnitRange(ref::GetUnitRangeFromTextureCoord(TexelCentre(x, n), n));
 }
 
 void SkyViewTexelAngles(const Luts& luts, int x, int y, double* view_zenith, double* azimuth) {

@@ -314,20 +314,21 @@ vec3 TransmittanceToGround(IN(AtmosphereParameters) atmosphere,
 // Multiple-scattering LUT (H20 §5.5): v = h / (R_t - R) as in the paper, but u = 0.5 + 0.5 sign(mu_s)
 // sqrt(|mu_s|) instead of 0.5 + 0.5 mu_s: Psi_ms falls steeply through twilight, and with the
 // paper's linear u, 32 texels put 3.6 deg of sun elevation per texel at the horizon, where linear
-// interpolation overshot the Earth's shadow sky by half (tests/sky/accuracy_test.cpp).
+// interpolation overshot the Earth's shadow sky by half (tests/sky/accuracy_test.cpp). The ground
+// irradiance LUT below uses the same u for the same reason.
 
-Number MultipleScatteringUFromMuS(Number mu_s) {
+Number UnitRangeFromSunCosine(Number mu_s) {
     return clamp(0.5 + 0.5 * sign(mu_s) * sqrt(abs(mu_s)), 0.0, 1.0);
 }
 
-Number MuSFromMultipleScatteringU(Number u) {
+Number SunCosineFromUnitRange(Number u) {
     Number x = 2.0 * u - 1.0;
     return ClampCosine(sign(x) * x * x);
 }
 
 vec2 GetMultipleScatteringTextureUv(IN(AtmosphereParameters) atmosphere, Number r, Number mu_s,
                                     ivec2 size) {
-    Number x_mu_s = MultipleScatteringUFromMuS(mu_s);
+    Number x_mu_s = UnitRangeFromSunCosine(mu_s);
     Number x_h = clamp((r - atmosphere.bottom_radius) /
                            (atmosphere.top_radius - atmosphere.bottom_radius), 0.0, 1.0);
     return vec2(GetTextureCoordFromUnitRange(x_mu_s, size.x),
@@ -362,7 +363,7 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
                                     ivec2 size, int sqrt_directions, int steps) {
     Number x_mu_s = GetUnitRangeFromTextureCoord(uv.x, size.x);
     Number x_h = GetUnitRangeFromTextureCoord(uv.y, size.y);
-    Number mu_s = MuSFromMultipleScatteringU(x_mu_s);
+    Number mu_s = SunCosineFromUnitRange(x_mu_s);
     Number r = atmosphere.bottom_radius +
                clamp(x_h, 0.0, 1.0) * (atmosphere.top_radius - atmosphere.bottom_radius);
     // Keep the sample strictly inside the shell so rays from the ground start above it.
@@ -421,11 +422,14 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
 
 // ---------------------------------------------------------------------------------------------
 // Sky irradiance on the ground, per unit light illuminance, as a function of the light's zenith
-// cosine (u = 0.5 + 0.5 mu_s): lets the ground be lit by the sky as well as by the sun, which H20
-// leaves to the engine. Filled by integrating the scattered luminance over the upper hemisphere.
+// cosine (u = UnitRangeFromSunCosine(mu_s), as the multiple-scattering LUT): lets the ground be lit
+// by the sky as well as by the sun, which H20 leaves to the engine. Filled by integrating the
+// scattered luminance over the upper hemisphere. Through civil twilight it falls by a factor ~3
+// per degree of sun depression; with u = 0.5 + 0.5 mu_s, 64 texels (1.8 deg each at the
+// horizon) overshot it by up to half between texel centres (accuracy_report --grid illuminance).
 
 vec3 GetGroundSkyIrradiance(IN(IrradianceTexture) irradiance_texture, Number mu_s) {
-    vec2 uv = vec2(GetTextureCoordFromUnitRange(clamp(0.5 + 0.5 * mu_s, 0.0, 1.0),
+    vec2 uv = vec2(GetTextureCoordFromUnitRange(UnitRangeFromSunCosine(mu_s),
                                                 TextureSize(irradiance_texture).x),
                    0.5);
     return vec3(SampleTexture2D(irradiance_texture, uv));
@@ -875,7 +879,7 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
                                   IN(IrradianceTexture) unused_irradiance_texture,
                                   ivec2 irradiance_size, Number u, int sqrt_directions,
                                   int steps) {
-    Number mu_s = ClampCosine(2.0 * GetUnitRangeFromTextureCoord(u, irradiance_size.x) - 1.0);
+    Number mu_s = SunCosineFromUnitRange(GetUnitRangeFromTextureCoord(u, irradiance_size.x));
     // Not named `lights`: that is the uniform block member in the passes.
     LightSet unit_sun;
     unit_sun.light[0].direction = vec3(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
