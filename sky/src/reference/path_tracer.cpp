@@ -723,29 +723,26 @@ glm::dvec3 SingleScattering(const Atmosphere& atmosphere, const glm::dvec3& posi
 
 // --- Public: path tracing --------------------------------------------------------------------
 
-PathTraceResult PathTrace(const Atmosphere& atmosphere, const glm::dvec3& position,
-                          const glm::dvec3& direction, const glm::dvec3& sun_direction,
-                          const PathTraceOptions& options) {
+namespace {
+
+// Mean and standard error of `samples` paths: fixed chunks with their own streams, summed in
+// chunk order, so the result does not depend on the number of threads or their scheduling.
+// make_path() is called once per chunk and returns the path's estimator, value(rng).
+template <class MakePath>
+PathTraceResult Accumulate(const PathTraceOptions& options, const MakePath& make_path) {
     PathTraceResult result;
     result.samples = std::max<std::int64_t>(options.samples, 0);
     if (result.samples == 0) return result;
-    const glm::dvec3 d = glm::normalize(direction);
-    glm::dvec3 origin = position;
-    if (!EnterAtmosphere(atmosphere, origin, d)) return result;
-    const PathContext context{atmosphere, options, glm::normalize(sun_direction),
-                              MajorantShellRadii(atmosphere)};
-
-    // Fixed chunks with their own streams, summed in chunk order: the result does not depend
-    // on the number of threads or their scheduling.
     constexpr std::int64_t kChunk = 64;
     const std::int64_t chunks = (result.samples + kChunk - 1) / kChunk;
     std::vector<std::pair<glm::dvec3, glm::dvec3>> sums(static_cast<std::size_t>(chunks));
     ParallelFor(chunks, options.threads, [&](std::int64_t chunk) {
         Rng rng(StreamSeed(options.seed, static_cast<std::uint64_t>(chunk)));
+        auto path = make_path();
         glm::dvec3 sum{0.0}, sum_squares{0.0};
         const std::int64_t end = std::min(result.samples, (chunk + 1) * kChunk);
         for (std::int64_t i = chunk * kChunk; i < end; ++i) {
-            const glm::dvec3 value = TracePath(context, origin, d, rng);
+            const glm::dvec3 value = path(rng);
             sum += value;
             sum_squares += value * value;
         }
@@ -764,6 +761,50 @@ PathTraceResult PathTrace(const Atmosphere& atmosphere, const glm::dvec3& positi
         result.standard_error = glm::sqrt(variance / n);
     }
     return result;
+}
+
+// A ray that misses the atmosphere: no light, from every path.
+PathTraceResult Missed(const PathTraceOptions& options) {
+    PathTraceResult result;
+    result.samples = options.samples;
+    return result;
+}
+
+}  // namespace
+
+PathTraceResult PathTrace(const Atmosphere& atmosphere, const glm::dvec3& position,
+                          const glm::dvec3& direction, const glm::dvec3& sun_direction,
+                          const PathTraceOptions& options) {
+    if (options.samples <= 0) return {};
+    const glm::dvec3 d = glm::normalize(direction);
+    glm::dvec3 origin = position;
+    if (!EnterAtmosphere(atmosphere, origin, d)) return Missed(options);
+    const PathContext context{atmosphere, options, glm::normalize(sun_direction),
+                              MajorantShellRadii(atmosphere)};
+    return Accumulate(options,
+                      [&] { return [&](Rng& rng) { return TracePath(context, origin, d, rng); }; });
+}
+
+PathTraceResult PathTraceUniformSky(const Atmosphere& atmosphere, const glm::dvec3& position,
+                                    const glm::dvec3& direction, const PathTraceOptions& options) {
+    if (options.samples <= 0) return {};
+    const glm::dvec3 d = glm::normalize(direction);
+    glm::dvec3 origin = position;
+    if (!EnterAtmosphere(atmosphere, origin, d)) return Missed(options);
+    const PathContext context{atmosphere, options, glm::dvec3(0.0, 0.0, 1.0),
+                              MajorantShellRadii(atmosphere)};
+    // A uniform radiance of 1 on the top of the atmosphere is a sun of illuminance 1 from every
+    // direction of the sphere: 4 pi times the mean over uniformly drawn sun directions.
+    return Accumulate(options, [&] {
+        return [&, local = context](Rng& rng) mutable {
+            const double cos_theta = 1.0 - 2.0 * rng.Uniform();
+            const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+            const double phi = 2.0 * kPi * rng.Uniform();
+            local.sun_direction =
+                glm::dvec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
+            return 4.0 * kPi * TracePath(local, origin, d, rng) / atmosphere.solar_illuminance;
+        };
+    });
 }
 
 // --- Public: camera and images ---------------------------------------------------------------

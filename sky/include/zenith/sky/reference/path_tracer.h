@@ -135,6 +135,14 @@ PathTraceResult PathTrace(const Atmosphere& atmosphere, const glm::dvec3& positi
                           const glm::dvec3& direction, const glm::dvec3& sun_direction,
                           const PathTraceOptions& options = {});
 
+// The light scattered toward `position` along `direction` when the top of the atmosphere is lit
+// by a uniform radiance of 1 (per channel) from every direction: the night sky's extraterrestrial
+// light, as a sun of unit illuminance from every direction of the sphere (each path draws its
+// own). Per unit radiance; the unscattered part, the transmittance to space, is not included.
+PathTraceResult PathTraceUniformSky(const Atmosphere& atmosphere, const glm::dvec3& position,
+                                    const glm::dvec3& direction,
+                                    const PathTraceOptions& options = {});
+
 // --- Camera and images -----------------------------------------------------------------------
 
 struct Camera {
