@@ -274,15 +274,180 @@ double StarVisibility(double illuminance, double background) {
 
 namespace {
 
+// The natural night light (airglow, zodiacal light, starlight) that the air scatters toward the
+// camera. The air at altitude h sees around it a mean radiance J(h): the sources over its sky
+// through the air's transmittance, and below it the Lambertian ground lit by them, seen through
+// the air between; and the air's own glow lights the air in turn, a share
+// f = omega(h) (1 / 4 pi) int (1 - T) of J coming back, so J = J_direct / (1 - f) (the geometric
+// series of H20 Eq. 9 for this light). Scattering it isotropically (Rayleigh's phase is within
+// 25 % of that everywhere; the aerosols' forward peak is not followed), a ray gathers
+// int sigma_s(h(t)) J(h(t)) T(t) dt, marched once per frame for kScatteredRows view zenith
+// angles (the sources are averaged over azimuth in J, and the air is layered, so the light
+// depends on the zenith angle alone), read between them. Against the path tracer under a uniform
+// sky: BENCHMARKS.md, tests/sky/night_sky_scattering_test.cpp. Rays that meet the ground get none
+// (the ground's own shading draws them).
+constexpr int kScatteredRows = 64;
+constexpr std::array<double, 7> kMeanRadianceAltitudes = {0.0, 1.0, 2.5, 5.0, 10.0, 20.0, 50.0};
+
+struct ScatteredNightLight {
+    double r = 0.0;           // the camera's distance to the planet's centre, km
+    double mu_horizon = 0.0;  // zenith cosine of the ground's tangent from the camera
+    std::array<glm::dvec3, kScatteredRows> rows{};  // at mu = RowMu(i)
+    double RowMu(double x) const { return mu_horizon + (1.0 - mu_horizon) * x * x; }
+    glm::dvec3 At(double mu) const {
+        if (!(mu > mu_horizon)) return glm::dvec3(0.0);
+        const double x =
+            std::sqrt(std::min((mu - mu_horizon) / (1.0 - mu_horizon), 1.0)) * (kScatteredRows - 1);
+        const int i = std::min(static_cast<int>(x), kScatteredRows - 2);
+        return glm::mix(rows[static_cast<std::size_t>(i)], rows[static_cast<std::size_t>(i) + 1],
+                        x - i);
+    }
+};
+
+// J(h) at kMeanRadianceAltitudes above the ground point under `up` (unit, planet-centred).
+std::array<glm::dvec3, kMeanRadianceAltitudes.size()> MeanNightRadiance(
+    const NightSky& night, const ref::AtmosphereParameters& atmosphere,
+    const ref::TransmittanceTexture& transmittance, const glm::dvec3& up) {
+    const NightSkySettings& s = night.settings;
+    const glm::dvec3 east = glm::normalize(glm::cross(
+        std::abs(up.z) < 0.9 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0), up));
+    const glm::dvec3 north = glm::cross(up, east);
+    const glm::dvec3 airglow =
+        LuminanceFromSurfaceBrightness(s.airglow_zenith_brightness) * AirglowColour();
+    const double low =
+        atmosphere.bottom_radius + (s.airglow_height - 0.5 * s.airglow_thickness) / 1000.0;
+    const double high = low + s.airglow_thickness / 1000.0;
+    // The sphere in equal-solid-angle rings (cos of the zenith angle uniform), kAzimuths each;
+    // the ground's radiance from the sky's irradiance on it, found first (altitude 0).
+    constexpr int kRings = 32, kAzimuths = 8;
+    glm::dvec3 ground_radiance(0.0);
+    std::array<glm::dvec3, kMeanRadianceAltitudes.size()> mean{};
+    for (std::size_t a = 0; a < kMeanRadianceAltitudes.size(); ++a) {
+        const double h = kMeanRadianceAltitudes[a];
+        const double r = atmosphere.bottom_radius + h;
+        const glm::dvec3 point = up * r;
+        glm::dvec3 incoming(0.0), irradiance(0.0), haze(0.0), haze_cosine(0.0);
+        for (int i = 0; i < kRings; ++i) {
+            const double mu = -1.0 + 2.0 * (i + 0.5) / kRings;
+            const double sin_theta = std::sqrt(1.0 - mu * mu);
+            const double ground = GroundDistance(r, mu, atmosphere.bottom_radius);
+            const double slant = ShellChord(r, mu, low, high, atmosphere.bottom_radius) /
+                                 (s.airglow_thickness / 1000.0);
+            for (int k = 0; k < kAzimuths; ++k) {
+                const double phi = 2.0 * ref::kPi * (k + 0.5) / kAzimuths;
+                const glm::dvec3 direction =
+                    mu * up + sin_theta * (std::cos(phi) * east + std::sin(phi) * north);
+                if (std::isfinite(ground)) {
+                    const glm::dvec3 t = ref::TransmittanceToGround(atmosphere, transmittance,
+                                                                    point, h, direction, ground);
+                    incoming += ground_radiance * t;
+                    haze += glm::dvec3(1.0) - t;
+                    continue;
+                }
+                const glm::dvec3 t =
+                    ref::TransmittanceToSpace(atmosphere, transmittance, point, h, direction);
+                const glm::dvec3 l =
+                    (airglow * slant + Zodiacal(night, direction) + Starlight(night, direction)) *
+                    t;
+                incoming += l;
+                irradiance += l * std::max(mu, 0.0);
+                haze += glm::dvec3(1.0) - t;
+                haze_cosine += (glm::dvec3(1.0) - t) * std::max(mu, 0.0);
+            }
+        }
+        const double n = static_cast<double>(kRings) * kAzimuths;
+        const ref::MediumSample medium = ref::SampleMedium(atmosphere, h);
+        const glm::dvec3 albedo =
+            medium.scattering / glm::max(medium.extinction, glm::dvec3(1e-30));
+        const glm::dvec3 returned = glm::min(albedo * haze / n, glm::dvec3(0.999));
+        if (a == 0) {
+            // On the ground, the lower half of the sphere is the Lambertian ground of radiance
+            // albedo E / pi, E = sum of L mu d omega (4 pi / n each) from the sources and from
+            // the air's glow, omega J (1 - T) the sky over: J n (1 - f) = incoming + n/2 radiance
+            // is linear in J, solved per channel.
+            const glm::dvec3 reflect = 2.0 * atmosphere.ground_albedo;
+            mean[a] = (incoming + reflect * irradiance) /
+                      glm::max(n * (glm::dvec3(1.0) - returned) - reflect * albedo * haze_cosine,
+                               glm::dvec3(1e-30));
+            ground_radiance =
+                atmosphere.ground_albedo * 4.0 * (irradiance + albedo * mean[a] * haze_cosine) / n;
+            continue;
+        }
+        mean[a] = incoming / n / (glm::dvec3(1.0) - returned);
+    }
+    return mean;
+}
+
+ScatteredNightLight MakeScatteredNightLight(const NightSky& night,
+                                            const ref::AtmosphereParameters& atmosphere,
+                                            const ref::TransmittanceTexture& transmittance,
+                                            const glm::dvec3& camera_km,
+                                            double camera_altitude_km) {
+    const glm::dvec3 up = glm::normalize(camera_km);
+    const auto mean = MeanNightRadiance(night, atmosphere, transmittance, up);
+    const auto mean_at = [&](double h) {
+        const auto& z = kMeanRadianceAltitudes;
+        if (h >= z.back()) return mean.back();
+        std::size_t i = 0;
+        while (i + 2 < z.size() && h > z[i + 1]) ++i;
+        return glm::mix(mean[i], mean[i + 1], std::clamp((h - z[i]) / (z[i + 1] - z[i]), 0.0, 1.0));
+    };
+    ScatteredNightLight light;
+    light.r = atmosphere.bottom_radius + camera_altitude_km;
+    light.mu_horizon = -std::sqrt(std::max(
+        0.0, 1.0 - (atmosphere.bottom_radius * atmosphere.bottom_radius) / (light.r * light.r)));
+    const double shell = atmosphere.top_radius - atmosphere.bottom_radius;
+    constexpr int kSteps = 48;
+    for (int row = 0; row < kScatteredRows; ++row) {
+        const double mu =
+            std::min(light.RowMu(static_cast<double>(row) / (kScatteredRows - 1)), 1.0);
+        // From the camera, or where the ray enters the atmosphere, to where it leaves it.
+        double t0 = 0.0;
+        if (camera_altitude_km > shell) {
+            t0 = ref::RaySphereDistance(light.r, mu, camera_altitude_km - shell,
+                                        atmosphere.top_radius);
+            if (t0 < 0.0) continue;  // misses the atmosphere
+        }
+        const double r0 = std::sqrt(light.r * light.r + t0 * t0 + 2.0 * light.r * mu * t0);
+        const double mu0 = (light.r * mu + t0) / r0;
+        const double length = ref::RaySphereDistance(r0, mu0, r0 - atmosphere.top_radius - 1e-9,
+                                                     atmosphere.top_radius);
+        if (!(length > 0.0)) continue;
+        // Steps finer near the camera (quadratic in the distance), where the light is gathered.
+        glm::dvec3 gathered(0.0), optical_depth(0.0);
+        double previous = 0.0;
+        for (int k = 1; k <= kSteps; ++k) {
+            const double t =
+                length * (static_cast<double>(k) / kSteps) * (static_cast<double>(k) / kSteps);
+            const double mid = 0.5 * (previous + t), dt = t - previous;
+            previous = t;
+            const double h =
+                std::sqrt(r0 * r0 + mid * mid + 2.0 * r0 * mu0 * mid) - atmosphere.bottom_radius;
+            const ref::MediumSample m = ref::SampleMedium(atmosphere, std::max(h, 0.0));
+            const glm::dvec3 step_depth = m.extinction * dt;
+            // The step's share of the light: sigma_s J int T over it, T from the step's start.
+            const glm::dvec3 share = glm::exp(-optical_depth) *
+                                     (glm::dvec3(1.0) - glm::exp(-step_depth)) /
+                                     glm::max(m.extinction, glm::dvec3(1e-30));
+            gathered += m.scattering * mean_at(std::max(h, 0.0)) * share;
+            optical_depth += step_depth;
+        }
+        light.rows[static_cast<std::size_t>(row)] = gathered;
+    }
+    return light;
+}
+
 // What is the same for every direction of a frame.
 struct FrameConstants {
     glm::dvec3 airglow{0.0};          // cd/m^2 per unit slant path, coloured
     glm::dvec3 light_pollution{0.0};  // cd/m^2 per unit 1 - T, coloured
+    ScatteredNightLight scattered;    // zero without NightSkySettings::scattered
 };
 
 FrameConstants MakeFrameConstants(const NightSky& night,
                                   const ref::AtmosphereParameters& atmosphere,
-                                  const ref::TransmittanceTexture& transmittance) {
+                                  const ref::TransmittanceTexture& transmittance,
+                                  const glm::dvec3& camera_km, double camera_altitude_km) {
     FrameConstants f;
     const NightSkySettings& s = night.settings;
     f.airglow = LuminanceFromSurfaceBrightness(s.airglow_zenith_brightness) * AirglowColour();
@@ -291,6 +456,10 @@ FrameConstants MakeFrameConstants(const NightSky& night,
             atmosphere, transmittance, atmosphere.bottom_radius, 1.0);
         f.light_pollution = LuminanceFromSurfaceBrightness(*s.artificial_zenith_brightness) *
                             LightPollutionColour() / (glm::dvec3(1.0) - zenith);
+    }
+    if (night.enabled && s.enabled && s.scattered) {
+        f.scattered = MakeScatteredNightLight(night, atmosphere, transmittance, camera_km,
+                                              camera_altitude_km);
     }
     return f;
 }
@@ -327,7 +496,7 @@ glm::dvec3 NightSkyLuminanceKm(const NightSky& night, const FrameConstants& fram
     // optical depth along it, 1 - T, normalised at the ground's zenith (a Garstang-like horizon
     // brightening from the renderer's own transmittance: ~1 / (1 - T_zenith) at the horizon,
     // and less air, so less glow, above the ground).
-    l += frame.light_pollution * (glm::dvec3(1.0) - t);
+    l += frame.light_pollution * (glm::dvec3(1.0) - t) + frame.scattered.At(mu);
     return l;
 }
 
@@ -338,8 +507,9 @@ glm::dvec3 NightSkyLuminance(const NightSky& night, const Atmosphere& atmosphere
                              const glm::dvec3& camera_km, double camera_altitude_km,
                              const glm::dvec3& direction) {
     const auto parameters = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere);
-    return NightSkyLuminanceKm(night, MakeFrameConstants(night, parameters, transmittance),
-                               parameters, transmittance, camera_km, camera_altitude_km, direction);
+    return NightSkyLuminanceKm(
+        night, MakeFrameConstants(night, parameters, transmittance, camera_km, camera_altitude_km),
+        parameters, transmittance, camera_km, camera_altitude_km, direction);
 }
 
 void FillNightSkyMap(const NightSky& night, const Atmosphere& atmosphere_si,
@@ -351,7 +521,8 @@ void FillNightSkyMap(const NightSky& night, const Atmosphere& atmosphere_si,
                   glm::vec4(0.0f));
     const glm::dvec3 up = glm::normalize(camera_km);
     const glm::dvec3 frame_x = ref::SkyViewFrameX(up, glm::normalize(sun_direction));
-    const FrameConstants frame = MakeFrameConstants(night, atmosphere, transmittance);
+    const FrameConstants frame =
+        MakeFrameConstants(night, atmosphere, transmittance, camera_km, camera_altitude_km);
     for (int y = 0; y < size.y; ++y) {
         for (int x = 0; x < size.x; ++x) {
             const glm::dvec2 uv((x + 0.5) / size.x, (y + 0.5) / size.y);

@@ -30,12 +30,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "night_sky_map.h"
+#include "reference/lut_texture.h"
 #include "zenith/sky/lighting.h"
+#include "zenith/sky/night_sky.h"
 #include "zenith/sky/reference/accuracy.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/reference/path_tracer.h"
@@ -504,6 +508,78 @@ int RunIlluminance(const IlluminanceOptions& options) {
     return 0;
 }
 
+// --- Night light scattered by the air -----------------------------------------------------------
+
+// The renderer's night sky (NightSkyLuminance, the CPU twin of the night-sky map) for a uniform
+// white radiance of 1 cd/m^2 above the atmosphere (the starlight map made uniform; no airglow,
+// zodiacal light or light pollution), from the ground, against the path tracer: an isotropic
+// radiance L0 on the top of the atmosphere is a directional sun from every direction of the
+// sphere, so the light the air scatters toward the camera is L0 / E times the path tracer's
+// luminance for a sun of illuminance E, averaged over sun directions (x 4 pi). The direct part,
+// L0 T, is added to both from the path tracer's own optical depth.
+int RunNightScattering(const IlluminanceOptions& options) {
+    using zenith::sky::Atmosphere;
+    const Atmosphere earth = zenith::sky::LoadAtmosphere("earth");
+    const zenith::sky::reference::AtmosphereReference renderer(earth,
+                                                               zenith::sky::LutSettings::Pc());
+    const zenith::sky::ref::TransmittanceTexture transmittance =
+        zenith::sky::ref::FromImage(renderer.transmittance());
+    zenith::sky::NightSky night;
+    night.enabled = true;
+    night.settings.airglow_zenith_brightness = 30.0;  // 1e-7 cd/m^2: none
+    night.settings.zodiacal_light = false;
+    auto uniform = std::make_shared<zenith::sky::StarlightMap>();
+    uniform->width = 4;
+    uniform->height = 2;
+    uniform->texels.assign(8, glm::dvec3(1.0));
+    night.starlight = uniform;
+    const glm::dvec3 position(0.0, earth.bottom_radius + 1.0, 0.0);
+    const glm::dvec3 camera_km = position / 1000.0;
+    const double altitude_km = 1e-3;
+    std::printf(
+        "Earth preset (ground albedo %.2g), observer 1 m above the ground, a uniform white 1 cd/m² "
+        "above the atmosphere; path tracer: PathTraceUniformSky, %lld paths per view (each its own "
+        "sun direction, uniform over the sphere), seed %llu. Columns: Y (Rec. 709), cd/m²\n\n"
+        "| elevation | transmittance to space (Y) | scattered, path tracer | scattered, renderer | "
+        "renderer / path tracer − 1 (R, G, B, Y) | total, path tracer | total, renderer | without "
+        "the scattered light / path tracer − 1 |\n|---|---|---|---|---|---|---|---|\n",
+        earth.ground_albedo.y, static_cast<long long>(options.paths),
+        static_cast<unsigned long long>(options.seed));
+    std::uint64_t index = 0;
+    for (const double elevation_deg : {90.0, 45.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5}) {
+        const glm::dvec3 view = LocalDirection(elevation_deg * kDeg, 0.0);
+        zenith::sky::reference::PathTraceOptions trace;
+        trace.samples = options.paths;
+        trace.seed = options.seed + index++;
+        trace.threads = options.threads;
+        const zenith::sky::reference::PathTraceResult r =
+            zenith::sky::reference::PathTraceUniformSky(earth, position, view, trace);
+        const glm::dvec3 mean = r.luminance, se = r.standard_error;
+        const auto hits = zenith::sky::reference::IntersectSphere(position, view, earth.top_radius);
+        const glm::dvec3 t = glm::exp(
+            -zenith::sky::reference::OpticalDepth(earth, position, view, hits ? hits->t_far : 0.0));
+        const glm::dvec3 model = zenith::sky::NightSkyLuminance(night, earth, transmittance,
+                                                                camera_km, altitude_km, view);
+        zenith::sky::NightSky direct_only = night;
+        direct_only.settings.scattered = false;
+        const glm::dvec3 model_direct = zenith::sky::NightSkyLuminance(
+            direct_only, earth, transmittance, camera_km, altitude_km, view);
+        const double scattered_ref = glm::dot(mean, kRec709);
+        const double scattered_model = glm::dot(model - model_direct, kRec709);
+        const double total_ref = scattered_ref + glm::dot(t, kRec709);
+        const glm::dvec3 error = 100.0 * ((model - model_direct) / mean - 1.0);
+        std::printf(
+            "| %.1f° | %.3f | %.3f ± %.3f | %.3f | %+.1f, %+.1f, %+.1f, %+.1f %% | %.3f | %.3f | "
+            "%+.1f %% |\n",
+            elevation_deg, glm::dot(t, kRec709), scattered_ref, glm::dot(se, kRec709),
+            scattered_model, error.x, error.y, error.z,
+            100.0 * (scattered_model / scattered_ref - 1.0), total_ref, glm::dot(model, kRec709),
+            100.0 * (glm::dot(model_direct, kRec709) / total_ref - 1.0));
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -535,8 +611,8 @@ int main(int argc, char** argv) {
             twilight.converged_se = ParseReal(flag, value, 0.0, 1.0);
         } else if (!std::strcmp(flag, "--grid")) {
             grid = value;
-            if (grid != "paper" && grid != "twilight" && grid != "illuminance") {
-                Usage("--grid is paper, twilight or illuminance");
+            if (grid != "paper" && grid != "twilight" && grid != "illuminance" && grid != "night") {
+                Usage("--grid is paper, twilight, illuminance or night");
             }
         } else if (!std::strcmp(flag, "--thick-samples")) {
             thick_samples = ParseInteger(flag, value, 2, 1 << 24);
@@ -551,12 +627,13 @@ int main(int argc, char** argv) {
         }
     }
 
-    if (grid == "illuminance") {
+    if (grid == "illuminance" || grid == "night") {
         IlluminanceOptions illuminance;
+        if (grid == "night") illuminance.paths = 1 << 18;  // per view
         if (samples_given) illuminance.paths = options.samples;
         illuminance.seed = options.seed;
         illuminance.threads = options.threads;
-        return RunIlluminance(illuminance);
+        return grid == "night" ? RunNightScattering(illuminance) : RunIlluminance(illuminance);
     }
     if (grid == "twilight") {
         if (samples_given) twilight.samples = options.samples;

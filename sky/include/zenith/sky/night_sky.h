@@ -63,6 +63,10 @@ struct NightSkySettings {
     double airglow_thickness = 10000.0;        // m
     bool zodiacal_light = true;                // Leinert et al. 1998, Table 17
     bool starlight = true;                     // integrated starlight and the Milky Way
+    // These three lights scattered by the air toward the camera (night_sky.cpp,
+    // MakeScatteredNightLight; within 5.4 % of the path tracer under a uniform sky): what keeps
+    // the horizon of a dark site from going black where extinction hides the light behind it.
+    bool scattered = true;
     // Light pollution: the artificial zenith brightness in V mag/arcsec^2 (nullopt: none); see
     // BortleZenithBrightness and ArtificialZenithBrightness to set it from a Bortle class.
     std::optional<double> artificial_zenith_brightness;
