@@ -7,6 +7,7 @@
 
 #include "night_sky_map.h"
 #include "reference/atmosphere_functions.h"
+#include "reference/lut_texture.h"
 #include "shader_parameters.h"
 #include "zenith/geo/stars.h"
 #include "zenith/sky/sky_state.h"
@@ -304,10 +305,21 @@ struct ScatteredNightLight {
     }
 };
 
-// J(h) at kMeanRadianceAltitudes above the ground point under `up` (unit, planet-centred).
-std::array<glm::dvec3, kMeanRadianceAltitudes.size()> MeanNightRadiance(
-    const NightSky& night, const ref::AtmosphereParameters& atmosphere,
-    const ref::TransmittanceTexture& transmittance, const glm::dvec3& up) {
+struct NightRadiance {
+    // J(h) at kMeanRadianceAltitudes above the ground point.
+    std::array<glm::dvec3, kMeanRadianceAltitudes.size()> mean{};
+    glm::dvec3 ground_irradiance{0.0};   // lux on it, the air's glow included
+    glm::dvec3 ground_direct{0.0};       // the same from the sources alone (through the air)
+    glm::dvec3 ground_haze_cosine{0.0};  // sum over the sky of (1 - T) mu, per direction of n
+    double directions = 0.0;             // n, over the sphere
+};
+
+// The mean radiance at the first `altitudes` of kMeanRadianceAltitudes above the ground point
+// under `up` (unit, planet-centred), and the ground's irradiance there.
+NightRadiance MeanNightRadiance(const NightSky& night, const ref::AtmosphereParameters& atmosphere,
+                                const ref::TransmittanceTexture& transmittance,
+                                const glm::dvec3& up,
+                                std::size_t altitudes = kMeanRadianceAltitudes.size()) {
     const NightSkySettings& s = night.settings;
     const glm::dvec3 east = glm::normalize(glm::cross(
         std::abs(up.z) < 0.9 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0), up));
@@ -321,8 +333,10 @@ std::array<glm::dvec3, kMeanRadianceAltitudes.size()> MeanNightRadiance(
     // the ground's radiance from the sky's irradiance on it, found first (altitude 0).
     constexpr int kRings = 32, kAzimuths = 8;
     glm::dvec3 ground_radiance(0.0);
-    std::array<glm::dvec3, kMeanRadianceAltitudes.size()> mean{};
-    for (std::size_t a = 0; a < kMeanRadianceAltitudes.size(); ++a) {
+    NightRadiance result;
+    result.directions = static_cast<double>(kRings) * kAzimuths;
+    auto& mean = result.mean;
+    for (std::size_t a = 0; a < std::min(altitudes, kMeanRadianceAltitudes.size()); ++a) {
         const double h = kMeanRadianceAltitudes[a];
         const double r = atmosphere.bottom_radius + h;
         const glm::dvec3 point = up * r;
@@ -369,13 +383,16 @@ std::array<glm::dvec3, kMeanRadianceAltitudes.size()> MeanNightRadiance(
             mean[a] = (incoming + reflect * irradiance) /
                       glm::max(n * (glm::dvec3(1.0) - returned) - reflect * albedo * haze_cosine,
                                glm::dvec3(1e-30));
-            ground_radiance =
-                atmosphere.ground_albedo * 4.0 * (irradiance + albedo * mean[a] * haze_cosine) / n;
+            const glm::dvec3 glow = s.scattered ? albedo * mean[a] * haze_cosine : glm::dvec3(0.0);
+            result.ground_irradiance = 4.0 * ref::kPi * (irradiance + glow) / n;
+            result.ground_direct = 4.0 * ref::kPi * irradiance / n;
+            result.ground_haze_cosine = haze_cosine;
+            ground_radiance = atmosphere.ground_albedo * result.ground_irradiance / ref::kPi;
             continue;
         }
         mean[a] = incoming / n / (glm::dvec3(1.0) - returned);
     }
-    return mean;
+    return result;
 }
 
 ScatteredNightLight MakeScatteredNightLight(const NightSky& night,
@@ -384,7 +401,7 @@ ScatteredNightLight MakeScatteredNightLight(const NightSky& night,
                                             const glm::dvec3& camera_km,
                                             double camera_altitude_km) {
     const glm::dvec3 up = glm::normalize(camera_km);
-    const auto mean = MeanNightRadiance(night, atmosphere, transmittance, up);
+    const auto mean = MeanNightRadiance(night, atmosphere, transmittance, up).mean;
     const auto mean_at = [&](double h) {
         const auto& z = kMeanRadianceAltitudes;
         if (h >= z.back()) return mean.back();
@@ -510,6 +527,29 @@ glm::dvec3 NightSkyLuminance(const NightSky& night, const Atmosphere& atmosphere
     return NightSkyLuminanceKm(
         night, MakeFrameConstants(night, parameters, transmittance, camera_km, camera_altitude_km),
         parameters, transmittance, camera_km, camera_altitude_km, direction);
+}
+
+glm::dvec3 NightSkyGroundIrradiance(const NightSky& night, const Atmosphere& atmosphere_si,
+                                    const LutImage& transmittance_lut, const glm::dvec3& position) {
+    if (!night.enabled || !night.settings.enabled) return glm::dvec3(0.0);
+    const auto atmosphere = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere_si);
+    const ref::TransmittanceTexture transmittance = ref::FromImage(transmittance_lut);
+    const glm::dvec3 up = glm::normalize(position);
+    const NightRadiance r = MeanNightRadiance(night, atmosphere, transmittance, up, 1);
+    const FrameConstants frame =
+        MakeFrameConstants(night, atmosphere, transmittance, up * atmosphere.bottom_radius, 0.0);
+    // The glows over the sky, E = 2 pi int L mu dmu: light pollution's, L = light_pollution
+    // (1 - T), from the same quadrature as the direct light; the natural light's from the
+    // frame's table, as the sky draws it (J at the ground alone left blue 6 % short).
+    const glm::dvec3 pollution =
+        frame.light_pollution * 4.0 * ref::kPi * r.ground_haze_cosine / r.directions;
+    glm::dvec3 glow(0.0);
+    constexpr int kRings = 64;
+    for (int i = 0; i < kRings; ++i) {
+        const double mu = (i + 0.5) / kRings;
+        glow += frame.scattered.At(mu) * mu * (2.0 * ref::kPi / kRings);
+    }
+    return r.ground_direct + glow + pollution;
 }
 
 void FillNightSkyMap(const NightSky& night, const Atmosphere& atmosphere_si,

@@ -214,6 +214,19 @@ void BM_FullFrame720pNightSkyTurning(benchmark::State& state) {
 }
 BENCHMARK(BM_FullFrame720pNightSkyTurning)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The night sky's light on the ground for a host's ambient (SkySystem's SkyLighting at night):
+// CPU only, per call, beside the night frame above.
+void BM_NightSkyGroundIrradiance(benchmark::State& state) {
+    Fixture& f = Shared();
+    const SkyScene night = NightScene(f.scene, true);
+    const LutImage transmittance = Inspect(f.renderer).ReadTransmittance();
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(NightSkyGroundIrradiance(night.night_sky, Atmosphere{},
+                                                          transmittance, f.view.camera.position));
+    }
+}
+BENCHMARK(BM_NightSkyGroundIrradiance)->Unit(benchmark::kMillisecond);
+
 // The three frames interleaved in every iteration (the clear daytime frame, the night as before,
 // the night with the night sky), so that a machine whose load drifts slows all three alike: the
 // medians of the per-iteration ratios are the night sky's cost.

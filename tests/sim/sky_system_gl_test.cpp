@@ -573,6 +573,9 @@ TEST_F(SkySystemTest, NightSkySettingsAreCheckedAndKept) {
         return sky::SurfaceBrightnessFromLuminance(Luminance(c));
     };
     const double dark = zenith();
+    // The host's ambient on that moonless night: the night sky's light on the ground
+    // (NightSkyGroundIrradiance, against measurements in night_sky_scattering_test).
+    const double dark_lux = Luminance(sky_->lighting().sky_irradiance);
     sky::NightSkySettings polluted;
     polluted.artificial_zenith_brightness =
         sky::ArtificialZenithBrightness(sky::BortleZenithBrightness(7));
@@ -581,6 +584,7 @@ TEST_F(SkySystemTest, NightSkySettingsAreCheckedAndKept) {
     // The artificial brightness is the ground's (height 0): 2.4 km up, less air scatters it.
     sky_->SetGeodetic(28.7606, -17.8816, 0.0);
     const double bortle7 = zenith();
+    const double bortle7_lux = Luminance(sky_->lighting().sky_irradiance);
     sky_->SetNightSky({});
     std::printf(
         "SkySystem zenith at La Palma: %.2f mag/arcsec^2 dark, %.2f under Bortle 7 at "
@@ -591,6 +595,10 @@ TEST_F(SkySystemTest, NightSkySettingsAreCheckedAndKept) {
     EXPECT_GT(mountain, bortle7 + 0.1);
     // The natural part is dimmed by the air's extinction; the class's range is 18.0-18.5.
     EXPECT_NEAR(bortle7, sky::BortleZenithBrightness(7), 0.05);
+    std::printf("sky_irradiance: %.2e lux dark, %.2e lux under Bortle 7\n", dark_lux, bortle7_lux);
+    EXPECT_GT(dark_lux, 2.5e-4);
+    EXPECT_LT(dark_lux, 1e-3);
+    EXPECT_GT(bortle7_lux, 5.0 * dark_lux);  // the city's glow, ~28x the natural zenith
 }
 
 }  // namespace

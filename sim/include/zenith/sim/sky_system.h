@@ -128,6 +128,9 @@ struct SkyLighting {
     // zenith: CloudShade's ground members), as zenith lights its own ground:
     // the shade the GPU works out every shadow_map_interval frames, read back behind a fence
     // without waiting for it (AtmosphereRenderer::LatestCloudShade), so it lags a frame or two.
+    // With the Sun below the horizon it adds the night sky's own light (airglow, zodiacal light,
+    // starlight, their glow in the air, light pollution: sky::NightSkyGroundIrradiance; ~9e-4
+    // lux at a dark site, ~0.03 under Bortle 7).
     glm::dvec3 sky_irradiance{0.0};
     double sky_cloud_transmittance = 1.0;  // the clouds' part of the clear sky's light (1 above)
     // The sky's light from every direction around the aircraft, clouds and our ground included

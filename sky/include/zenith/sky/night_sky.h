@@ -21,6 +21,8 @@
 #include <vector>
 
 #include "zenith/base/error.h"
+#include "zenith/sky/atmosphere.h"
+#include "zenith/sky/lut.h"
 
 namespace zenith::geo {
 class StarCatalog;
@@ -140,6 +142,15 @@ struct NightSkyComponents {
 };
 NightSkyComponents NightSkySources(const NightSky& night, double bottom_radius,
                                    const glm::dvec3& camera_m, const glm::dvec3& direction);
+
+// Illuminance (lux per channel, linear sRGB) on a horizontal surface on the ground below
+// `position` (m, planet-centred) from the night sky: airglow, zodiacal light and starlight
+// through the air, the air's glow from them (with NightSkySettings::scattered) and light
+// pollution's (its luminance over the sky as drawn). What lights a moonless night's ground, for
+// a host's ambient (SkyLighting::sky_irradiance); 0 when the night sky is off. `transmittance`
+// is the renderer's transmittance LUT (RendererInspection::ReadTransmittance).
+glm::dvec3 NightSkyGroundIrradiance(const NightSky& night, const Atmosphere& atmosphere,
+                                    const LutImage& transmittance, const glm::dvec3& position);
 
 // Path length through the spherical shell [radius_low, radius_high] (any units) of a ray from
 // `r` with zenith cosine `mu`, stopped by the ground at `ground_radius`; divided by the shell's
