@@ -19,6 +19,7 @@
 #include "zenith/geo/ephemeris.h"
 #include "zenith/geo/moon.h"
 #include "zenith/sky/atmosphere_renderer.h"
+#include "zenith/sky/clouds/weather.h"
 #include "zenith/sky/inspection.h"
 #include "zenith/sky/lighting.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
@@ -194,6 +195,31 @@ TEST_F(EclipseFrames, TotalityIsDarkAtTheZenithWithABrightHorizon) {
     EXPECT_LT(corona_at(1.1) / mean_disk / t, 3e-6);
     EXPECT_GT(corona_at(1.1), 10.0 * corona_at(2.0));
     EXPECT_GT(corona_at(2.0), corona_at(3.0));
+}
+
+// The clouds' shade is copied into the light block each frame; the eclipse's members lie after
+// it and must survive the copy. Totality at Dallas under the cirrus preset (optical depth up to
+// ~0.3 at 9 km), looking up: lit, as the clear sky's zenith is in the same eclipse, by the
+// sunlit air beyond the umbra (1e-5 to 1e-3 of daylight through the same clouds). With the
+// eclipse's members zeroed by the copy the Sun was simply gone: 3.6e-15 of daylight.
+TEST_F(EclipseFrames, UnderCloudsTheEclipseIsKept) {
+    const Scene scene = At("2024-04-08T18:42:00Z", 32.7767, -96.797, 140.0);
+    const SkyState up = MakeSkyState(scene.ephemeris, scene.observer, Atmosphere{},
+                                     {0.0, glm::radians(90.0), 0.0}, glm::radians(10.0), 1.0);
+    AtmosphereRenderer clouded(Atmosphere{});
+    clouded.SetWeather(clouds::LoadWeather("cirrus"));
+    const glm::ivec2 small(16, 16);
+    const auto zenith = [&](const Lights& lights) {
+        SkyScene frame = test::LightsOnly(lights, false);
+        frame.moon = up.scene.moon;
+        return Luminance(test::DrawFrame(clouded, frame, up.view, small, 4).at(8, 8));
+    };
+    const double eclipsed = zenith(up.scene.lights);
+    const double daylight = zenith(Uneclipsed(up.scene.lights));
+    std::printf("totality under cirrus: zenith %.3g cd/m^2, daylight %.3g (ratio %.2g)\n", eclipsed,
+                daylight, eclipsed / daylight);
+    EXPECT_GT(eclipsed / daylight, 1e-5);
+    EXPECT_LT(eclipsed / daylight, 1e-3);
 }
 
 // The eclipsed Sky-View LUT on the GPU against the shared code compiled as C++ in double (the

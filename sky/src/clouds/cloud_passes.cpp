@@ -363,10 +363,12 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     }
     // Every frame: the light block was just uploaded without the clouds; the last shade goes
-    // into its cloud members, which the later passes read as uniforms.
+    // into its cloud members (and only those: the eclipse's follow them), which the later
+    // passes read as uniforms.
     constexpr GLintptr kCloudMembers = offsetof(gl::LightUniforms, cloud_base);
+    constexpr GLintptr kCloudMembersEnd = offsetof(gl::LightUniforms, eclipse_sun_illuminance);
     glCopyNamedBufferSubData(shade_, light_buffer, kCloudMembers, kCloudMembers,
-                             sizeof(gl::LightUniforms) - kCloudMembers);
+                             kCloudMembersEnd - kCloudMembers);
 }
 
 void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
