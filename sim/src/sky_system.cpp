@@ -70,7 +70,6 @@ struct SkySystem::Impl {
     std::shared_ptr<const sky::StarlightMap> starlight;  // the night sky's integrated starlight
     std::unique_ptr<sky::AtmosphereRenderer> renderer;
     sky::LutImage ground_irradiance;
-    sky::LutImage transmittance;  // for the night sky's light on the ground
 
     geo::SimulationClock clock{geo::TimeNow()};
     std::vector<std::string> notices;
@@ -97,49 +96,16 @@ struct SkySystem::Impl {
     bool reset_adaptation = false;
     bool display_rendered = false;  // a Render has run the display pass (not only Prepare)
 
-    // The clear sky's light on a horizontal surface (the ground-irradiance LUT), lux; with the
-    // Sun below the horizon, the night sky's own (airglow, zodiacal light, starlight, their glow
-    // in the air, light pollution: ~1e-3 lux at a dark site, 1e-7 of the daylight it would add
-    // to by day).
+    // The clear sky's light on a horizontal surface (the ground-irradiance LUT), lux, and with
+    // the Sun below the horizon the night sky's own, as the renderer lit its ground with it
+    // (airglow, zodiacal light, starlight, their glow in the air, light pollution).
     glm::dvec3 ClearSkyIrradiance() const {
         const sky::Lights& lights = frame.scene.lights;
-        glm::dvec3 e = lights.sun_illuminance *
-                           sky::SampleGroundIrradiance(ground_irradiance, lights.sun_direction.z) +
-                       lights.moon_illuminance *
-                           sky::SampleGroundIrradiance(ground_irradiance, lights.moon_direction.z);
-        if (lights.sun_direction.z < 0.0) e += NightSkyIrradiance();
-        return e;
-    }
-
-    // sky::NightSkyGroundIrradiance (0.7 ms on llvmpipe's CPU), made again only when the night
-    // sky's settings change, the sky turns by 0.01 rad (2 min of time) or the ground under the
-    // camera moves 10 km (either changes it by well under 1 %); SetAtmosphere clears it.
-    struct NightIrradiance {
-        bool enabled = false;
-        sky::NightSkySettings settings;
-        glm::dmat3 icrs_from_world{1.0};
-        glm::dvec3 up{0.0};
-        glm::dvec3 value{0.0};
-    };
-    mutable std::optional<NightIrradiance> night_irradiance;
-    glm::dvec3 NightSkyIrradiance() const {
-        const sky::NightSky& night = frame.scene.night_sky;
-        const glm::dvec3 up = glm::normalize(frame.view.camera.position);
-        const auto turned = [](const glm::dmat3& a, const glm::dmat3& b) {
-            double worst = 0.0;
-            for (int i = 0; i < 3; ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
-            return worst;
-        };
-        if (!night_irradiance || night_irradiance->enabled != night.enabled ||
-            night_irradiance->settings != night.settings ||
-            turned(night_irradiance->icrs_from_world, night.icrs_from_world) > 0.01 ||
-            glm::length(night_irradiance->up - up) > 10e3 / atmosphere.bottom_radius) {
-            night_irradiance =
-                NightIrradiance{night.enabled, night.settings, night.icrs_from_world, up,
-                                sky::NightSkyGroundIrradiance(night, atmosphere, transmittance,
-                                                              frame.view.camera.position)};
-        }
-        return night_irradiance->value;
+        return lights.sun_illuminance *
+                   sky::SampleGroundIrradiance(ground_irradiance, lights.sun_direction.z) +
+               lights.moon_illuminance *
+                   sky::SampleGroundIrradiance(ground_irradiance, lights.moon_direction.z) +
+               renderer->NightGroundIrradiance();
     }
 
     sky::DisplayPass& DisplayPassMade() {
@@ -192,7 +158,6 @@ struct SkySystem::Impl {
         renderer = std::make_unique<sky::AtmosphereRenderer>(atmosphere, s.lut_settings);
         renderer->set_preserve_gl_state(s.preserve_gl_state);
         ground_irradiance = sky::Inspect(*renderer).ReadGroundIrradiance();
-        transmittance = sky::Inspect(*renderer).ReadTransmittance();
         renderer->SetWeather(sky::clouds::LoadWeather(s.weather), s.clouds);
         renderer->SetEnvironment(s.environment);
         s.display.Validate();
@@ -291,8 +256,6 @@ void SkySystem::SetAtmosphere(const sky::Atmosphere& atmosphere) {
     d.atmosphere = drawn;
     d.preset_atmosphere = atmosphere;
     d.ground_irradiance = sky::Inspect(*d.renderer).ReadGroundIrradiance();
-    d.transmittance = sky::Inspect(*d.renderer).ReadTransmittance();
-    d.night_irradiance.reset();
     for (std::string& note : notes) d.Notify(std::move(note));
 }
 

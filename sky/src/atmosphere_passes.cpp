@@ -347,6 +347,7 @@ void AtmospherePasses::BuildStaticLuts() {
              static_cast<GLuint>(s.irradiance_size.y), 1);
     transmittance_cpu_ =
         ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
+    night_ground_ = {};  // made over the old air
     multiple_scattering_cpu_ = ref::FromImage(
         gl::ReadTexture(multiple_scattering_, glm::ivec3(s.multiple_scattering_size, 1)));
     irradiance_cpu_ =
@@ -380,11 +381,44 @@ bool AtmospherePasses::NightSkyMapHolds(const SkyScene& scene,
            glm::length(camera_position - last.camera_position) < 10.0;
 }
 
+// The ground's light from the night sky (0.7 ms on the CPU) changes far more slowly than its
+// map: it is made again when the settings change, the sky turns 0.01 rad (2 min of time), the
+// Sun moves 0.01 rad or the ground under the camera moves 10 km (each well under 1 %); only
+// while the Sun is below the horizon (by day it adds ~1e-8 of the daylight).
+void AtmospherePasses::UpdateNightGroundIrradiance(const SkyScene& scene,
+                                                   const glm::dvec3& camera_position) {
+    const NightSky& night = scene.night_sky;
+    const glm::dvec3 up = glm::normalize(camera_position);
+    if (!night.enabled || !night.settings.enabled ||
+        glm::dot(glm::normalize(scene.lights.sun_direction), up) > 0.0) {
+        night_ground_ = {};
+        return;
+    }
+    const auto turned = [](const glm::dmat3& a, const glm::dmat3& b) {
+        double worst = 0.0;
+        for (int i = 0; i < 3; ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
+        return worst;
+    };
+    const auto& last = night_ground_.inputs;
+    if (last && last->night.settings == night.settings &&
+        turned(last->night.icrs_from_world, night.icrs_from_world) < 0.01 &&
+        glm::length(scene.lights.sun_direction - last->sun_direction) < 0.01 &&
+        glm::length(up - glm::normalize(last->camera_position)) <
+            10e3 / atmosphere_.bottom_radius) {
+        return;
+    }
+    night_ground_.value =
+        NightSkyGroundIrradiance(night, atmosphere_, transmittance_cpu_, camera_position);
+    night_ground_.inputs = NightSkyMapInputs{night, scene.lights.sun_direction, camera_position};
+}
+
 void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view, int environment_size) {
     const Camera& camera = view.camera;
     const bool night_sky = scene.night_sky.enabled && scene.night_sky.settings.enabled;
     if (night_sky) scene.night_sky.settings.Validate();
-    const auto lights = MakeLightSet<gl::LightUniforms>(scene.lights, camera.position);
+    UpdateNightGroundIrradiance(scene, camera.position);
+    auto lights = MakeLightSet<gl::LightUniforms>(scene.lights, camera.position);
+    lights.night_ground_irradiance = glm::vec3(night_ground_.value);
     glNamedBufferSubData(buffers_[1], 0, sizeof(lights), &lights);
     light_count_ = lights.count;
     eclipse_active_ = scene.lights.eclipse.active;

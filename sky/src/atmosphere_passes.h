@@ -114,6 +114,9 @@ class AtmospherePasses {
     }
     const ref::IrradianceTexture& irradiance_cpu() const { return irradiance_cpu_; }
     glm::ivec2 frame_size() const { return frame_size_; }
+    // The night sky's illuminance on the ground below the camera (lux), as the last SetFrame
+    // lit the ground with; 0 by day.
+    const glm::dvec3& night_ground_irradiance() const { return night_ground_.value; }
     // GPU time of a query (ms), 0 when it did not run.
     double QueryMilliseconds(std::size_t query) const;
 
@@ -128,6 +131,9 @@ class AtmospherePasses {
     // The framebuffer and viewport a target draws into: the host's, or the own frame's.
     std::pair<GLuint, glm::ivec4> Destination(const RenderTarget& target) const;
     bool NightSkyMapHolds(const SkyScene& scene, const glm::dvec3& camera_position) const;
+    // NightSkyGroundIrradiance for this frame, made again only when it can have changed by more
+    // than ~1 %.
+    void UpdateNightGroundIrradiance(const SkyScene& scene, const glm::dvec3& camera_position);
     void DrawPoints(glm::ivec2 size);
 
     Atmosphere atmosphere_;
@@ -151,6 +157,10 @@ class AtmospherePasses {
         glm::dvec3 camera_position;
     };
     std::optional<NightSkyMapInputs> night_sky_map_for_;
+    struct NightGroundIrradiance {  // ...and the ground's light, for these
+        std::optional<NightSkyMapInputs> inputs;
+        glm::dvec3 value{0.0};
+    } night_ground_;
     // The static LUTs as the GPU made them, for CPU work: the stars' extinction, a host's
     // queries (AtmosphereRenderer::SkyLuminance, AerialPerspective).
     ref::TransmittanceTexture transmittance_cpu_;

@@ -290,6 +290,10 @@ std::optional<CloudShade> AtmosphereRenderer::LatestCloudShade() const {
     return ShadeOf(u);
 }
 
+glm::dvec3 AtmosphereRenderer::NightGroundIrradiance() const {
+    return impl_->atmosphere.night_ground_irradiance();
+}
+
 std::optional<SphericalHarmonics9> AtmosphereRenderer::LatestEnvironmentSh() const {
     if (!impl_->environment) return std::nullopt;
     return impl_->environment->LatestSh();

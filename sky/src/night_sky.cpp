@@ -529,11 +529,16 @@ glm::dvec3 NightSkyLuminance(const NightSky& night, const Atmosphere& atmosphere
         parameters, transmittance, camera_km, camera_altitude_km, direction);
 }
 
+glm::dvec3 NightSkyGroundIrradiance(const NightSky& night, const Atmosphere& atmosphere,
+                                    const LutImage& transmittance, const glm::dvec3& position) {
+    return NightSkyGroundIrradiance(night, atmosphere, ref::FromImage(transmittance), position);
+}
+
 glm::dvec3 NightSkyGroundIrradiance(const NightSky& night, const Atmosphere& atmosphere_si,
-                                    const LutImage& transmittance_lut, const glm::dvec3& position) {
+                                    const ref::TransmittanceTexture& transmittance,
+                                    const glm::dvec3& position) {
     if (!night.enabled || !night.settings.enabled) return glm::dvec3(0.0);
     const auto atmosphere = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere_si);
-    const ref::TransmittanceTexture transmittance = ref::FromImage(transmittance_lut);
     const glm::dvec3 up = glm::normalize(position);
     const NightRadiance r = MeanNightRadiance(night, atmosphere, transmittance, up, 1);
     const FrameConstants frame =

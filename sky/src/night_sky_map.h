@@ -21,6 +21,11 @@ glm::dvec3 NightSkyLuminance(const NightSky& night, const Atmosphere& atmosphere
                              const glm::dvec3& camera_km, double camera_altitude_km,
                              const glm::dvec3& direction);
 
+// NightSkyGroundIrradiance (night_sky.h) over the renderer's transmittance LUT as kept on the CPU.
+glm::dvec3 NightSkyGroundIrradiance(const NightSky& night, const Atmosphere& atmosphere,
+                                    const ref::TransmittanceTexture& transmittance,
+                                    const glm::dvec3& position);
+
 // NightSkyLuminance at the texel centres of a `size` map in the Sky-View LUT's parameterisation
 // (its frame: up the camera's radial direction, x toward the Sun's azimuth).
 void FillNightSkyMap(const NightSky& night, const Atmosphere& atmosphere,

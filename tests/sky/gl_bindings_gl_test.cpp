@@ -132,6 +132,8 @@ void AddLights(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, eclipse_around_illuminance);
     ZENITH_SAME(S, padding3);
     ZENITH_SAME(S, eclipse_limb);
+    ZENITH_SAME(S, night_ground_irradiance);
+    ZENITH_SAME(S, padding4);
 }
 
 void AddSettings(Layout& layout, const std::string& prefix, std::size_t base) {

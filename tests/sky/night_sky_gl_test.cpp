@@ -124,6 +124,30 @@ TEST_F(NightSkyGlTest, HorizonAgainstCpuTwin) {
     }
 }
 
+// The ground under a moonless sky is lit by it: looking 20 deg down from the dark site, the
+// ground's light (the frame with the night sky less the frame without) is albedo E / pi of the
+// night sky's illuminance the renderer reports (NightGroundIrradiance), dimmed by the ~7 km of
+// air to it; before, the ground was black.
+TEST_F(NightSkyGlTest, TheGroundIsLitByTheNightSky) {
+    const Atmosphere atmosphere;
+    AtmosphereRenderer renderer(atmosphere);
+    const glm::ivec2 size(16, 16);
+    const SkyState state = DarkSite(-20.0, atmosphere, size);
+    SkyScene scene = state.scene;
+    scene.night_sky.starlight = std::make_shared<const StarlightMap>(StarlightMap::ModelOnly());
+    const Frames f = Render(renderer, scene, state.view, size);
+    renderer.Update(scene, state.view);
+    const glm::dvec3 e = renderer.NightGroundIrradiance();
+    const double lit = Luminance(f.with.at(size.x / 2, size.y / 2)) -
+                       Luminance(f.without.at(size.x / 2, size.y / 2));
+    const double lambert = Luminance(atmosphere.ground_albedo * e) / M_PI;
+    std::printf("moonless ground: %.3g cd/m^2 (albedo E / pi = %.3g, E = %.3g lux)\n", lit, lambert,
+                Luminance(e));
+    EXPECT_GT(Luminance(e), 2.5e-4);
+    EXPECT_GT(lit / lambert, 0.7);
+    EXPECT_LT(lit / lambert, 1.0);
+}
+
 // The night sky's map is filled on the CPU only when the sky, the Sun or the camera has turned
 // or moved enough to show: half a second later (the sky turned 0.002 deg) the kept map draws
 // what a new one would to 1e-4; two minutes later (0.5 deg) it has been filled again, and the

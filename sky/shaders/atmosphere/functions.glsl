@@ -496,6 +496,10 @@ struct LightSet {
     // radius in Sun radii): geo::CoveredFluxFraction's, 0.1-0.7 for the thin crescents near
     // totality, 1 when the disks just touch (sky::EclipseLimbTable).
     vec4 eclipse_limb[kEclipseLimbSamples];
+    // The night sky's illuminance on the horizontal ground (lux; NightSkyGroundIrradiance:
+    // airglow, zodiacal light, starlight, their glow in the air, light pollution), 0 by day.
+    vec3 night_ground_irradiance;
+    Number padding4;
 };
 
 // Fraction of a uniform disk of radius 1 that a disk of radius k, its centre x away, leaves
@@ -735,7 +739,8 @@ ScatteringResult IntegrateScatteredLuminance(
         Number under = UnderClouds(lights, 0.0);
         Number direct = 1.0 + under * (lights.cloud_direct - 1.0);
         Number sky = 1.0 + under * (lights.cloud_ground_sky - 1.0);
-        vec3 ground = lights.cloud_ground_luminance * (kPi * under);
+        vec3 ground = lights.cloud_ground_luminance * (kPi * under) +
+                      lights.night_ground_irradiance * sky;
         for (int l = 0; l < lights.count; ++l) {
             Number mu_l = dot(n_ground, lights.light[l].direction);
             ground += LightIlluminanceAt(lights, l, p) *

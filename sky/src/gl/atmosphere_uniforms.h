@@ -61,9 +61,12 @@ struct LightUniforms {  // functions.glsl: struct LightSet (array elements 16-by
     glm::vec3 eclipse_around_illuminance;
     float padding3;
     glm::vec4 eclipse_limb[kEclipseLimbSamples];
+    glm::vec3 night_ground_irradiance;
+    float padding4;
 };
 static_assert(sizeof(LightUniforms::Light) == 32);
-static_assert(sizeof(LightUniforms) == 304);
+static_assert(sizeof(LightUniforms) == 320);
+static_assert(offsetof(LightUniforms, night_ground_irradiance) == 304);
 static_assert(offsetof(LightUniforms, eclipse_around_illuminance) == 160);
 static_assert(offsetof(LightUniforms, eclipse_limb) == 176);
 static_assert(offsetof(LightUniforms, eclipse_sun_illuminance) == 112);

@@ -88,16 +88,16 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
 static_assert(offsetof(CloudUniforms, scattering) == 256);
 static_assert(offsetof(CloudUniforms, march) == 288);
 static_assert(offsetof(CloudUniforms, lights) == 336);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 640);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 688);
-static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 736);
-static_assert(offsetof(CloudUniforms, trace_size) == 752);
-static_assert(offsetof(CloudUniforms, block) == 768);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 784);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 800);
-static_assert(offsetof(CloudUniforms, layer_order) == 816);
-static_assert(offsetof(CloudUniforms, ground_layer_order) == 832);
-static_assert(sizeof(CloudUniforms) == 848);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 656);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 704);
+static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 752);
+static_assert(offsetof(CloudUniforms, trace_size) == 768);
+static_assert(offsetof(CloudUniforms, block) == 784);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 800);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 816);
+static_assert(offsetof(CloudUniforms, layer_order) == 832);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 848);
+static_assert(sizeof(CloudUniforms) == 864);
 
 // clouds/geometry_list.glsl: CloudGeometryList, a storage block: a glDrawArraysIndirect command
 // (its vertex count, 6 per cell listed, written by the shader), the capacity in cells, then the

@@ -180,6 +180,10 @@ class AtmosphereRenderer {
     // has run it). nullopt before the first copy has arrived. For a host's sky light under the
     // clouds (SkySystem's SkyLighting::sky_irradiance).
     std::optional<CloudShade> LatestCloudShade() const;
+    // The night sky's illuminance on the horizontal ground below the camera (lux per channel,
+    // NightSkyGroundIrradiance) that the last Update lit the ground with: 0 by day or without
+    // a night sky. Kept between Updates until it can have changed by ~1 %.
+    glm::dvec3 NightGroundIrradiance() const;
 
     // The newest spherical harmonics of the environment (world frame) that the GPU has finished,
     // without waiting (a read-back behind a fence, as LatestCloudShade): a round's usually
