@@ -291,7 +291,6 @@ constexpr int kScatteredRows = 64;
 constexpr std::array<double, 7> kMeanRadianceAltitudes = {0.0, 1.0, 2.5, 5.0, 10.0, 20.0, 50.0};
 
 struct ScatteredNightLight {
-    double r = 0.0;           // the camera's distance to the planet's centre, km
     double mu_horizon = 0.0;  // zenith cosine of the ground's tangent from the camera
     std::array<glm::dvec3, kScatteredRows> rows{};  // at mu = RowMu(i)
     double RowMu(double x) const { return mu_horizon + (1.0 - mu_horizon) * x * x; }
@@ -410,9 +409,9 @@ ScatteredNightLight MakeScatteredNightLight(const NightSky& night,
         return glm::mix(mean[i], mean[i + 1], std::clamp((h - z[i]) / (z[i + 1] - z[i]), 0.0, 1.0));
     };
     ScatteredNightLight light;
-    light.r = atmosphere.bottom_radius + camera_altitude_km;
-    light.mu_horizon = -std::sqrt(std::max(
-        0.0, 1.0 - (atmosphere.bottom_radius * atmosphere.bottom_radius) / (light.r * light.r)));
+    const double r = atmosphere.bottom_radius + camera_altitude_km;
+    light.mu_horizon = -std::sqrt(
+        std::max(0.0, 1.0 - (atmosphere.bottom_radius * atmosphere.bottom_radius) / (r * r)));
     const double shell = atmosphere.top_radius - atmosphere.bottom_radius;
     constexpr int kSteps = 48;
     for (int row = 0; row < kScatteredRows; ++row) {
@@ -421,12 +420,11 @@ ScatteredNightLight MakeScatteredNightLight(const NightSky& night,
         // From the camera, or where the ray enters the atmosphere, to where it leaves it.
         double t0 = 0.0;
         if (camera_altitude_km > shell) {
-            t0 = ref::RaySphereDistance(light.r, mu, camera_altitude_km - shell,
-                                        atmosphere.top_radius);
+            t0 = ref::RaySphereDistance(r, mu, camera_altitude_km - shell, atmosphere.top_radius);
             if (t0 < 0.0) continue;  // misses the atmosphere
         }
-        const double r0 = std::sqrt(light.r * light.r + t0 * t0 + 2.0 * light.r * mu * t0);
-        const double mu0 = (light.r * mu + t0) / r0;
+        const double r0 = std::sqrt(r * r + t0 * t0 + 2.0 * r * mu * t0);
+        const double mu0 = (r * mu + t0) / r0;
         const double length = ref::RaySphereDistance(r0, mu0, r0 - atmosphere.top_radius - 1e-9,
                                                      atmosphere.top_radius);
         if (!(length > 0.0)) continue;
