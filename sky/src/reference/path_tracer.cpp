@@ -798,10 +798,8 @@ PathTraceResult PathTraceUniformSky(const Atmosphere& atmosphere, const glm::dve
     return Accumulate(options, [&] {
         return [&, local = context](Rng& rng) mutable {
             const double cos_theta = 1.0 - 2.0 * rng.Uniform();
-            const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-            const double phi = 2.0 * kPi * rng.Uniform();
             local.sun_direction =
-                glm::dvec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
+                DirectionAround(glm::dvec3(0.0, 0.0, 1.0), cos_theta, 2.0 * kPi * rng.Uniform());
             return 4.0 * kPi * TracePath(local, origin, d, rng) / atmosphere.solar_illuminance;
         };
     });
