@@ -17,6 +17,7 @@
 #include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/inspection.h"
+#include "zenith/sky/lighting.h"
 #include "zenith/sky/reference/path_tracer.h"
 #include "zenith/sky/sky_state.h"
 
@@ -226,7 +227,7 @@ glm::dvec3 SampleMultipleScattering(const Luts& luts, double altitude, double mu
 }
 
 glm::dvec3 SampleIrradiance(const Luts& luts, double mu_s) {
-    return ref::GetGroundSkyIrradiance(ref::FromImage(luts.irradiance), mu_s);
+    return sky::SampleGroundIrradiance(luts.irradiance, mu_s);
 }
 
 glm::dvec3 SampleSkyView(const Luts& luts, double view_zenith, double azimuth) {
