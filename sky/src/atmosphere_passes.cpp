@@ -354,6 +354,26 @@ void AtmospherePasses::BuildStaticLuts() {
         ref::FromImage(gl::ReadTexture(irradiance_, glm::ivec3(s.irradiance_size, 1)));
 }
 
+// Whether what the night sky's light was made for still holds for this frame: the same settings
+// and starlight, the sky and the Sun turned by less than `angle` rad, the camera moved by less
+// than `distance` m.
+bool AtmospherePasses::NightSkyInputsHold(const NightSkyMapInputs& last, const SkyScene& scene,
+                                          const glm::dvec3& camera_position, double angle,
+                                          double distance) {
+    const NightSky& now = scene.night_sky;
+    const auto turned = [](const glm::dmat3& a, const glm::dmat3& b) {
+        double largest = 0.0;
+        for (int c = 0; c < 3; ++c) largest = std::max(largest, glm::length(a[c] - b[c]));
+        return largest;
+    };
+    return now.settings == last.night.settings && now.starlight == last.night.starlight &&
+           turned(now.ecliptic_from_world, last.night.ecliptic_from_world) < angle &&
+           turned(now.icrs_from_world, last.night.icrs_from_world) < angle &&
+           std::abs(now.sun_ecliptic_longitude - last.night.sun_ecliptic_longitude) < angle &&
+           glm::length(scene.lights.sun_direction - last.sun_direction) < angle &&
+           glm::length(camera_position - last.camera_position) < distance;
+}
+
 // The night sky's map changes with the sky's turning (0.004 deg/s), the Sun's place and the
 // camera's, a few hundredths of one of its 2.8 x 2.8 deg texels a second: filling it on the CPU
 // (~2 ms) is the night frame's largest cost on a GPU. The last one holds while the sky, the Sun
@@ -363,48 +383,25 @@ void AtmospherePasses::BuildStaticLuts() {
 bool AtmospherePasses::NightSkyMapHolds(const SkyScene& scene,
                                         const glm::dvec3& camera_position) const {
     constexpr double kNightSkyMapTolerance = 1e-4;  // rad
-    if (!night_sky_map_for_) return false;
-    const NightSkyMapInputs& last = *night_sky_map_for_;
-    const NightSky& now = scene.night_sky;
-    const auto turned = [](const glm::dmat3& a, const glm::dmat3& b) {
-        double largest = 0.0;
-        for (int c = 0; c < 3; ++c) largest = std::max(largest, glm::length(a[c] - b[c]));
-        return largest;
-    };
-    return now.settings == last.night.settings && now.starlight == last.night.starlight &&
-           turned(now.ecliptic_from_world, last.night.ecliptic_from_world) <
-               kNightSkyMapTolerance &&
-           turned(now.icrs_from_world, last.night.icrs_from_world) < kNightSkyMapTolerance &&
-           std::abs(now.sun_ecliptic_longitude - last.night.sun_ecliptic_longitude) <
-               kNightSkyMapTolerance &&
-           glm::length(scene.lights.sun_direction - last.sun_direction) < kNightSkyMapTolerance &&
-           glm::length(camera_position - last.camera_position) < 10.0;
+    return night_sky_map_for_ && NightSkyInputsHold(*night_sky_map_for_, scene, camera_position,
+                                                    kNightSkyMapTolerance, 10.0);
 }
 
 // The ground's light from the night sky (0.7 ms on the CPU) changes far more slowly than its
-// map: it is made again when the settings change, the sky turns 0.01 rad (2 min of time), the
-// Sun moves 0.01 rad or the ground under the camera moves 10 km (each well under 1 %); only
-// while the Sun is below the horizon (by day it adds ~1e-8 of the daylight).
+// map: it is made again when the settings or the starlight change, the sky or the Sun turns
+// 0.01 rad (2 min of time) or the camera moves 10 km (each well under 1 %); only while the Sun
+// is below the horizon (by day it adds ~1e-8 of the daylight).
 void AtmospherePasses::UpdateNightGroundIrradiance(const SkyScene& scene,
                                                    const glm::dvec3& camera_position) {
     const NightSky& night = scene.night_sky;
-    const glm::dvec3 up = glm::normalize(camera_position);
     if (!night.enabled || !night.settings.enabled ||
-        glm::dot(glm::normalize(scene.lights.sun_direction), up) > 0.0) {
+        glm::dot(glm::normalize(scene.lights.sun_direction), glm::normalize(camera_position)) >
+            0.0) {
         night_ground_ = {};
         return;
     }
-    const auto turned = [](const glm::dmat3& a, const glm::dmat3& b) {
-        double worst = 0.0;
-        for (int i = 0; i < 3; ++i) worst = std::max(worst, glm::length(a[i] - b[i]));
-        return worst;
-    };
-    const auto& last = night_ground_.inputs;
-    if (last && last->night.settings == night.settings &&
-        turned(last->night.icrs_from_world, night.icrs_from_world) < 0.01 &&
-        glm::length(scene.lights.sun_direction - last->sun_direction) < 0.01 &&
-        glm::length(up - glm::normalize(last->camera_position)) <
-            10e3 / atmosphere_.bottom_radius) {
+    if (night_ground_.inputs &&
+        NightSkyInputsHold(*night_ground_.inputs, scene, camera_position, 0.01, 10e3)) {
         return;
     }
     night_ground_.value =

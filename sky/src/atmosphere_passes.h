@@ -130,6 +130,10 @@ class AtmospherePasses {
     bool SunDiskResolved(const SkyView& view, glm::ivec2 size) const;
     // The framebuffer and viewport a target draws into: the host's, or the own frame's.
     std::pair<GLuint, glm::ivec4> Destination(const RenderTarget& target) const;
+    struct NightSkyMapInputs;
+    static bool NightSkyInputsHold(const NightSkyMapInputs& last, const SkyScene& scene,
+                                   const glm::dvec3& camera_position, double angle,
+                                   double distance);
     bool NightSkyMapHolds(const SkyScene& scene, const glm::dvec3& camera_position) const;
     // NightSkyGroundIrradiance for this frame, made again only when it can have changed by more
     // than ~1 %.
