@@ -387,7 +387,7 @@ bool AtmospherePasses::NightSkyMapHolds(const SkyScene& scene,
                                                     kNightSkyMapTolerance, 10.0);
 }
 
-// The ground's light from the night sky (0.7 ms on the CPU) changes far more slowly than its
+// The ground's light from the night sky (0.5 ms on the CPU) changes far more slowly than its
 // map: it is made again when the settings or the starlight change, the sky or the Sun turns
 // 0.01 rad (2 min of time) or the camera moves 10 km (each well under 1 %); only while the Sun
 // is below the horizon (by day it adds ~1e-8 of the daylight).

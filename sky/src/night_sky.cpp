@@ -313,12 +313,11 @@ struct NightRadiance {
     double directions = 0.0;             // n, over the sphere
 };
 
-// The mean radiance at the first `altitudes` of kMeanRadianceAltitudes above the ground point
-// under `up` (unit, planet-centred), and the ground's irradiance there.
+// The mean radiance at kMeanRadianceAltitudes above the ground point under `up` (unit,
+// planet-centred), and the ground's irradiance there.
 NightRadiance MeanNightRadiance(const NightSky& night, const ref::AtmosphereParameters& atmosphere,
                                 const ref::TransmittanceTexture& transmittance,
-                                const glm::dvec3& up,
-                                std::size_t altitudes = kMeanRadianceAltitudes.size()) {
+                                const glm::dvec3& up) {
     const NightSkySettings& s = night.settings;
     const glm::dvec3 east = glm::normalize(glm::cross(
         std::abs(up.z) < 0.9 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0), up));
@@ -335,7 +334,7 @@ NightRadiance MeanNightRadiance(const NightSky& night, const ref::AtmospherePara
     NightRadiance result;
     result.directions = static_cast<double>(kRings) * kAzimuths;
     auto& mean = result.mean;
-    for (std::size_t a = 0; a < std::min(altitudes, kMeanRadianceAltitudes.size()); ++a) {
+    for (std::size_t a = 0; a < kMeanRadianceAltitudes.size(); ++a) {
         const double h = kMeanRadianceAltitudes[a];
         const double r = atmosphere.bottom_radius + h;
         const glm::dvec3 point = up * r;
@@ -394,13 +393,11 @@ NightRadiance MeanNightRadiance(const NightSky& night, const ref::AtmospherePara
     return result;
 }
 
-ScatteredNightLight MakeScatteredNightLight(const NightSky& night,
+// The scattered light's table for a camera above the ground point `radiance` was made for.
+ScatteredNightLight MakeScatteredNightLight(const NightRadiance& radiance,
                                             const ref::AtmosphereParameters& atmosphere,
-                                            const ref::TransmittanceTexture& transmittance,
-                                            const glm::dvec3& camera_km,
                                             double camera_altitude_km) {
-    const glm::dvec3 up = glm::normalize(camera_km);
-    const auto mean = MeanNightRadiance(night, atmosphere, transmittance, up).mean;
+    const auto& mean = radiance.mean;
     const auto mean_at = [&](double h) {
         const auto& z = kMeanRadianceAltitudes;
         if (h >= z.back()) return mean.back();
@@ -459,6 +456,17 @@ struct FrameConstants {
     ScatteredNightLight scattered;    // zero without NightSkySettings::scattered
 };
 
+// Light pollution's luminance per unit 1 - T along a ray, coloured (0 without it).
+glm::dvec3 LightPollutionPerHaze(const NightSkySettings& s,
+                                 const ref::AtmosphereParameters& atmosphere,
+                                 const ref::TransmittanceTexture& transmittance) {
+    if (!s.artificial_zenith_brightness) return glm::dvec3(0.0);
+    const glm::dvec3 zenith = ref::GetTransmittanceToTopAtmosphereBoundary(
+        atmosphere, transmittance, atmosphere.bottom_radius, 1.0);
+    return LuminanceFromSurfaceBrightness(*s.artificial_zenith_brightness) *
+           LightPollutionColour() / (glm::dvec3(1.0) - zenith);
+}
+
 FrameConstants MakeFrameConstants(const NightSky& night,
                                   const ref::AtmosphereParameters& atmosphere,
                                   const ref::TransmittanceTexture& transmittance,
@@ -466,15 +474,11 @@ FrameConstants MakeFrameConstants(const NightSky& night,
     FrameConstants f;
     const NightSkySettings& s = night.settings;
     f.airglow = LuminanceFromSurfaceBrightness(s.airglow_zenith_brightness) * AirglowColour();
-    if (s.artificial_zenith_brightness) {
-        const glm::dvec3 zenith = ref::GetTransmittanceToTopAtmosphereBoundary(
-            atmosphere, transmittance, atmosphere.bottom_radius, 1.0);
-        f.light_pollution = LuminanceFromSurfaceBrightness(*s.artificial_zenith_brightness) *
-                            LightPollutionColour() / (glm::dvec3(1.0) - zenith);
-    }
+    f.light_pollution = LightPollutionPerHaze(s, atmosphere, transmittance);
     if (night.enabled && s.enabled && s.scattered) {
-        f.scattered = MakeScatteredNightLight(night, atmosphere, transmittance, camera_km,
-                                              camera_altitude_km);
+        f.scattered = MakeScatteredNightLight(
+            MeanNightRadiance(night, atmosphere, transmittance, glm::normalize(camera_km)),
+            atmosphere, camera_altitude_km);
     }
     return f;
 }
@@ -537,20 +541,22 @@ glm::dvec3 NightSkyGroundIrradiance(const NightSky& night, const Atmosphere& atm
                                     const glm::dvec3& position) {
     if (!night.enabled || !night.settings.enabled) return glm::dvec3(0.0);
     const auto atmosphere = MakeShaderParameters<ref::AtmosphereParameters>(atmosphere_si);
-    const glm::dvec3 up = glm::normalize(position);
-    const NightRadiance r = MeanNightRadiance(night, atmosphere, transmittance, up, 1);
-    const FrameConstants frame =
-        MakeFrameConstants(night, atmosphere, transmittance, up * atmosphere.bottom_radius, 0.0);
+    const NightRadiance r =
+        MeanNightRadiance(night, atmosphere, transmittance, glm::normalize(position));
     // The glows over the sky, E = 2 pi int L mu dmu: light pollution's, L = light_pollution
     // (1 - T), from the same quadrature as the direct light; the natural light's from the
-    // frame's table, as the sky draws it (J at the ground alone left blue 6 % short).
-    const glm::dvec3 pollution =
-        frame.light_pollution * 4.0 * ref::kPi * r.ground_haze_cosine / r.directions;
+    // scattered light's table seen from the ground, as the sky draws it (J at the ground alone
+    // left blue 6 % short).
+    const glm::dvec3 pollution = LightPollutionPerHaze(night.settings, atmosphere, transmittance) *
+                                 4.0 * ref::kPi * r.ground_haze_cosine / r.directions;
     glm::dvec3 glow(0.0);
-    constexpr int kRings = 64;
-    for (int i = 0; i < kRings; ++i) {
-        const double mu = (i + 0.5) / kRings;
-        glow += frame.scattered.At(mu) * mu * (2.0 * ref::kPi / kRings);
+    if (night.settings.scattered) {
+        const ScatteredNightLight scattered = MakeScatteredNightLight(r, atmosphere, 0.0);
+        constexpr int kRings = 64;
+        for (int i = 0; i < kRings; ++i) {
+            const double mu = (i + 0.5) / kRings;
+            glow += scattered.At(mu) * mu * (2.0 * ref::kPi / kRings);
+        }
     }
     return r.ground_direct + glow + pollution;
 }
