@@ -6,6 +6,7 @@
 //                   [--threads T] [--seed S] [--only NAME]
 //   accuracy_report --grid twilight [--samples N] [--max-samples M] [--target-se E]
 //                   [--converged-se C] [--threads T] [--seed S]
+//                   [--ms-width W] [--ms-height H] [--ms-directions-sqrt D] [--ms-steps N]
 //   accuracy_report --grid illuminance [--samples N] [--threads T] [--seed S]
 //
 // paper: the scenarios of Hillaire 2020 §6 as images. Defaults (96x64, 1024 paths per pixel, 256
@@ -66,6 +67,7 @@ std::string Triple(const glm::dvec3& v, double scale, int digits) {
         "[--height H] [--samples N] [--thick-samples N] [--threads T] [--seed S] "
         "[--only NAME]\n       accuracy_report --grid twilight [--samples N] "
         "[--max-samples M] [--target-se E] [--converged-se C] [--threads T] [--seed S]\n"
+        "                [--ms-width W] [--ms-height H] [--ms-directions-sqrt D] [--ms-steps N]\n"
         "       accuracy_report --grid illuminance [--samples N] [--threads T] [--seed S]\n",
         message);
     std::exit(2);
@@ -105,6 +107,9 @@ struct TwilightOptions {
     double converged_se = 0.025;
     std::uint64_t seed = 1;
     int threads = 2;
+    // The renderer's LUTs. --ms-* raise the multiple-scattering LUT's resolution and sampling,
+    // to tell the LUTs' discretisation from the approximation they make (H20 §5.5).
+    zenith::sky::LutSettings lut = zenith::sky::LutSettings::Pc();
 };
 
 struct TwilightView {
@@ -267,16 +272,20 @@ int RunTwilight(const TwilightOptions& options) {
     earth.ground_albedo = glm::dvec3(0.0);
     Atmosphere point_sun = earth;
     point_sun.sun_angular_radius = 1e-7;  // rad: the path tracer's point sun, for comparison
-    const AtmosphereReference renderer(earth, zenith::sky::LutSettings::Pc());
-    const AtmosphereReference renderer_point(point_sun, zenith::sky::LutSettings::Pc());
+    const AtmosphereReference renderer(earth, options.lut);
+    const AtmosphereReference renderer_point(point_sun, options.lut);
 
+    const zenith::sky::LutSettings& lut = options.lut;
     std::printf(
-        "Earth preset, black ground, no sun disk; renderer: Sky-View LUT (LutSettings::Pc()); "
+        "Earth preset, black ground, no sun disk; renderer: Sky-View LUT (LutSettings::Pc(), "
+        "multiple-scattering LUT %dx%d texels, %d directions, %d steps); "
         "reference: PathTrace, %lld paths per ray doubled until the relative standard error is "
         "<= %.3g in R, G and B or %lld paths (from 65536 on, stopped where %.3g is out of reach "
         "within that); seed %llu; horizon views 1 deg above the "
         "astronomical horizon; \"0 km\" is 1 m\n\n",
-        static_cast<long long>(options.samples), options.target_se,
+        lut.multiple_scattering_size.x, lut.multiple_scattering_size.y,
+        lut.multiple_scattering_directions_sqrt * lut.multiple_scattering_directions_sqrt,
+        lut.multiple_scattering_steps, static_cast<long long>(options.samples), options.target_se,
         static_cast<long long>(options.max_samples), options.converged_se,
         static_cast<unsigned long long>(options.seed));
     std::printf(
@@ -591,6 +600,7 @@ int main(int argc, char** argv) {
     std::string only;
     std::string grid = "paper";
     bool samples_given = false;
+    bool lut_given = false;
     TwilightOptions twilight;
     for (int i = 1; i < argc; ++i) {
         const char* flag = argv[i];
@@ -609,6 +619,22 @@ int main(int argc, char** argv) {
             twilight.target_se = ParseReal(flag, value, 0.0, 1.0);
         } else if (!std::strcmp(flag, "--converged-se")) {
             twilight.converged_se = ParseReal(flag, value, 0.0, 1.0);
+        } else if (!std::strcmp(flag, "--ms-width")) {
+            lut_given = true;
+            twilight.lut.multiple_scattering_size.x =
+                static_cast<int>(ParseInteger(flag, value, 2, 4096));
+        } else if (!std::strcmp(flag, "--ms-height")) {
+            lut_given = true;
+            twilight.lut.multiple_scattering_size.y =
+                static_cast<int>(ParseInteger(flag, value, 2, 4096));
+        } else if (!std::strcmp(flag, "--ms-directions-sqrt")) {
+            lut_given = true;
+            twilight.lut.multiple_scattering_directions_sqrt =
+                static_cast<int>(ParseInteger(flag, value, 1, 256));
+        } else if (!std::strcmp(flag, "--ms-steps")) {
+            lut_given = true;
+            twilight.lut.multiple_scattering_steps =
+                static_cast<int>(ParseInteger(flag, value, 1, 4096));
         } else if (!std::strcmp(flag, "--grid")) {
             grid = value;
             if (grid != "paper" && grid != "twilight" && grid != "illuminance" && grid != "night") {
@@ -627,6 +653,7 @@ int main(int argc, char** argv) {
         }
     }
 
+    if (lut_given && grid != "twilight") Usage("--ms-* apply to --grid twilight only");
     if (grid == "illuminance" || grid == "night") {
         IlluminanceOptions illuminance;
         if (grid == "night") illuminance.paths = 1 << 18;  // per view
