@@ -15,6 +15,9 @@ const int kMaxLights = 2;       // LightSet.light[]: the Sun and the Moon (H20's
 const int kEclipseLimbSamples = 8;  // LightSet.eclipse_limb[]: its table of the Sun's limb
 const int kCloudMaxLayers = 4;  // CloudBlock.cloud_layers[], weather_maps[]
 const int kMoonShadowSamples = 64;  // FrameBlock.moon_shadow[]: the Earth's shadow on the Moon
+// The multiple-scattering LUT's tiles side by side (atmosphere/functions.glsl:
+// MultipleScatteringSample): its texture is this many times multiple_scattering_size wide.
+const int kMultipleScatteringTiles = 3;
 
 // Uniform block binding points (std140).
 const int kAtmosphereBlockBinding = 0;  // atmosphere/interface.glsl: AtmosphereBlock
@@ -65,6 +68,7 @@ const int kTextureUnitCount = 26;       // units 0 .. kTextureUnitCount - 1 are 
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
 const int kShadeDirectionsImageUnit = 0;  // clouds/sky_shade.comp reads
 const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
+const int kScatteringOrderImageUnit = 1;  // atmosphere/multiple_scattering.comp writes
 const int kEnvironmentImageUnit = 0;      // atmosphere/environment_sh.comp reads the atlas
 
 // Compute work-group sizes, which the host's dispatches divide by.

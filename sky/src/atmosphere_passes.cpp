@@ -216,7 +216,7 @@ AtmospherePasses::AtmospherePasses(const Atmosphere& atmosphere, const LutSettin
                          GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(buffers_[3], sizeof(gl::FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
     transmittance_ = gl::CreateTexture2D(s.transmittance_size);
-    multiple_scattering_ = gl::CreateTexture2D(s.multiple_scattering_size);
+    multiple_scattering_ = gl::CreateTexture2D(MultipleScatteringTextureSize(s));
     irradiance_ = gl::CreateTexture2D(s.irradiance_size);
     sky_view_ = gl::CreateTexture2D(s.sky_view_size, GL_RGBA32F, GL_REPEAT);  // azimuth wraps
     aerial_perspective_ = gl::CreateTexture3D(s.aerial_perspective_size);
@@ -340,18 +340,49 @@ void AtmospherePasses::BuildStaticLuts() {
     Dispatch(kTransmittancePass, transmittance_, false,
              Groups(s.transmittance_size.x, kLutGroupSize),
              Groups(s.transmittance_size.y, kLutGroupSize), 1);
-    Dispatch(kMultipleScatteringPass, multiple_scattering_, false,
-             Groups(s.multiple_scattering_size.x, kLutGroupSize),
-             Groups(s.multiple_scattering_size.y, kLutGroupSize), 1);
+    BuildMultipleScattering();
     Dispatch(kIrradiancePass, irradiance_, false, Groups(s.irradiance_size.x, kIrradianceGroupSize),
              static_cast<GLuint>(s.irradiance_size.y), 1);
     transmittance_cpu_ =
         ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
     night_ground_ = {};  // made over the old air
     multiple_scattering_cpu_ = ref::FromImage(
-        gl::ReadTexture(multiple_scattering_, glm::ivec3(s.multiple_scattering_size, 1)));
+        gl::ReadTexture(multiple_scattering_, glm::ivec3(MultipleScatteringTextureSize(s), 1)));
     irradiance_cpu_ =
         ref::FromImage(gl::ReadTexture(irradiance_, glm::ivec3(s.irradiance_size, 1)));
+}
+
+// Orders 2 .. K of the multiple scattering (atmosphere/multiple_scattering.comp), one dispatch
+// each, timed together as one pass: order k reads order k - 1 from one of two textures and
+// writes itself to the other, adding itself to the LUT.
+void AtmospherePasses::BuildMultipleScattering() {
+    const glm::ivec2 size = settings_.multiple_scattering_size;
+    const glm::ivec2 texture_size = MultipleScatteringTextureSize(settings_);
+    std::array<GLuint, 2> orders = {gl::CreateTexture2D(texture_size),
+                                    gl::CreateTexture2D(texture_size)};
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearTexImage(orders[0], 0, GL_RGBA, GL_FLOAT, zero);  // order 2 reads no order before
+    const gl::Program& program = programs_[kMultipleScatteringPass];
+    glProgramUniform1i(program.name(), gl::kLastScatteringOrderLocation,
+                       settings_.multiple_scattering_orders);
+    BindInputs();
+    program.Use();
+    glBindImageTexture(kOutputImageUnit, multiple_scattering_, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32F);
+    glBeginQuery(GL_TIME_ELAPSED, queries_[kMultipleScatteringPass]);
+    for (int k = 2; k <= settings_.multiple_scattering_orders; ++k) {
+        const auto previous = static_cast<std::size_t>(k % 2);
+        glProgramUniform1i(program.name(), gl::kScatteringOrderLocation, k);
+        glBindTextureUnit(kMultipleScatteringUnit, orders[previous]);
+        glBindImageTexture(kScatteringOrderImageUnit, orders[1 - previous], 0, GL_FALSE, 0,
+                           GL_WRITE_ONLY, GL_RGBA32F);
+        glDispatchCompute(Groups(size.x, kLutGroupSize), Groups(size.y, kLutGroupSize), 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                        GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    glEndQuery(GL_TIME_ELAPSED);
+    query_used_[kMultipleScatteringPass] = true;
+    glDeleteTextures(static_cast<GLsizei>(orders.size()), orders.data());
 }
 
 // Whether what the night sky's light was made for still holds for this frame: the same settings

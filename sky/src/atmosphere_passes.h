@@ -45,6 +45,11 @@ struct PrecipitationDraw {
 // in azimuth, finer toward the horizon.
 inline constexpr glm::ivec2 kNightSkyMapSize{128, 64};
 
+// The multiple-scattering LUT's texture: kMultipleScatteringTiles tiles side by side.
+inline glm::ivec2 MultipleScatteringTextureSize(const LutSettings& s) {
+    return {s.multiple_scattering_size.x * kMultipleScatteringTiles, s.multiple_scattering_size.y};
+}
+
 class AtmospherePasses {
   public:
     enum Pass : std::size_t {
@@ -126,6 +131,7 @@ class AtmospherePasses {
               const CloudPasses* clouds, GLuint scene_depth = 0,
               std::optional<glm::ivec4> scissor = std::nullopt);
     void BuildStaticLuts();
+    void BuildMultipleScattering();
     void ResizeFrame(glm::ivec2 size);
     bool SunDiskResolved(const SkyView& view, glm::ivec2 size) const;
     // The framebuffer and viewport a target draws into: the host's, or the own frame's.

@@ -50,6 +50,8 @@ void LutSettings::Validate() const {
             std::to_string(multiple_scattering_directions_sqrt), "1..64");
     Require(multiple_scattering_steps >= 1 && multiple_scattering_steps <= 10000,
             "multiple_scattering_steps", std::to_string(multiple_scattering_steps), "1..10000");
+    Require(multiple_scattering_orders >= 2 && multiple_scattering_orders <= 32,
+            "multiple_scattering_orders", std::to_string(multiple_scattering_orders), "2..32");
     Require(irradiance_size.x >= 2 && irradiance_size.x <= 4096 && irradiance_size.y >= 1 &&
                 irradiance_size.y <= 4096,
             "irradiance_size", Str(irradiance_size), "2..4096 x 1..4096");

@@ -12,9 +12,8 @@
 //                  unbounded paths: what H20's local geometric series costs.
 //
 // The three share one LUT resolution (converged: see BENCHMARKS.md) and the renderer's single
-// scattering (IntegrateScatteredLuminance, the shared GLSL). The LUT loop below is a second
-// form of ComputeMultipleScatteringTexel on purpose: it is the prototype of orders the shader
-// does not have yet, and goes when the shader has them.
+// scattering (IntegrateScatteredLuminance, the shared GLSL); the iterated column is what the
+// renderer does with LutSettings::multiple_scattering_orders = K at this resolution.
 //
 //   twilight_orders_report [--paths N] [--orders K] [--threads T]
 
@@ -25,6 +24,7 @@
 #include <cstring>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "reference/atmosphere_functions.h"
@@ -45,104 +45,52 @@ constexpr int kDirectionsSqrt = 16;
 constexpr int kSteps = 40;
 constexpr int kViewSteps = 100;
 
-struct OrderTexel {
-    ref::vec3 luminance{0.0};  // L_n per unit sun illuminance
-    ref::vec3 f_ms{0.0};       // H20 Eq. 7-8
-};
-
-// One texel of order n + 1 from `previous` (order n), or of order 2 from the sun when `previous`
-// is null. Black ground (the twilight grid's).
-OrderTexel ComputeOrderTexel(const ref::AtmosphereParameters& atmosphere,
-                             const ref::Texture2D& transmittance, const ref::Texture2D* previous,
-                             ref::vec2 uv) {
-    using namespace ref;
-    const Number mu_s = SunCosineFromUnitRange(GetUnitRangeFromTextureCoord(uv.x, kLutSize.x));
-    const Number x_h = GetUnitRangeFromTextureCoord(uv.y, kLutSize.y);
-    Number r = atmosphere.bottom_radius +
-               std::clamp(x_h, 0.0, 1.0) * (atmosphere.top_radius - atmosphere.bottom_radius);
-    r = std::clamp(r, atmosphere.bottom_radius + 1e-4, atmosphere.top_radius - 1e-4);
-    const vec3 position(0.0, 0.0, r);
-    const vec3 sun_direction(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
-    const int n = kDirectionsSqrt * kDirectionsSqrt;
-    OrderTexel texel;
-    for (int i = 0; i < n; ++i) {
-        const vec3 direction = UniformSphereDirection(i, n);
-        const Number mu = direction.z;
-        const Number t_max = RayIntersectsGround(atmosphere, r, mu)
-                                 ? DistanceToBottomAtmosphereBoundary(atmosphere, r, mu)
-                                 : DistanceToTopAtmosphereBoundary(atmosphere, r, mu);
-        const Number dt = t_max / Number(kSteps);
-        vec3 throughput(1.0), l(0.0), l_f(0.0);
-        for (int j = 0; j < kSteps; ++j) {
-            const vec3 p = position + direction * ((Number(j) + 0.5) * dt);
-            const Number r_p = length(p);
-            const MediumSample s = SampleMedium(atmosphere, r_p - atmosphere.bottom_radius);
-            const Number mu_s_p = dot(p, sun_direction) / r_p;
-            const vec3 integral = StepIntegral(s.extinction, dt);
-            // Orders >= 3 transfer isotropically with the aerosols' reduced scattering, as f_ms.
-            const vec3 reduced = s.scattering - s.mie_scattering * atmosphere.mie_g;
-            if (previous == nullptr) {
-                const vec3 sun = GetTransmittanceToSun(atmosphere, transmittance, r_p, mu_s_p);
-                l += throughput * s.scattering * sun * IsotropicPhase() * integral;
-            } else {
-                l += throughput * reduced *
-                     GetMultipleScattering(atmosphere, *previous, r_p, mu_s_p) * integral;
-            }
-            l_f += throughput * reduced * integral;
-            throughput *= exp(-s.extinction * dt);
-        }
-        texel.luminance += l / Number(n);
-        texel.f_ms += l_f / Number(n);
-    }
-    return texel;
-}
+constexpr int kWide = kLutSize.x * sky::kMultipleScatteringTiles;
 
 struct Luts {
-    ref::Texture2D second_order{kLutSize.x, kLutSize.y};
-    ref::Texture2D h20{kLutSize.x, kLutSize.y};
-    ref::Texture2D iterated{kLutSize.x, kLutSize.y};
+    ref::Texture2D second_order{kWide, kLutSize.y};
+    ref::Texture2D h20{kWide, kLutSize.y};
+    ref::Texture2D iterated{kWide, kLutSize.y};
 };
 
-ref::vec3 GeometricTail(const ref::vec3& f_ms) {
-    const ref::vec3 f = glm::min(f_ms, ref::vec3(0.999));
-    return f / (ref::vec3(1.0) - f);
-}
-
+// The renderer's orders (ComputeScatteringOrderTexel, the shared GLSL) at this report's LUT
+// resolution, black ground: order 2 alone, H20's series after it, and orders 2 .. `orders` with
+// the series after them (LutSettings::multiple_scattering_orders = `orders`).
 Luts BuildLuts(const ref::AtmosphereParameters& atmosphere, const ref::Texture2D& transmittance,
                int orders) {
     Luts luts;
-    ref::Texture2D order(kLutSize.x, kLutSize.y), f_ms(kLutSize.x, kLutSize.y);
-    const auto uv = [](int x, int y) {
-        return ref::vec2((x + 0.5) / kLutSize.x, (y + 0.5) / kLutSize.y);
-    };
-    for (int y = 0; y < kLutSize.y; ++y) {
-        for (int x = 0; x < kLutSize.x; ++x) {
-            const OrderTexel t = ComputeOrderTexel(atmosphere, transmittance, nullptr, uv(x, y));
-            luts.second_order.at(x, y) = ref::vec4(t.luminance, 1.0);
-            luts.h20.at(x, y) =
-                ref::vec4(t.luminance * (ref::vec3(1.0) + GeometricTail(t.f_ms)), 1.0);
-            luts.iterated.at(x, y) = ref::vec4(t.luminance, 1.0);
-            order.at(x, y) = ref::vec4(t.luminance, 1.0);
-            f_ms.at(x, y) = ref::vec4(t.f_ms, 1.0);
-        }
-    }
-    for (int k = 3; k <= orders; ++k) {
-        ref::Texture2D next(kLutSize.x, kLutSize.y);
+    ref::Texture2D order(kWide, kLutSize.y), next(kWide, kLutSize.y);
+    for (int k = 2; k <= orders; ++k) {
         for (int y = 0; y < kLutSize.y; ++y) {
             for (int x = 0; x < kLutSize.x; ++x) {
-                const OrderTexel t = ComputeOrderTexel(atmosphere, transmittance, &order, uv(x, y));
-                next.at(x, y) = ref::vec4(t.luminance, 1.0);
-                luts.iterated.at(x, y) += ref::vec4(t.luminance, 0.0);
+                const ref::vec2 uv((x + 0.5) / kLutSize.x, (y + 0.5) / kLutSize.y);
+                const ref::ScatteringOrder o = ref::ComputeScatteringOrderTexel(
+                    atmosphere, transmittance, order, k, uv, kLutSize, kDirectionsSqrt, kSteps);
+                const auto texel = [&](ref::Texture2D& t, int tile) -> ref::vec4& {
+                    return t.at(x + tile * kLutSize.x, y);
+                };
+                ref::MultipleScatteringSample sum = o.light;
+                if (k > 2) {
+                    sum = ref::AddMultipleScattering(
+                        ref::MultipleScatteringFromTexels(texel(luts.iterated, 0),
+                                                          texel(luts.iterated, 1),
+                                                          texel(luts.iterated, 2)),
+                        o.light, ref::vec3(1.0));
+                }
+                if (k == orders) sum = ref::ScatteringOrdersSum(sum, o);
+                const ref::MultipleScatteringSample h20 = ref::ScatteringOrdersSum(o.light, o);
+                for (int tile = 0; tile < sky::kMultipleScatteringTiles; ++tile) {
+                    if (k == 2) {
+                        texel(luts.second_order, tile) =
+                            ref::MultipleScatteringTexel(o.light, tile);
+                        texel(luts.h20, tile) = ref::MultipleScatteringTexel(h20, tile);
+                    }
+                    texel(next, tile) = ref::MultipleScatteringTexel(o.light, tile);
+                    texel(luts.iterated, tile) = ref::MultipleScatteringTexel(sum, tile);
+                }
             }
         }
-        order = next;
-    }
-    for (int y = 0; y < kLutSize.y; ++y) {
-        for (int x = 0; x < kLutSize.x; ++x) {
-            const ref::vec3 tail =
-                ref::vec3(order.at(x, y)) * GeometricTail(ref::vec3(f_ms.at(x, y)));
-            luts.iterated.at(x, y) += ref::vec4(tail, 0.0);
-        }
+        std::swap(order, next);
     }
     return luts;
 }

@@ -375,9 +375,9 @@ TEST_F(AtmosphereGlTest, MobileSettingsRenderTheSameSky) {
 
 TEST_F(AtmosphereGlTest, LutMemoryIsAsDocumented) {
     const AtmosphereRenderer gpu(Atmosphere{});
-    // RGBA32F: 16 bytes per texel; 256x64 + 32x32 + 256x1 + 200x100 + 32^3.
+    // RGBA32F: 16 bytes per texel; 256x64 + (3 tiles of 128x32) + 256x1 + 200x100 + 32^3.
     EXPECT_EQ(Inspect(gpu).LutMemoryBytes(),
-              16u * (256 * 64 + 32 * 32 + 256 + 200 * 100 + 32 * 32 * 32));
+              16u * (256 * 64 + 3 * 128 * 32 + 256 + 200 * 100 + 32 * 32 * 32));
 }
 
 }  // namespace

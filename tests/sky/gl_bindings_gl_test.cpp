@@ -401,6 +401,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"shade_directions", kShadeDirectionsImageUnit},
         {"shadow_map_image", kShadowMapImageUnit},
         {"environment_atlas", kEnvironmentImageUnit},
+        {"order_image", kScatteringOrderImageUnit},
     };
     return units;
 }
@@ -423,7 +424,8 @@ const std::map<std::string, glm::ivec3>& ExpectedGroupSizes() {
 }
 
 // The plain (non-block, non-opaque) uniforms, set with glProgramUniform* at the locations of
-// gl/display_uniforms.h: by program label and name, the location and GL type C++ uses.
+// gl/display_uniforms.h and gl/atmosphere_uniforms.h: by program label and name, the location and
+// GL type C++ uses.
 struct ExpectedUniform {
     GLint location;
     GLenum type;
@@ -437,6 +439,10 @@ const std::map<std::string, ExpectedUniform>& ExpectedPlainUniforms() {
         {"display/display.frag:display_origin", {kDisplayOriginLocation, GL_INT_VEC2}},
         {"display/display.frag:display_night", {kDisplayNightLocation, GL_INT}},
         {"display/display.frag:display_depth_mode", {kDisplayDepthModeLocation, GL_INT}},
+        {"atmosphere/multiple_scattering.comp:scattering_order",
+         {kScatteringOrderLocation, GL_INT}},
+        {"atmosphere/multiple_scattering.comp:last_scattering_order",
+         {kLastScatteringOrderLocation, GL_INT}},
     };
     return uniforms;
 }

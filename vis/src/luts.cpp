@@ -169,7 +169,10 @@ void TransmittanceTexelRMu(const Luts& luts, int x, int y, double* r, double* mu
 
 void MultipleScatteringTexelMuSAltitude(const Luts& luts, int x, int y, double* mu_s,
                                         double* altitude) {
-    const glm::ivec2 size(luts.multiple_scattering.size);
+    // Each of the LUT's tiles (functions.glsl: MultipleScatteringTexel) has the same coordinates.
+    const glm::ivec2 size(luts.multiple_scattering.size.x / sky::kMultipleScatteringTiles,
+                          luts.multiple_scattering.size.y);
+    x %= size.x;
     const ref::AtmosphereParameters p = Parameters(luts);
     *mu_s = ref::SunCosineFromUnitRange(
         ref::GetUnitRangeFromTextureCoord(TexelCentre(x, size.x), size.x));

@@ -81,7 +81,7 @@ Luts ComputeLuts(const Scene& scene);
 
 // Transmittance texel -> distance from the planet centre r (m) and view zenith cosine mu.
 void TransmittanceTexelRMu(const Luts& luts, int x, int y, double* r, double* mu);
-// Multiple-scattering texel -> sun zenith cosine mu_s and altitude (m).
+// Multiple-scattering texel (in any of its tiles) -> sun zenith cosine mu_s and altitude (m).
 void MultipleScatteringTexelMuSAltitude(const Luts& luts, int x, int y, double* mu_s,
                                         double* altitude);
 // Irradiance texel -> sun zenith cosine mu_s.

@@ -340,7 +340,7 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
             quantity = "transmittance";
             break;
         case LutKind::kMultipleScattering:
-            quantity = "psi_ms";
+            quantity = "psi_ms_and_moments";
             break;
         case LutKind::kIrradiance:
             quantity = "sky_irradiance_per_lux";
@@ -400,7 +400,9 @@ vtkSmartPointer<vtkImageData> LutImageData(const Luts& luts, LutKind kind) {
             image->GetPointData()->AddArray(altitude);
             image->SetSpacing(1.0, top / kKm / (n.y - 1), 1.0);
             axes =
-                "x: texel (u = 0.5 + 0.5 sign(mu_s) sqrt|mu_s|); y: altitude in km; see "
+                "x: texel (u = 0.5 + 0.5 sign(mu_s) sqrt|mu_s|) in three tiles side by side: "
+                "rgb psi_ms, q_xx, q_zz (the incident light's second moments, z up, x toward "
+                "the sun's azimuth), alpha q_xz's r, g, b; y: altitude in km; see "
                 "sun_zenith_deg, altitude_m";
             break;
         }

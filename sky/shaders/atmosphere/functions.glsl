@@ -335,12 +335,100 @@ vec2 GetMultipleScatteringTextureUv(IN(AtmosphereParameters) atmosphere, Number 
                 GetTextureCoordFromUnitRange(x_h, size.y));
 }
 
+// The light of orders >= 2 arriving at a point, per unit light illuminance, in the point's frame
+// (z up, x toward the light's azimuth): its mean over the sphere, psi = (1 / 4 pi) int L dw (H20's
+// Psi_ms), and its second moments q = (1 / 4 pi) int L w w^T dw, of which the light's vertical
+// plane of symmetry leaves xx, zz and xz (q_yy = psi - q_xx - q_zz; q = psi / 3 I where the light
+// is isotropic). The second moments are what Rayleigh's phase sees of the field (its Legendre
+// terms are P0 and P2): H20 scatters psi isotropically, which past sunset lost 20-60 % of the
+// anti-solar horizon's light, where the shadowed air's light comes from the sunward sky and
+// reaches the eye by backscattering (1.5x isotropic; tests/bench/twilight_orders_report.cpp).
+struct MultipleScatteringSample {
+    vec3 psi;
+    vec3 q_xx;
+    vec3 q_zz;
+    vec3 q_xz;
+};
+
+// The LUT holds three tiles of LutSettings::multiple_scattering_size side by side:
+// (psi, q_xz.r), (q_xx, q_xz.g), (q_zz, q_xz.b). A texel centre of one tile is never filtered
+// with another's (GetTextureCoordFromUnitRange keeps half a texel from each edge).
+vec4 MultipleScatteringTexel(IN(MultipleScatteringSample) m, int tile) {
+    if (tile == 0) return vec4(m.psi, m.q_xz.x);
+    if (tile == 1) return vec4(m.q_xx, m.q_xz.y);
+    return vec4(m.q_zz, m.q_xz.z);
+}
+
+MultipleScatteringSample MultipleScatteringFromTexels(vec4 t0, vec4 t1, vec4 t2) {
+    MultipleScatteringSample m;
+    m.psi = vec3(t0);
+    m.q_xx = vec3(t1);
+    m.q_zz = vec3(t2);
+    m.q_xz = vec3(t0.w, t1.w, t2.w);
+    return m;
+}
+
+// a + b * scale, per moment.
+MultipleScatteringSample AddMultipleScattering(IN(MultipleScatteringSample) a,
+                                               IN(MultipleScatteringSample) b, vec3 scale) {
+    MultipleScatteringSample m;
+    m.psi = a.psi + b.psi * scale;
+    m.q_xx = a.q_xx + b.q_xx * scale;
+    m.q_zz = a.q_zz + b.q_zz * scale;
+    m.q_xz = a.q_xz + b.q_xz * scale;
+    return m;
+}
+
+MultipleScatteringSample NoMultipleScattering() {
+    MultipleScatteringSample m;
+    m.psi = vec3(0.0);
+    m.q_xx = vec3(0.0);
+    m.q_zz = vec3(0.0);
+    m.q_xz = vec3(0.0);
+    return m;
+}
+
+MultipleScatteringSample GetMultipleScatteringSample(
+    IN(AtmosphereParameters) atmosphere, IN(MultipleScatteringTexture) multiple_scattering_texture,
+    Number r, Number mu_s) {
+    ivec2 size = TextureSize(multiple_scattering_texture);
+    size.x /= kMultipleScatteringTiles;
+    vec2 uv = GetMultipleScatteringTextureUv(atmosphere, r, mu_s, size);
+    Number tile = 1.0 / Number(kMultipleScatteringTiles);
+    return MultipleScatteringFromTexels(
+        SampleTexture2D(multiple_scattering_texture, vec2(uv.x * tile, uv.y)),
+        SampleTexture2D(multiple_scattering_texture, vec2((uv.x + 1.0) * tile, uv.y)),
+        SampleTexture2D(multiple_scattering_texture, vec2((uv.x + 2.0) * tile, uv.y)));
+}
+
+// Psi_ms alone, for light scattered as if isotropically (the eclipse's umbra, the clouds).
 vec3 GetMultipleScattering(IN(AtmosphereParameters) atmosphere,
                            IN(MultipleScatteringTexture) multiple_scattering_texture, Number r,
                            Number mu_s) {
-    vec2 uv = GetMultipleScatteringTextureUv(atmosphere, r, mu_s,
-                                             TextureSize(multiple_scattering_texture));
-    return vec3(SampleTexture2D(multiple_scattering_texture, uv));
+    return GetMultipleScatteringSample(atmosphere, multiple_scattering_texture, r, mu_s).psi;
+}
+
+// The multiply scattered light that medium sample `s` at unit `up` (its zenith) scatters along
+// direction `o` or -o (the second moments do not tell them apart), per unit illuminance of the
+// light in `light_direction`: Rayleigh's share with its phase over the moments, the aerosols'
+// isotropically with coefficient mie_weight * sigma_s (1 to render; 1 - g where orders >= 3
+// transfer, ComputeScatteringOrderTexel).
+vec3 MultipleScatteringInScattering(IN(MultipleScatteringSample) m, IN(MediumSample) s, vec3 up,
+                                    vec3 light_direction, vec3 o, Number mie_weight) {
+    Number mu_l = dot(up, light_direction);
+    vec3 horizontal = light_direction - up * mu_l;
+    Number horizontal_length = length(horizontal);
+    Number o_z = dot(o, up);
+    // Overhead light: q is symmetric about the zenith and any horizontal axis serves.
+    Number o_x = horizontal_length > 1e-6 ? dot(o, horizontal) / horizontal_length : 0.0;
+    Number o_y2 = max(1.0 - o_x * o_x - o_z * o_z, 0.0);
+    vec3 q_yy = m.psi - m.q_xx - m.q_zz;
+    // o^T q o; Rayleigh's phase 3 / (16 pi) (1 + cos^2) integrated against L gives
+    // 3/4 (psi + o^T q o), which is psi for an isotropic field.
+    vec3 along = m.q_xx * (o_x * o_x) + q_yy * o_y2 + m.q_zz * (o_z * o_z) +
+                 m.q_xz * (2.0 * o_x * o_z);
+    return s.rayleigh_scattering * (0.75 * (m.psi + along)) +
+           s.mie_scattering * (mie_weight * m.psi);
 }
 
 // Direction i of n on the unit sphere: the Fibonacci (golden-angle) spiral, equal solid angle per
@@ -355,12 +443,39 @@ vec3 UniformSphereDirection(int i, int n) {
     return vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta);
 }
 
-// Psi_ms for one texel (H20 Eq. 5-10): L_2nd_order and f_ms integrated over `sqrt_directions`^2
-// directions with `steps` ray-marching steps each, using the transmittance LUT for the sun, then
-// Psi_ms = L_2nd_order / (1 - f_ms).
-vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
-                                    IN(TransmittanceTexture) transmittance_texture, vec2 uv,
-                                    ivec2 size, int sqrt_directions, int steps) {
+// One order of the multiple scattering for one texel: the light that has scattered k - 1 times,
+// arriving at the texel's point, as MultipleScatteringSample (order k's psi and moments); and
+// f_ms, the share of isotropic light the air around scatters back (H20 Eq. 5-8). Integrated over
+// `sqrt_directions`^2 directions with `steps` ray-marching steps each. Order 2 (H20's
+// L_2nd_order) scatters the sun's light, through the transmittance LUT, Rayleigh with its phase
+// and the aerosols isotropically; order k > 2 scatters order k - 1's, read from `previous_order`
+// (a LUT of the same layout; unused for order 2) by MultipleScatteringInScattering.
+//
+// H20 stops at order 2 and sums the rest as a geometric series, Psi_ms = L_2 / (1 - f_ms) (Eq.
+// 9-10): every further order the same share f_ms of the one before, as if the light of each were
+// spread like order 2's. Past sunset it is not: order 2 lives in the sunlit upper air, order 3
+// already reaches down into Earth's shadow. Iterating a few orders and summing the series only
+// after them (ScatteringOrdersSum) recovered a third to two thirds of the blue that H20 lost at
+// the sunset horizon (tests/bench/twilight_orders_report.cpp).
+// The directions order k integrates over: sqrt_directions^2 for order 2, whose light arrives from
+// the bright sunward sky in a band as narrow as a few degrees past sunset; a quarter as many
+// (at least 16) for later orders, whose light is the sky's scattered light again, spread
+// smoothly. The twilight grid is unchanged within its noise, and the static LUTs cost ~40 % less.
+int ScatteringOrderDirections(int order, int sqrt_directions) {
+    int sqrt_n = order == 2 ? sqrt_directions : max(sqrt_directions / 2, 4);
+    return sqrt_n * sqrt_n;
+}
+
+struct ScatteringOrder {
+    MultipleScatteringSample light;
+    vec3 transfer;  // f_ms
+};
+
+ScatteringOrder ComputeScatteringOrderTexel(IN(AtmosphereParameters) atmosphere,
+                                            IN(TransmittanceTexture) transmittance_texture,
+                                            IN(MultipleScatteringTexture) previous_order,
+                                            int order, vec2 uv, ivec2 size, int sqrt_directions,
+                                            int steps) {
     Number x_mu_s = GetUnitRangeFromTextureCoord(uv.x, size.x);
     Number x_h = GetUnitRangeFromTextureCoord(uv.y, size.y);
     Number mu_s = SunCosineFromUnitRange(x_mu_s);
@@ -371,9 +486,12 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
     vec3 position = vec3(0.0, 0.0, r);
     vec3 sun_direction = vec3(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
 
-    int n = sqrt_directions * sqrt_directions;
-    vec3 l_2nd_order = vec3(0.0);
-    vec3 f_ms = vec3(0.0);
+    // Orders past the second see light already spread over the sky and take a quarter of the
+    // directions (ScatteringOrderDirections).
+    int n = ScatteringOrderDirections(order, sqrt_directions);
+    ScatteringOrder result;
+    result.light = NoMultipleScattering();
+    result.transfer = vec3(0.0);
     for (int i = 0; i < n; ++i) {
         vec3 direction = UniformSphereDirection(i, n);
         Number mu = direction.z;
@@ -391,21 +509,35 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
             MediumSample s = SampleMedium(atmosphere, r_p - atmosphere.bottom_radius);
             vec3 step_transmittance = exp(-s.extinction * dt);
             Number mu_s_p = dot(p, sun_direction) / r_p;
-            vec3 sun = GetTransmittanceToSun(atmosphere, transmittance_texture, r_p, mu_s_p);
             // Energy-conserving integration over the step (Hillaire 2015): the integral of
             // exp(-sigma_t t) over [0, dt] times the in-scattering source.
             vec3 integral = StepIntegral(s.extinction, dt);
-            l += throughput * s.scattering * sun * IsotropicPhase() * integral;  // Eq. 6
-            // Eq. 8, with the aerosols' reduced scattering coefficient (1 - g) sigma_s: H20
-            // transfers orders >= 3 isotropically, and for forward-peaked dust the isotropic
+            // Orders >= 3 transfer the aerosols' light isotropically with their reduced
+            // scattering coefficient (1 - g) sigma_s: for forward-peaked dust the isotropic
             // medium transporting the same light is the reduced one (similarity relation, van de
             // Hulst); light scattered forward is light not yet scattered. Without it Mars' dusty
             // sky (g = 0.65) came out 1.5x the path tracer's.
-            l_f += throughput * (s.scattering - s.mie_scattering * atmosphere.mie_g) * integral;
+            if (order == 2) {
+                vec3 sun = GetTransmittanceToSun(atmosphere, transmittance_texture, r_p, mu_s_p);
+                vec3 phase_scattering =
+                    s.rayleigh_scattering * RayleighPhase(dot(direction, sun_direction)) +
+                    s.mie_scattering * IsotropicPhase();
+                l += throughput * phase_scattering * sun * integral;  // Eq. 6
+            } else {
+                MultipleScatteringSample m =
+                    GetMultipleScatteringSample(atmosphere, previous_order, r_p, mu_s_p);
+                l += throughput *
+                     MultipleScatteringInScattering(m, s, p / r_p, sun_direction, direction,
+                                                    1.0 - atmosphere.mie_g) *
+                     integral;
+            }
+            l_f += throughput * (s.scattering - s.mie_scattering * atmosphere.mie_g) *
+                   integral;  // Eq. 8
             throughput *= step_transmittance;
         }
-        if (hits_ground) {
-            // Lambertian ground lit by the sun (the L_o term of Eq. 6).
+        if (hits_ground && order == 2) {
+            // Lambertian ground lit by the sun (the L_o term of Eq. 6). Like H20's f_ms, later
+            // orders leave out the light the ground reflects again.
             vec3 p = position + direction * t_max;
             vec3 n_ground = normalize(p);
             Number mu_s_ground = dot(n_ground, sun_direction);
@@ -413,11 +545,26 @@ vec3 ComputeMultipleScatteringTexel(IN(AtmosphereParameters) atmosphere,
                                              atmosphere.bottom_radius, mu_s_ground);
             l += throughput * sun * max(mu_s_ground, 0.0) * atmosphere.ground_albedo / kPi;
         }
-        // Eq. 5 and 7 with p_u = 1 / (4 pi) and a solid angle of 4 pi / n per direction.
-        l_2nd_order += l / Number(n);
-        f_ms += l_f / Number(n);
+        // Eq. 5 and 7 with p_u = 1 / (4 pi) and a solid angle of 4 pi / n per direction; the
+        // moments the same with w w^T.
+        MultipleScatteringSample arriving;
+        arriving.psi = l;
+        arriving.q_xx = l * (direction.x * direction.x);
+        arriving.q_zz = l * (direction.z * direction.z);
+        arriving.q_xz = l * (direction.x * direction.z);
+        result.light = AddMultipleScattering(result.light, arriving, vec3(1.0 / Number(n)));
+        result.transfer += l_f / Number(n);
     }
-    return l_2nd_order / (vec3(1.0) - min(f_ms, vec3(0.999)));  // Eq. 9-10
+    return result;
+}
+
+// Psi_ms and its moments once orders 2 .. K are known: `sum` theirs, `last` order K's, which
+// carries the orders beyond it as H20's geometric series, order K f_ms / (1 - f_ms). With K = 2
+// psi is H20's L_2 / (1 - f_ms) (Eq. 10).
+MultipleScatteringSample ScatteringOrdersSum(IN(MultipleScatteringSample) sum,
+                                             IN(ScatteringOrder) last) {
+    vec3 f_ms = min(last.transfer, vec3(0.999));
+    return AddMultipleScattering(sum, last.light, f_ms / (vec3(1.0) - f_ms));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -609,8 +756,11 @@ vec3 LightInScattering(IN(AtmosphereParameters) atmosphere,
     vec3 transmittance = GetTransmittanceToSun(atmosphere, transmittance_texture, r_p, mu_l);
     vec3 phase_scattering = s.rayleigh_scattering * RayleighPhase(nu) +
                             s.mie_scattering * CornetteShanksPhase(atmosphere.mie_g, nu);
-    vec3 psi_ms = GetMultipleScattering(atmosphere, multiple_scattering_texture, r_p, mu_l);
-    return transmittance * phase_scattering * direct + psi_ms * s.scattering * sky;
+    MultipleScatteringSample m =
+        GetMultipleScatteringSample(atmosphere, multiple_scattering_texture, r_p, mu_l);
+    return transmittance * phase_scattering * direct +
+           MultipleScatteringInScattering(m, s, p / r_p, light_direction, view_direction, 1.0) *
+               sky;
 }
 
 // The altitude t km along a ray, and in `r` its radius: r(t)^2 - R^2 = c0 + t (2 b0 + t) with

@@ -178,4 +178,8 @@ struct EnvironmentShStorage {
 };
 static_assert(sizeof(EnvironmentShStorage) == 144);
 
+// Uniform locations of atmosphere/multiple_scattering.comp (layout(location = N)).
+constexpr int kScatteringOrderLocation = 0;      // int scattering_order: k
+constexpr int kLastScatteringOrderLocation = 1;  // int last_scattering_order: K
+
 }  // namespace zenith::sky::gl

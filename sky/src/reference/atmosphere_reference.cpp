@@ -1,7 +1,10 @@
 #include "zenith/sky/reference/atmosphere_reference.h"
 
+#include <utility>
+
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
+#include "reference/monte_carlo.h"
 #include "shader_parameters.h"
 
 namespace zenith::sky::reference {
@@ -55,15 +58,38 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
     d.transmittance_image = ToImage(t);
     d.transmittance = FromImage(d.transmittance_image);
 
-    Texture2D ms(settings.multiple_scattering_size.x, settings.multiple_scattering_size.y);
-    for (int y = 0; y < ms.height(); ++y) {
-        for (int x = 0; x < ms.width(); ++x) {
-            const ref::vec3 value = ref::ComputeMultipleScatteringTexel(
-                d.atmosphere, d.transmittance, TexelCentre(x, y, settings.multiple_scattering_size),
-                settings.multiple_scattering_size, settings.multiple_scattering_directions_sqrt,
-                settings.multiple_scattering_steps);
-            ms.at(x, y) = ref::vec4(value, 1.0);
-        }
+    // Orders 2 .. K (ComputeScatteringOrderTexel), each from the one before, as
+    // AtmospherePasses::BuildMultipleScattering dispatches them.
+    const glm::ivec2 ms_size = settings.multiple_scattering_size;
+    const int wide = ms_size.x * kMultipleScatteringTiles;
+    Texture2D ms(wide, ms_size.y), order(wide, ms_size.y), next(wide, ms_size.y);
+    for (int k = 2; k <= settings.multiple_scattering_orders; ++k) {
+        // Rows on every core: this LUT is most of the reference's construction.
+        monte_carlo::ParallelFor(ms_size.y, 0, [&](std::int64_t row) {
+            const int y = static_cast<int>(row);
+            for (int x = 0; x < ms_size.x; ++x) {
+                const ref::ScatteringOrder o = ref::ComputeScatteringOrderTexel(
+                    d.atmosphere, d.transmittance, order, k, TexelCentre(x, y, ms_size), ms_size,
+                    settings.multiple_scattering_directions_sqrt,
+                    settings.multiple_scattering_steps);
+                const auto texel = [&](Texture2D& lut, int tile) -> ref::vec4& {
+                    return lut.at(x + tile * ms_size.x, y);
+                };
+                ref::MultipleScatteringSample sum = o.light;
+                if (k > 2) {
+                    sum = ref::AddMultipleScattering(
+                        ref::MultipleScatteringFromTexels(texel(ms, 0), texel(ms, 1), texel(ms, 2)),
+                        o.light, ref::vec3(1.0));
+                }
+                if (k == settings.multiple_scattering_orders)
+                    sum = ref::ScatteringOrdersSum(sum, o);
+                for (int tile = 0; tile < kMultipleScatteringTiles; ++tile) {
+                    texel(next, tile) = ref::MultipleScatteringTexel(o.light, tile);
+                    texel(ms, tile) = ref::MultipleScatteringTexel(sum, tile);
+                }
+            }
+        });
+        std::swap(order, next);
     }
     d.multiple_scattering_image = ToImage(ms);
     d.multiple_scattering = FromImage(d.multiple_scattering_image);

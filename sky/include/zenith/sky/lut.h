@@ -18,9 +18,19 @@ namespace zenith::sky {
 struct LutSettings {
     glm::ivec2 transmittance_size{256, 64};
     int transmittance_steps = 40;
-    glm::ivec2 multiple_scattering_size{32, 32};
-    int multiple_scattering_directions_sqrt = 8;  // 8 x 8 = 64 directions (H20 §5.5.3)
+    // H20 §5.5.3 has 32 x 32 texels and 64 directions. Past sunset that is too coarse for the
+    // orders and moments below: 32 texels in sqrt|mu_s| are ~2.3 deg of sun elevation apart at
+    // 96 deg, where the twilight sky falls ~3x per degree, and 64 directions are ~25 deg apart,
+    // wider than the bright sunward horizon that lights Earth's shadow. 128 texels and 256
+    // directions meet issue 18's twilight goal (BENCHMARKS.md, "Twilight grid").
+    glm::ivec2 multiple_scattering_size{128, 32};
+    int multiple_scattering_directions_sqrt = 16;  // 16 x 16 = 256 directions
     int multiple_scattering_steps = 20;
+    // Orders of scattering integrated one from another before H20's geometric series takes the
+    // rest (ComputeScatteringOrderTexel in atmosphere/functions.glsl); 2 is H20's L_2 / (1 -
+    // f_ms). Each order is one more pass of the multiple-scattering LUT's cost, when the
+    // atmosphere changes only.
+    int multiple_scattering_orders = 3;
     // 256 (the paper has no such LUT): between texels it stays within 4 % of the exact integral
     // through twilight, where the sky's illuminance falls ~3x per degree of sun depression.
     glm::ivec2 irradiance_size{256, 1};
