@@ -1,19 +1,17 @@
-// Where the twilight sky's error comes from (issue 18 §2): H20's multiple-scattering LUT makes two
-// assumptions past the second order and one in it, and this report measures each against the
-// path tracer on the rays where the twilight grid fails (accuracy_report --grid twilight):
+// Where the twilight sky's error comes from (issue 18 §2), against the path tracer on the rays
+// where H20's form failed the twilight grid (accuracy_report --grid twilight):
 //
-//   order <= 2     the renderer with Psi = L_2 only (H20 Eq. 5-6: the second order, scattered
-//                  isotropically at both vertices) against the path tracer's paths of at most two
-//                  scattering vertices: what the isotropic second order alone costs;
-//   H20            Psi = L_2 / (1 - f_ms) (Eq. 9-10, the shipped form) against unbounded paths;
-//   iterated       Psi = L_2 + L_3 + ... + L_K + L_K f_ms / (1 - f_ms), each order L_(n+1)
-//                  integrated from L_n through the LUT (isotropic transfer, as H20's f_ms; the
-//                  LUT stays 2-D because the atmosphere is spherically symmetric), against
-//                  unbounded paths: what H20's local geometric series costs.
+//   order <= 2     the renderer's Psi = order 2 alone against the path tracer's paths of at most
+//                  two scattering vertices: what the second order's own treatment costs;
+//   H20            order 2, then H20's series L_2 f_ms / (1 - f_ms) (Eq. 9-10), against
+//                  unbounded paths;
+//   iterated       orders 2 .. K, each integrated from the one before through the LUT, then the
+//                  series (LutSettings::multiple_scattering_orders = K), against unbounded paths.
 //
-// The three share one LUT resolution (converged: see BENCHMARKS.md) and the renderer's single
-// scattering (IntegrateScatteredLuminance, the shared GLSL); the iterated column is what the
-// renderer does with LutSettings::multiple_scattering_orders = K at this resolution.
+// The three share one LUT resolution and sampling (kLutSize, kDirectionsSqrt, kSteps) and the
+// renderer's shared GLSL. Since 484c981 every order carries the second moments of its light and
+// the air scatters them with Rayleigh's phase (functions.glsl, MultipleScatteringSample); the
+// table in BENCHMARKS.md ("before the fix") was made at ea3e6ee, when they were isotropic.
 //
 //   twilight_orders_report [--paths N] [--orders K] [--threads T]
 

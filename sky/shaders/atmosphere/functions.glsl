@@ -460,7 +460,8 @@ vec3 UniformSphereDirection(int i, int n) {
 // The directions order k integrates over: sqrt_directions^2 for order 2, whose light arrives from
 // the bright sunward sky in a band as narrow as a few degrees past sunset; a quarter as many
 // (at least 16) for later orders, whose light is the sky's scattered light again, spread
-// smoothly. The twilight grid is unchanged within its noise, and the static LUTs cost ~40 % less.
+// smoothly. The twilight grid's p95 moved by under a point, and the static LUTs cost a third
+// less (BENCHMARKS.md).
 int ScatteringOrderDirections(int order, int sqrt_directions) {
     int sqrt_n = order == 2 ? sqrt_directions : max(sqrt_directions / 2, 4);
     return sqrt_n * sqrt_n;
