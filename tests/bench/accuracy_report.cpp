@@ -52,6 +52,7 @@ namespace {
 using zenith::sky::reference::AccuracyOptions;
 using zenith::sky::reference::AccuracyResult;
 using zenith::sky::reference::AccuracyScenario;
+using zenith::sky::reference::LocalDirection;
 
 // RGB triple as "a, b, c" scaled by `scale`, `digits` after the point.
 std::string Triple(const glm::dvec3& v, double scale, int digits) {
@@ -132,11 +133,6 @@ const double kSunZenithsDeg[] = {80.0, 85.0, 90.0, 95.0, 96.0, 100.0, 102.0};
 const double kAltitudesM[] = {1.0, 1e3, 5e3, 10e3};  // "0 km" is 1 m above the ground
 
 // Local frame of the observer: +y up, azimuth 0 along +x (the sun's azimuth).
-glm::dvec3 LocalDirection(double elevation, double azimuth) {
-    return {std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
-            std::cos(elevation) * std::sin(azimuth)};
-}
-
 struct TwilightRow {
     double sun_zenith_deg = 0.0;
     double altitude_m = 0.0;

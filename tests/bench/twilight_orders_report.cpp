@@ -29,6 +29,7 @@
 #include "reference/lut_texture.h"
 #include "shader_parameters.h"
 #include "zenith/sky/atmosphere.h"
+#include "zenith/sky/reference/accuracy.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
 #include "zenith/sky/reference/path_tracer.h"
 
@@ -43,59 +44,42 @@ constexpr int kDirectionsSqrt = 16;
 constexpr int kSteps = 40;
 constexpr int kViewSteps = 100;
 
-constexpr int kWide = kLutSize.x * sky::kMultipleScatteringTiles;
-
-struct Luts {
-    ref::Texture2D second_order{kWide, kLutSize.y};
-    ref::Texture2D h20{kWide, kLutSize.y};
-    ref::Texture2D iterated{kWide, kLutSize.y};
-};
-
-// The renderer's orders (ComputeScatteringOrderTexel, the shared GLSL) at this report's LUT
-// resolution, black ground: order 2 alone, H20's series after it, and orders 2 .. `orders` with
-// the series after them (LutSettings::multiple_scattering_orders = `orders`).
-Luts BuildLuts(const ref::AtmosphereParameters& atmosphere, const ref::Texture2D& transmittance,
-               int orders) {
-    Luts luts;
-    ref::Texture2D order(kWide, kLutSize.y), next(kWide, kLutSize.y);
-    for (int k = 2; k <= orders; ++k) {
-        for (int y = 0; y < kLutSize.y; ++y) {
-            for (int x = 0; x < kLutSize.x; ++x) {
-                const ref::vec2 uv((x + 0.5) / kLutSize.x, (y + 0.5) / kLutSize.y);
-                const ref::ScatteringOrder o = ref::ComputeScatteringOrderTexel(
-                    atmosphere, transmittance, order, k, uv, kLutSize, kDirectionsSqrt, kSteps);
-                const auto texel = [&](ref::Texture2D& t, int tile) -> ref::vec4& {
-                    return t.at(x + tile * kLutSize.x, y);
-                };
-                ref::MultipleScatteringSample sum = o.light;
-                if (k > 2) {
-                    sum = ref::AddMultipleScattering(
-                        ref::MultipleScatteringFromTexels(texel(luts.iterated, 0),
-                                                          texel(luts.iterated, 1),
-                                                          texel(luts.iterated, 2)),
-                        o.light, ref::vec3(1.0));
-                }
-                if (k == orders) sum = ref::ScatteringOrdersSum(sum, o);
-                const ref::MultipleScatteringSample h20 = ref::ScatteringOrdersSum(o.light, o);
-                for (int tile = 0; tile < sky::kMultipleScatteringTiles; ++tile) {
-                    if (k == 2) {
-                        texel(luts.second_order, tile) =
-                            ref::MultipleScatteringTexel(o.light, tile);
-                        texel(luts.h20, tile) = ref::MultipleScatteringTexel(h20, tile);
-                    }
-                    texel(next, tile) = ref::MultipleScatteringTexel(o.light, tile);
-                    texel(luts.iterated, tile) = ref::MultipleScatteringTexel(sum, tile);
-                }
-            }
-        }
-        std::swap(order, next);
-    }
-    return luts;
+// The report's LUT resolution and sampling (LutSettings::Pc()'s, finer): `orders` orders.
+sky::LutSettings Settings(int orders) {
+    sky::LutSettings settings = sky::LutSettings::Pc();
+    settings.multiple_scattering_size = kLutSize;
+    settings.multiple_scattering_directions_sqrt = kDirectionsSqrt;
+    settings.multiple_scattering_steps = kSteps;
+    settings.multiple_scattering_orders = orders;
+    return settings;
 }
 
-glm::dvec3 LocalDirection(double elevation, double azimuth) {
-    return {std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
-            std::cos(elevation) * std::sin(azimuth)};
+// Order 2 alone and H20's series after it (AccumulateScatteringOrder with K = 2), from the
+// renderer's shared GLSL at the report's resolution. The iterated LUT is AtmosphereReference's.
+struct SecondOrderLuts {
+    ref::Texture2D alone{kLutSize.x * sky::kMultipleScatteringTiles, kLutSize.y};
+    ref::Texture2D h20{kLutSize.x * sky::kMultipleScatteringTiles, kLutSize.y};
+};
+
+SecondOrderLuts BuildSecondOrder(const ref::AtmosphereParameters& atmosphere,
+                                 const ref::Texture2D& transmittance) {
+    SecondOrderLuts luts;
+    const ref::Texture2D no_order(1, 1);  // order 2 reads no order before it
+    for (int y = 0; y < kLutSize.y; ++y) {
+        for (int x = 0; x < kLutSize.x; ++x) {
+            const ref::vec2 uv((x + 0.5) / kLutSize.x, (y + 0.5) / kLutSize.y);
+            const ref::ScatteringOrder o = ref::ComputeScatteringOrderTexel(
+                atmosphere, transmittance, no_order, 2, uv, kLutSize, kDirectionsSqrt, kSteps);
+            const ref::MultipleScatteringSample h20 =
+                ref::AccumulateScatteringOrder(o.light, o, 2, 2);
+            for (int tile = 0; tile < sky::kMultipleScatteringTiles; ++tile) {
+                luts.alone.at(x + tile * kLutSize.x, y) =
+                    ref::MultipleScatteringTexel(o.light, tile);
+                luts.h20.at(x + tile * kLutSize.x, y) = ref::MultipleScatteringTexel(h20, tile);
+            }
+        }
+    }
+    return luts;
 }
 
 [[noreturn]] void Usage(const std::string& message) {
@@ -129,7 +113,7 @@ int main(int argc, char** argv) {
         if (!std::strcmp(flag, "--paths")) {
             paths = ParseCount(flag, value, 2, 1L << 26);
         } else if (!std::strcmp(flag, "--orders")) {
-            orders = static_cast<int>(ParseCount(flag, value, 2, 50));
+            orders = static_cast<int>(ParseCount(flag, value, 2, 32));
         } else if (!std::strcmp(flag, "--threads")) {
             threads = static_cast<int>(ParseCount(flag, value, 0, 1024));
         } else {
@@ -139,10 +123,11 @@ int main(int argc, char** argv) {
 
     sky::Atmosphere earth = sky::LoadAtmosphere("earth");
     earth.ground_albedo = glm::dvec3(0.0);
-    const sky::reference::AtmosphereReference shipped(earth, sky::LutSettings::Pc());
+    const sky::reference::AtmosphereReference iterated(earth, Settings(orders));
     const auto atmosphere = sky::MakeShaderParameters<ref::AtmosphereParameters>(earth);
-    const ref::Texture2D transmittance = ref::FromImage(shipped.transmittance());
-    const Luts luts = BuildLuts(atmosphere, transmittance, orders);
+    const ref::Texture2D transmittance = ref::FromImage(iterated.transmittance());
+    const SecondOrderLuts second_order = BuildSecondOrder(atmosphere, transmittance);
+    const ref::Texture2D iterated_lut = ref::FromImage(iterated.multiple_scattering());
     const ref::Texture2D unused(1, 1);
 
     std::printf(
@@ -165,14 +150,14 @@ int main(int argc, char** argv) {
     std::uint64_t seed = 1;
     for (const double sun_zenith : {90.0, 95.0, 96.0}) {
         sky::Lights lights;
-        lights.sun_direction = LocalDirection((90.0 - sun_zenith) * kDeg, 0.0);
+        lights.sun_direction = sky::reference::LocalDirection((90.0 - sun_zenith) * kDeg, 0.0);
         lights.sun_illuminance = earth.solar_illuminance;
         for (const double altitude : {1.0, 1e3, 5e3}) {  // m; "0 km" is 1 m
             const glm::dvec3 camera(0.0, earth.bottom_radius + altitude, 0.0);
             const auto light_set = sky::MakeLightSet<ref::LightSet>(lights, camera);
             for (const auto& view : views) {
                 const glm::dvec3 direction =
-                    LocalDirection(view.elevation * kDeg, view.azimuth * kDeg);
+                    sky::reference::LocalDirection(view.elevation * kDeg, view.azimuth * kDeg);
                 const auto march = [&](const ref::Texture2D& multiple_scattering) {
                     return ref::IntegrateScatteredLuminance(atmosphere, transmittance,
                                                             multiple_scattering, unused, light_set,
@@ -204,9 +189,9 @@ int main(int argc, char** argv) {
                 const sky::reference::PathTraceResult all = trace(0);
                 std::printf("| %.0f° | %.0f km | %s | %s | %s | %s |\n", sun_zenith,
                             altitude < 100.0 ? 0.0 : altitude / 1e3, view.name,
-                            cell(march(luts.second_order), two).c_str(),
-                            cell(march(luts.h20), all).c_str(),
-                            cell(march(luts.iterated), all).c_str());
+                            cell(march(second_order.alone), two).c_str(),
+                            cell(march(second_order.h20), all).c_str(),
+                            cell(march(iterated_lut), all).c_str());
                 std::fflush(stdout);
             }
         }

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include "zenith/base/error.h"
@@ -182,21 +183,17 @@ TEST(Accuracy, TwilightHorizonAwayFromTheSun) {
     Atmosphere earth = LoadAtmosphere("earth");
     earth.ground_albedo = glm::dvec3(0.0);
     const AtmosphereReference renderer(earth, LutSettings::Pc());
-    constexpr double kDeg = 3.14159265358979323846 / 180.0;
-    const auto local = [](double elevation, double azimuth) {
-        return glm::dvec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
-                          std::cos(elevation) * std::sin(azimuth));
-    };
+    constexpr double kDeg = std::numbers::pi / 180.0;
     const struct {
         double sun_zenith_deg, view_azimuth_deg, bound;
     } rays[] = {{90.0, 180.0, 0.06}, {90.0, 90.0, 0.06}, {95.0, 180.0, 0.15}, {95.0, 90.0, 0.15}};
     std::uint64_t seed = 1;
     for (const auto& ray : rays) {
         Lights lights;
-        lights.sun_direction = local((90.0 - ray.sun_zenith_deg) * kDeg, 0.0);
+        lights.sun_direction = LocalDirection((90.0 - ray.sun_zenith_deg) * kDeg, 0.0);
         lights.sun_illuminance = earth.solar_illuminance;
         const glm::dvec3 camera(0.0, earth.bottom_radius + 1.0, 0.0);  // 1 m above the ground
-        const glm::dvec3 direction = local(1.0 * kDeg, ray.view_azimuth_deg * kDeg);
+        const glm::dvec3 direction = LocalDirection(1.0 * kDeg, ray.view_azimuth_deg * kDeg);
         const glm::dvec3 lut = renderer.SampleSkyView(renderer.SkyView(camera, lights), camera,
                                                       lights.sun_direction, direction);
         PathTraceOptions options;

@@ -568,6 +568,16 @@ MultipleScatteringSample ScatteringOrdersSum(IN(MultipleScatteringSample) sum,
     return AddMultipleScattering(sum, last.light, f_ms / (vec3(1.0) - f_ms));
 }
 
+// The LUT once order k of K is in: order k's light added to `sum_before`, the LUT after order
+// k - 1 (not read when k = 2), and after order K the orders beyond it (ScatteringOrdersSum).
+MultipleScatteringSample AccumulateScatteringOrder(IN(MultipleScatteringSample) sum_before,
+                                                   IN(ScatteringOrder) order, int k, int last) {
+    MultipleScatteringSample sum = order.light;
+    if (k > 2) sum = AddMultipleScattering(sum_before, order.light, vec3(1.0));
+    if (k == last) sum = ScatteringOrdersSum(sum, order);
+    return sum;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Sky irradiance on the ground, per unit light illuminance, as a function of the light's zenith
 // cosine (u = UnitRangeFromSunCosine(mu_s), as the multiple-scattering LUT): lets the ground be lit

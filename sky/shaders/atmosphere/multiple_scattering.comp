@@ -17,15 +17,11 @@ void main() {
         atmosphere, transmittance_texture, multiple_scattering_texture, scattering_order, uv,
         multiple_scattering_size, multiple_scattering_directions_sqrt, multiple_scattering_steps);
     ivec2 tile = ivec2(multiple_scattering_size.x, 0);
-    MultipleScatteringSample sum = o.light;
-    if (scattering_order > 2) {
-        sum = AddMultipleScattering(
-            MultipleScatteringFromTexels(imageLoad(output_image, texel),
-                                         imageLoad(output_image, texel + tile),
-                                         imageLoad(output_image, texel + 2 * tile)),
-            o.light, vec3(1.0));
-    }
-    if (scattering_order == last_scattering_order) sum = ScatteringOrdersSum(sum, o);
+    MultipleScatteringSample sum = AccumulateScatteringOrder(
+        MultipleScatteringFromTexels(imageLoad(output_image, texel),
+                                     imageLoad(output_image, texel + tile),
+                                     imageLoad(output_image, texel + 2 * tile)),
+        o, scattering_order, last_scattering_order);
     for (int t = 0; t < kMultipleScatteringTiles; ++t) {
         imageStore(order_image, texel + t * tile, MultipleScatteringTexel(o.light, t));
         imageStore(output_image, texel + t * tile, MultipleScatteringTexel(sum, t));

@@ -9,6 +9,12 @@
 #include "zenith/sky/reference/atmosphere_reference.h"
 
 namespace zenith::sky::reference {
+
+glm::dvec3 LocalDirection(double elevation, double azimuth) {
+    return {std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+            std::cos(elevation) * std::sin(azimuth)};
+}
+
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -19,13 +25,6 @@ constexpr double kGroundCameraHeight = 500.0;  // m
 // the whole disk with its limb fits in a 3:2 frame.
 constexpr double kSpaceDistanceInRadii = 2.5;
 constexpr double kSpaceFov = 60.0 * kDeg;
-
-// A direction in the ground camera's frame: +y up, azimuth 0 along +x, +90 deg along +z (the
-// camera's right when it looks along +x with +y up).
-glm::dvec3 Direction(double elevation, double azimuth) {
-    return {std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
-            std::cos(elevation) * std::sin(azimuth)};
-}
 
 Atmosphere BlackGround(Atmosphere atmosphere) {
     atmosphere.ground_albedo = glm::dvec3(0.0);
@@ -40,10 +39,10 @@ AccuracyScenario GroundView(std::string name, std::string description, const Atm
     s.description = std::move(description);
     s.atmosphere = BlackGround(atmosphere);
     s.camera_position = {0.0, atmosphere.bottom_radius + kGroundCameraHeight, 0.0};
-    s.forward = Direction(view_elevation, 0.0);
+    s.forward = LocalDirection(view_elevation, 0.0);
     s.up = {0.0, 1.0, 0.0};
     s.vertical_fov = vertical_fov;
-    s.sun_direction = Direction(sun_elevation, sun_azimuth);
+    s.sun_direction = LocalDirection(sun_elevation, sun_azimuth);
     return s;
 }
 

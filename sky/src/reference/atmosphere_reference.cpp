@@ -75,14 +75,9 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
                 const auto texel = [&](Texture2D& lut, int tile) -> ref::vec4& {
                     return lut.at(x + tile * ms_size.x, y);
                 };
-                ref::MultipleScatteringSample sum = o.light;
-                if (k > 2) {
-                    sum = ref::AddMultipleScattering(
-                        ref::MultipleScatteringFromTexels(texel(ms, 0), texel(ms, 1), texel(ms, 2)),
-                        o.light, ref::vec3(1.0));
-                }
-                if (k == settings.multiple_scattering_orders)
-                    sum = ref::ScatteringOrdersSum(sum, o);
+                const ref::MultipleScatteringSample sum = ref::AccumulateScatteringOrder(
+                    ref::MultipleScatteringFromTexels(texel(ms, 0), texel(ms, 1), texel(ms, 2)), o,
+                    k, settings.multiple_scattering_orders);
                 for (int tile = 0; tile < kMultipleScatteringTiles; ++tile) {
                     texel(next, tile) = ref::MultipleScatteringTexel(o.light, tile);
                     texel(ms, tile) = ref::MultipleScatteringTexel(sum, tile);

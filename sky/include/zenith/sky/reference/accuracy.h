@@ -52,6 +52,10 @@ struct AccuracyScenario {
     glm::dvec3 paper_rmse{0.0};
 };
 
+// A direction (radians) in the frame of the ground views: +y up, azimuth 0 along +x, +90 deg
+// along +z (the camera's right when it looks along +x with +y up).
+glm::dvec3 LocalDirection(double elevation, double azimuth);
+
 // The six scenarios, in this order: earth_daytime, earth_sunset, earth_shadow (sun 4 deg below
 // the horizon, 150 deg field of view), earth_space, mars_space, thick_daytime (50x Rayleigh,
 // scale height 20 km). Loads the presets (LoadAtmosphere), so it throws AtmosphereError if they
