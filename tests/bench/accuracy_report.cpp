@@ -26,11 +26,11 @@
 // cannot reach C (below) within M at its rate after 65536 paths stops there. The summary
 // (median and p95 of |renderer / path tracer - 1|) keeps the rays whose relative standard error
 // is <= C (0.025) in every channel; past sunset the path tracer may not get there within M.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <numbers>
@@ -60,40 +60,6 @@ std::string Triple(const glm::dvec3& v, double scale, int digits) {
     std::snprintf(text, sizeof(text), "%.*f, %.*f, %.*f", digits, v.x * scale, digits, v.y * scale,
                   digits, v.z * scale);
     return text;
-}
-
-[[noreturn]] void Usage(const char* message) {
-    std::fprintf(
-        stderr,
-        "accuracy_report: %s\nusage: accuracy_report [--grid paper] [--width W] "
-        "[--height H] [--samples N] [--thick-samples N] [--threads T] [--seed S] "
-        "[--only NAME]\n       accuracy_report --grid twilight [--samples N] "
-        "[--max-samples M] [--target-se E] [--converged-se C] [--threads T] [--seed S]\n"
-        "                [--ms-width W] [--ms-height H] [--ms-directions-sqrt D] [--ms-steps N] "
-        "[--ms-orders K]\n"
-        "       accuracy_report --grid illuminance [--samples N] [--threads T] [--seed S]\n",
-        message);
-    std::exit(2);
-}
-
-long long ParseInteger(const char* flag, const char* text, long long low, long long high) {
-    char* end = nullptr;
-    const long long value = std::strtoll(text, &end, 10);
-    if (end == text || *end != '\0' || value < low || value > high) {
-        Usage((std::string(flag) + " " + text + " is out of range [" + std::to_string(low) + ", " +
-               std::to_string(high) + "]")
-                  .c_str());
-    }
-    return value;
-}
-
-double ParseReal(const char* flag, const char* text, double low, double high) {
-    char* end = nullptr;
-    const double value = std::strtod(text, &end);
-    if (end == text || *end != '\0' || !(value >= low && value <= high)) {
-        Usage((std::string(flag) + " " + text + " is out of range").c_str());
-    }
-    return value;
 }
 
 // --- The twilight grid ----------------------------------------------------------------------
@@ -597,65 +563,48 @@ int main(int argc, char** argv) {
     std::int64_t thick_samples = 256;
     std::string only;
     std::string grid = "paper";
-    bool samples_given = false;
-    bool lut_given = false;
     TwilightOptions twilight;
-    for (int i = 1; i < argc; ++i) {
-        const char* flag = argv[i];
-        if (i + 1 >= argc) Usage((std::string("missing value after ") + flag).c_str());
-        const char* value = argv[++i];
-        if (!std::strcmp(flag, "--width")) {
-            options.width = static_cast<int>(ParseInteger(flag, value, 1, 4096));
-        } else if (!std::strcmp(flag, "--height")) {
-            options.height = static_cast<int>(ParseInteger(flag, value, 1, 4096));
-        } else if (!std::strcmp(flag, "--samples")) {
-            options.samples = ParseInteger(flag, value, 2, 1 << 24);
-            samples_given = true;
-        } else if (!std::strcmp(flag, "--max-samples")) {
-            twilight.max_samples = ParseInteger(flag, value, 2, 1LL << 40);
-        } else if (!std::strcmp(flag, "--target-se")) {
-            twilight.target_se = ParseReal(flag, value, 0.0, 1.0);
-        } else if (!std::strcmp(flag, "--converged-se")) {
-            twilight.converged_se = ParseReal(flag, value, 0.0, 1.0);
-        } else if (!std::strcmp(flag, "--ms-width")) {
-            lut_given = true;
-            twilight.lut.multiple_scattering_size.x =
-                static_cast<int>(ParseInteger(flag, value, 2, 4096));
-        } else if (!std::strcmp(flag, "--ms-height")) {
-            lut_given = true;
-            twilight.lut.multiple_scattering_size.y =
-                static_cast<int>(ParseInteger(flag, value, 2, 4096));
-        } else if (!std::strcmp(flag, "--ms-directions-sqrt")) {
-            lut_given = true;
-            twilight.lut.multiple_scattering_directions_sqrt =
-                static_cast<int>(ParseInteger(flag, value, 1, 256));
-        } else if (!std::strcmp(flag, "--ms-steps")) {
-            lut_given = true;
-            twilight.lut.multiple_scattering_steps =
-                static_cast<int>(ParseInteger(flag, value, 1, 4096));
-        } else if (!std::strcmp(flag, "--ms-orders")) {
-            lut_given = true;
-            twilight.lut.multiple_scattering_orders =
-                static_cast<int>(ParseInteger(flag, value, 2, 32));
-        } else if (!std::strcmp(flag, "--grid")) {
-            grid = value;
-            if (grid != "paper" && grid != "twilight" && grid != "illuminance" && grid != "night") {
-                Usage("--grid is paper, twilight, illuminance or night");
-            }
-        } else if (!std::strcmp(flag, "--thick-samples")) {
-            thick_samples = ParseInteger(flag, value, 2, 1 << 24);
-        } else if (!std::strcmp(flag, "--threads")) {
-            options.threads = static_cast<int>(ParseInteger(flag, value, 0, 1024));
-        } else if (!std::strcmp(flag, "--seed")) {
-            options.seed = static_cast<std::uint64_t>(ParseInteger(flag, value, 0, 1LL << 62));
-        } else if (!std::strcmp(flag, "--only")) {
-            only = value;
-        } else {
-            Usage((std::string("unknown option ") + flag).c_str());
-        }
+    CLI::App app{"Accuracy of the LUT renderer against the path tracer (BENCHMARKS.md)"};
+    app.add_option("--grid", grid, "paper (Hillaire 2020 §6), twilight, illuminance or night")
+        ->check(CLI::IsMember({"paper", "twilight", "illuminance", "night"}));
+    app.add_option("--width", options.width, "paper grid: image width")->check(CLI::Range(1, 4096));
+    app.add_option("--height", options.height, "paper grid: image height")
+        ->check(CLI::Range(1, 4096));
+    const CLI::Option* samples =
+        app.add_option("--samples", options.samples, "paths per pixel, ray or view")
+            ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 24));
+    app.add_option("--thick-samples", thick_samples, "paper grid: paths per pixel, thick_daytime")
+        ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 24));
+    app.add_option("--only", only, "paper grid: this scenario alone");
+    app.add_option("--threads", options.threads, "0: every core")->check(CLI::Range(0, 1024));
+    app.add_option("--seed", options.seed)
+        ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
+    app.add_option("--max-samples", twilight.max_samples, "twilight grid: paths per ray at most")
+        ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 40));
+    app.add_option("--target-se", twilight.target_se,
+                   "twilight grid: relative standard error to stop at")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--converged-se", twilight.converged_se,
+                   "twilight grid: relative standard error of a converged ray")
+        ->check(CLI::Range(0.0, 1.0));
+    CLI::Option_group* lut = app.add_option_group("twilight grid's multiple-scattering LUT");
+    lut->add_option("--ms-width", twilight.lut.multiple_scattering_size.x)
+        ->check(CLI::Range(2, 1024));
+    lut->add_option("--ms-height", twilight.lut.multiple_scattering_size.y)
+        ->check(CLI::Range(2, 1024));
+    lut->add_option("--ms-directions-sqrt", twilight.lut.multiple_scattering_directions_sqrt)
+        ->check(CLI::Range(1, 64));
+    lut->add_option("--ms-steps", twilight.lut.multiple_scattering_steps)
+        ->check(CLI::Range(1, 10000));
+    lut->add_option("--ms-orders", twilight.lut.multiple_scattering_orders)
+        ->check(CLI::Range(2, 32));
+    CLI11_PARSE(app, argc, argv);
+    const bool samples_given = samples->count() > 0;
+    if (grid != "twilight" && lut->count_all() > 0) {
+        std::fprintf(stderr, "accuracy_report: --ms-* apply to --grid twilight only\n");
+        return 2;
     }
 
-    if (lut_given && grid != "twilight") Usage("--ms-* apply to --grid twilight only");
     if (grid == "illuminance" || grid == "night") {
         IlluminanceOptions illuminance;
         if (grid == "night") illuminance.paths = 1 << 18;  // per view

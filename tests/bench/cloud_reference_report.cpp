@@ -17,12 +17,11 @@
 //   N paths per pixel.
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -46,24 +45,6 @@ using namespace zenith::sky;
 using namespace zenith::sky::reference;
 
 constexpr double kPi = std::numbers::pi;
-
-[[noreturn]] void Usage(const std::string& message) {
-    std::fprintf(stderr,
-                 "cloud_reference_report: %s\nusage: cloud_reference_report --part "
-                 "energy|overcast|cumulus [--samples N] [--threads T] [--seed S]\n",
-                 message.c_str());
-    std::exit(2);
-}
-
-long long ParseInteger(const char* flag, const char* text, long long low, long long high) {
-    char* end = nullptr;
-    const long long value = std::strtoll(text, &end, 10);
-    if (end == text || *end != '\0' || value < low || value > high) {
-        Usage(std::string(flag) + " " + text + " is out of range [" + std::to_string(low) + ", " +
-              std::to_string(high) + "]");
-    }
-    return value;
-}
 
 void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
     std::printf(
@@ -226,30 +207,21 @@ int main(int argc, char** argv) {
     std::int64_t samples = 0;
     int threads = 2;
     std::uint64_t seed = 1;
-    for (int i = 1; i < argc; ++i) {
-        const char* flag = argv[i];
-        if (i + 1 >= argc) Usage(std::string("missing value after ") + flag);
-        const char* value = argv[++i];
-        if (!std::strcmp(flag, "--part")) {
-            part = value;
-        } else if (!std::strcmp(flag, "--samples")) {
-            samples = ParseInteger(flag, value, 2, 1LL << 32);
-        } else if (!std::strcmp(flag, "--threads")) {
-            threads = static_cast<int>(ParseInteger(flag, value, 1, 1024));
-        } else if (!std::strcmp(flag, "--seed")) {
-            seed = static_cast<std::uint64_t>(ParseInteger(flag, value, 0, 1LL << 62));
-        } else {
-            Usage(std::string("unknown option ") + flag);
-        }
-    }
+    CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
+    app.add_option("--part", part, "energy, overcast or cumulus")
+        ->required()
+        ->check(CLI::IsMember({"energy", "overcast", "cumulus"}));
+    app.add_option("--samples", samples, "paths (default: 20000, 20000, 256 per pixel)")
+        ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 32));
+    app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
+    app.add_option("--seed", seed)->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
+    CLI11_PARSE(app, argc, argv);
     if (part == "energy") {
         EnergyPart(samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "overcast") {
         OvercastPart(samples > 0 ? samples : 20000, threads, seed);
-    } else if (part == "cumulus") {
-        CumulusPart(samples > 0 ? samples : 256, threads, seed);
     } else {
-        Usage("--part must be energy, overcast or cumulus");
+        CumulusPart(samples > 0 ? samples : 256, threads, seed);
     }
     return 0;
 }

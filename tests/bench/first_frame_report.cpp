@@ -1,16 +1,16 @@
 // What the first frame costs, with and without SkySystem::Prepare: one process per case (GL
 // drivers keep compiled shaders per process). Run with the Mesa disk cache off for a cold start:
 //
-//   MESA_SHADER_CACHE_DISABLE=true build/tests/bench/first_frame_report [prepare] [weather]
-//       [display]
+//   MESA_SHADER_CACHE_DISABLE=true build/tests/bench/first_frame_report [cold|prepare] [weather]
+//       [linear|display]
 //
 // prints creation, Prepare, and each of the first frames (Update + Render + read-back) in ms.
 // With "display", the display output (metered) into an RGBA8 target, waited for with glFinish.
 #include <glad/gl.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <glm/gtc/constants.hpp>
@@ -26,9 +26,18 @@ double MsSince(std::chrono::steady_clock::time_point t0) {
 
 int main(int argc, char** argv) try {
     using namespace zenith;
-    const bool prepare = argc > 1 && std::strcmp(argv[1], "prepare") == 0;
-    const std::string weather = argc > 2 ? argv[2] : "clear";
-    const bool display = argc > 3 && std::strcmp(argv[3], "display") == 0;
+    std::string mode = "cold";
+    std::string weather = "clear";
+    std::string output = "linear";
+    CLI::App app{"The first frame's cost with and without SkySystem::Prepare"};
+    app.add_option("mode", mode, "cold, or prepare: SkySystem::Prepare before the first frame")
+        ->check(CLI::IsMember({"cold", "prepare"}));
+    app.add_option("weather", weather, "a weather preset");
+    app.add_option("output", output, "linear, or display: the metered display output")
+        ->check(CLI::IsMember({"linear", "display"}));
+    CLI11_PARSE(app, argc, argv);
+    const bool prepare = mode == "prepare";
+    const bool display = output == "display";
     const glm::ivec2 size(1280, 720);
     auto t0 = std::chrono::steady_clock::now();
     sim::SkySystemSettings settings;

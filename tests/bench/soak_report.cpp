@@ -4,6 +4,7 @@
 // Usage: soak_report [frames=10000] [weather=scattered_cumulus] [size=64]
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,13 +30,14 @@ double ResidentMiB() {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const int frames = argc > 1 ? std::atoi(argv[1]) : 10000;
-    const std::string weather = argc > 2 ? argv[2] : "scattered_cumulus";
-    const int size = argc > 3 ? std::atoi(argv[3]) : 64;
-    if (frames < 200 || size < 8) {
-        std::fprintf(stderr, "usage: soak_report [frames >= 200] [weather] [size >= 8]\n");
-        return 2;
-    }
+    int frames = 10000;
+    std::string weather = "scattered_cumulus";
+    int size = 64;
+    CLI::App app{"SkySystem over a week of simulated flight: memory and frame time"};
+    app.add_option("frames", frames)->check(CLI::Range(200, 100000000));
+    app.add_option("weather", weather, "a weather preset");
+    app.add_option("size", size, "frame width and height in pixels")->check(CLI::Range(8, 4096));
+    CLI11_PARSE(app, argc, argv);
     zenith::sim::SkySystemSettings settings;
     settings.weather = weather;
     auto sky = zenith::sim::SkySystem::CreateHeadless(settings);

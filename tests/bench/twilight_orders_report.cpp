@@ -15,11 +15,10 @@
 //
 //   twilight_orders_report [--paths N] [--orders K] [--threads T]
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -82,44 +81,19 @@ SecondOrderLuts BuildSecondOrder(const ref::AtmosphereParameters& atmosphere,
     return luts;
 }
 
-[[noreturn]] void Usage(const std::string& message) {
-    std::fprintf(stderr,
-                 "twilight_orders_report: %s\nusage: twilight_orders_report [--paths N] "
-                 "[--orders K] [--threads T]\n",
-                 message.c_str());
-    std::exit(2);
-}
-
-long ParseCount(const char* flag, const char* text, long low, long high) {
-    char* end = nullptr;
-    const long value = std::strtol(text, &end, 10);
-    if (end == text || *end != '\0' || value < low || value > high) {
-        Usage(std::string(flag) + " " + text + " is not an integer in [" + std::to_string(low) +
-              ", " + std::to_string(high) + "]");
-    }
-    return value;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
     long paths = 262144;
     int orders = 6;
     int threads = 2;
-    for (int i = 1; i < argc; ++i) {
-        if (i + 1 >= argc) Usage(std::string("missing value after ") + argv[i]);
-        const char* flag = argv[i];
-        const char* value = argv[++i];
-        if (!std::strcmp(flag, "--paths")) {
-            paths = ParseCount(flag, value, 2, 1L << 26);
-        } else if (!std::strcmp(flag, "--orders")) {
-            orders = static_cast<int>(ParseCount(flag, value, 2, 32));
-        } else if (!std::strcmp(flag, "--threads")) {
-            threads = static_cast<int>(ParseCount(flag, value, 0, 1024));
-        } else {
-            Usage(std::string("unknown option ") + flag);
-        }
-    }
+    CLI::App app{"The twilight sky's error by scattering order (BENCHMARKS.md)"};
+    app.add_option("--paths", paths, "path tracer's paths per ray")
+        ->check(CLI::Range(2L, 1L << 26));
+    app.add_option("--orders", orders, "K, the orders iterated through the LUT")
+        ->check(CLI::Range(2, 32));
+    app.add_option("--threads", threads, "0: every core")->check(CLI::Range(0, 1024));
+    CLI11_PARSE(app, argc, argv);
 
     sky::Atmosphere earth = sky::LoadAtmosphere("earth");
     earth.ground_albedo = glm::dvec3(0.0);
