@@ -587,21 +587,21 @@ int main(int argc, char** argv) {
     app.add_option("--converged-se", twilight.converged_se,
                    "twilight grid: relative standard error of a converged ray")
         ->check(CLI::Range(0.0, 1.0));
-    CLI::Option_group* lut = app.add_option_group("twilight grid's multiple-scattering LUT");
-    lut->add_option("--ms-width", twilight.lut.multiple_scattering_size.x)
+    CLI::Option_group* lut = app.add_option_group("the renderer's multiple-scattering LUT");
+    lut->add_option("--ms-width", options.lut_settings.multiple_scattering_size.x)
         ->check(CLI::Range(2, 1024));
-    lut->add_option("--ms-height", twilight.lut.multiple_scattering_size.y)
+    lut->add_option("--ms-height", options.lut_settings.multiple_scattering_size.y)
         ->check(CLI::Range(2, 1024));
-    lut->add_option("--ms-directions-sqrt", twilight.lut.multiple_scattering_directions_sqrt)
+    lut->add_option("--ms-directions-sqrt", options.lut_settings.multiple_scattering_directions_sqrt)
         ->check(CLI::Range(1, 64));
-    lut->add_option("--ms-steps", twilight.lut.multiple_scattering_steps)
+    lut->add_option("--ms-steps", options.lut_settings.multiple_scattering_steps)
         ->check(CLI::Range(1, 10000));
-    lut->add_option("--ms-orders", twilight.lut.multiple_scattering_orders)
+    lut->add_option("--ms-orders", options.lut_settings.multiple_scattering_orders)
         ->check(CLI::Range(2, 32));
     CLI11_PARSE(app, argc, argv);
     const bool samples_given = samples->count() > 0;
-    if (grid != "twilight" && lut->count_all() > 0) {
-        std::fprintf(stderr, "accuracy_report: --ms-* apply to --grid twilight only\n");
+    if ((grid == "illuminance" || grid == "night") && lut->count_all() > 0) {
+        std::fprintf(stderr, "accuracy_report: --ms-* apply to the paper and twilight grids\n");
         return 2;
     }
 
@@ -618,15 +618,22 @@ int main(int argc, char** argv) {
         twilight.max_samples = std::max(twilight.max_samples, twilight.samples);
         twilight.seed = options.seed;
         twilight.threads = options.threads;
+        twilight.lut = options.lut_settings;
         return RunTwilight(twilight);
     }
 
     std::printf(
         "%dx%d pixels, %lld paths per pixel (%lld for thick_daytime), seed %llu, LUTs: "
-        "LutSettings::Pc(), %d ray-marching steps from space\n\n",
+        "LutSettings::Pc() (multiple scattering %dx%d texels, %d directions, %d steps, orders "
+        "2..%d), %d ray-marching steps from space\n\n",
         options.width, options.height, static_cast<long long>(options.samples),
         static_cast<long long>(thick_samples), static_cast<unsigned long long>(options.seed),
-        options.ray_march_steps);
+        options.lut_settings.multiple_scattering_size.x,
+        options.lut_settings.multiple_scattering_size.y,
+        options.lut_settings.multiple_scattering_directions_sqrt *
+            options.lut_settings.multiple_scattering_directions_sqrt,
+        options.lut_settings.multiple_scattering_steps,
+        options.lut_settings.multiple_scattering_orders, options.ray_march_steps);
     std::printf(
         "| scenario | path | relative RMSE (R, G, B) | reference noise, relative | RMSE - noise, "
         "relative | mean bias (R, G, B) | absolute RMSE ×10⁻³ /sr | paper (O) ×10⁻³ | "
