@@ -6,14 +6,19 @@
 //                   [--threads T] [--seed S] [--only NAME] [--ms-* ...]
 //   accuracy_report --grid twilight [--samples N] [--max-samples M] [--target-se E]
 //                   [--converged-se C] [--threads T] [--seed S] [--ms-* ...]
+//   accuracy_report --grid haze [--samples N] [--threads T] [--seed S] [--ms-* ...]
 //   accuracy_report --grid illuminance|night [--samples N] [--threads T] [--seed S]
 //
 // --ms-width W, --ms-height H, --ms-directions-sqrt D, --ms-steps N, --ms-orders K rebuild the
-// renderer's multiple-scattering LUT (LutSettings) for the paper and twilight grids; --help lists
-// every option.
+// renderer's multiple-scattering LUT (LutSettings) for the paper, twilight and haze grids; --help
+// lists every option.
 //
 // paper: the scenarios of Hillaire 2020 §6 as images. Defaults (96x64, 1024 paths per pixel, 256
 // for the 50x atmosphere whose paths scatter hundreds of times) take several minutes on 2 cores.
+//
+// haze (issue 18 §2, dense atmospheres): the Earth preset's aerosols set for a METAR's
+// visibility (200 m to 23 km), three views from the ground, the Sky-View LUT against the path
+// tracer, with single scattering alone on both sides (N paths per ray, default 16384).
 //
 // illuminance (issue 18 §2, measured twilight): the sky's horizontal illuminance on the ground,
 // sun +10 to -12 deg: the renderer's ground-irradiance LUT (as shipped and converged), the path
@@ -41,7 +46,9 @@
 #include <vector>
 
 #include "night_sky_map.h"
+#include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
+#include "shader_parameters.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/lighting.h"
 #include "zenith/sky/night_sky.h"
@@ -556,6 +563,114 @@ int RunNightScattering(const IlluminanceOptions& options) {
     return 0;
 }
 
+// --- Haze: the visibility a METAR sets, against the path tracer --------------------------------
+
+struct HazeOptions {
+    std::int64_t paths = 16384;  // per ray
+    std::uint64_t seed = 1;
+    int threads = 2;
+    zenith::sky::LutSettings lut = zenith::sky::LutSettings::Pc();
+};
+
+// The Earth preset with its aerosols set for a visibility V (weather::AtmosphereForVisibility,
+// as a METAR's visibility sets it without fog), observer 2 m up, the sun 40 deg high: the sky in
+// three directions, the renderer's Sky-View LUT against the path tracer (ground albedo 0.3 in
+// both). Dense haze is where the multiple-scattering LUT's few orders and its steps, optically
+// thick there, matter (BENCHMARKS.md, discrepancy 3).
+int RunHaze(const HazeOptions& options) {
+    using zenith::sky::Atmosphere;
+    using zenith::sky::Lights;
+    using zenith::sky::reference::AtmosphereReference;
+    const Atmosphere earth = zenith::sky::LoadAtmosphere("earth");
+    const zenith::sky::LutSettings& lut = options.lut;
+    std::printf(
+        "Earth preset, aerosols for visibility V (weather::AtmosphereForVisibility, no fog), "
+        "ground albedo %.2g; observer 2 m up, sun 40 deg high; renderer: Sky-View LUT "
+        "(multiple-scattering LUT %dx%d texels, %d directions, %d steps, orders 2..%d); "
+        "reference: PathTrace, %lld paths per ray, seed %llu\n\n",
+        earth.ground_albedo.y, lut.multiple_scattering_size.x, lut.multiple_scattering_size.y,
+        lut.multiple_scattering_directions_sqrt * lut.multiple_scattering_directions_sqrt,
+        lut.multiple_scattering_steps, lut.multiple_scattering_orders,
+        static_cast<long long>(options.paths), static_cast<unsigned long long>(options.seed));
+    std::printf(
+        "| visibility | view | path tracer Y, cd/m² | renderer Y, cd/m² | renderer / path tracer "
+        "− 1 (R, G, B, Y) ± path-tracer SE | view marched in 4000 steps, Y | single "
+        "scattering's share (path tracer) | single scattering, renderer / path tracer − 1, Y | "
+        "path tracer, s |\n|---|---|---|---|---|---|---|---|---|\n");
+    const struct {
+        const char* name;
+        double elevation, azimuth;  // deg; azimuth from the sun's
+    } views[] = {{"horizon, 90 deg off the sun", 1.0, 90.0},
+                 {"30 deg up, away from the sun", 30.0, 180.0},
+                 {"zenith", 90.0, 0.0}};
+    std::uint64_t seed = options.seed;
+    for (const double visibility : {200.0, 1000.0, 5000.0, 23000.0}) {
+        const Atmosphere air =
+            zenith::weather::AtmosphereForVisibility(earth, visibility, false, nullptr);
+        const AtmosphereReference renderer(air, lut);
+        Lights lights;
+        lights.sun_direction = LocalDirection(40.0 * kDeg, 0.0);
+        lights.sun_illuminance = air.solar_illuminance;
+        const glm::dvec3 camera(0.0, air.bottom_radius + 2.0, 0.0);
+        const zenith::sky::LutImage sky_view = renderer.SkyView(camera, lights);
+        const auto parameters =
+            zenith::sky::MakeShaderParameters<zenith::sky::ref::AtmosphereParameters>(air);
+        const zenith::sky::ref::Texture2D transmittance =
+            zenith::sky::ref::FromImage(renderer.transmittance());
+        const zenith::sky::ref::Texture2D no_multiple_scattering(
+            lut.multiple_scattering_size.x * zenith::sky::kMultipleScatteringTiles,
+            lut.multiple_scattering_size.y);
+        const zenith::sky::ref::Texture2D no_irradiance(1, 1);
+        for (const auto& view : views) {
+            const glm::dvec3 direction = LocalDirection(view.elevation * kDeg, view.azimuth * kDeg);
+            const glm::dvec4 lut_value = WithLuminance(
+                renderer.SampleSkyView(sky_view, camera, lights.sun_direction, direction));
+            // The same LUTs with the view ray marched in 4000 steps: the Sky-View LUT's own
+            // steps and texels told from the multiple-scattering LUT's approximation.
+            const glm::dvec4 marched =
+                WithLuminance(renderer.RayMarch(camera, direction, lights, 4000));
+            // Single scattering alone: the renderer's march (4000 steps) with an empty
+            // multiple-scattering LUT against the path tracer's one-vertex paths, which tells the
+            // media and the sun's light from the multiple scattering.
+            const glm::dvec4 single_lut = WithLuminance(
+                zenith::sky::ref::IntegrateScatteredLuminance(
+                    parameters, transmittance, no_multiple_scattering, no_irradiance,
+                    zenith::sky::MakeLightSet<zenith::sky::ref::LightSet>(lights, camera),
+                    camera / 1000.0, 0.002, direction, 0.0, 1e9, 4000, true)
+                    .luminance);
+            zenith::sky::reference::PathTraceOptions o;
+            o.samples = options.paths;
+            o.threads = options.threads;
+            o.seed = seed++;
+            const auto start = std::chrono::steady_clock::now();
+            const zenith::sky::reference::PathTraceResult r =
+                zenith::sky::reference::PathTrace(air, camera, direction, lights.sun_direction, o);
+            o.max_bounces = 1;
+            const glm::dvec4 single = WithLuminance(
+                zenith::sky::reference::PathTrace(air, camera, direction, lights.sun_direction, o)
+                    .luminance);
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const glm::dvec4 reference = WithLuminance(r.luminance);
+            const glm::dvec4 se(r.standard_error, glm::dot(r.standard_error, kRec709));
+            char cells[160] = "";
+            std::size_t used = 0;
+            for (int c = 0; c < 4; ++c) {
+                used += static_cast<std::size_t>(std::snprintf(
+                    cells + used, sizeof(cells) - used, "%s%+.1f ± %.1f", c ? ", " : "",
+                    100.0 * (lut_value[c] / reference[c] - 1.0), 100.0 * se[c] / reference[c]));
+            }
+            std::printf(
+                "| %.0f m | %s | %.4g | %.4g | %s %% | %+.1f %% | %.3g | %+.1f %% | %.0f |\n",
+                visibility, view.name, reference.w, lut_value.w, cells,
+                100.0 * (marched.w / reference.w - 1.0), single.w / reference.w,
+                100.0 * (single_lut.w / single.w - 1.0), seconds);
+            std::fflush(stdout);
+        }
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -568,8 +683,8 @@ int main(int argc, char** argv) {
     std::string grid = "paper";
     TwilightOptions twilight;
     CLI::App app{"Accuracy of the LUT renderer against the path tracer (BENCHMARKS.md)"};
-    app.add_option("--grid", grid, "paper (Hillaire 2020 §6), twilight, illuminance or night")
-        ->check(CLI::IsMember({"paper", "twilight", "illuminance", "night"}));
+    app.add_option("--grid", grid, "paper (Hillaire 2020 §6), twilight, illuminance, night or haze")
+        ->check(CLI::IsMember({"paper", "twilight", "illuminance", "night", "haze"}));
     app.add_option("--width", options.width, "paper grid: image width")->check(CLI::Range(1, 4096));
     app.add_option("--height", options.height, "paper grid: image height")
         ->check(CLI::Range(1, 4096));
@@ -600,7 +715,8 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     const bool samples_given = samples->count() > 0;
     if ((grid == "illuminance" || grid == "night") && lut->count_all() > 0) {
-        std::fprintf(stderr, "accuracy_report: --ms-* apply to the paper and twilight grids\n");
+        std::fprintf(stderr,
+                     "accuracy_report: --ms-* apply to the paper, twilight and haze grids\n");
         return 2;
     }
     try {
@@ -617,6 +733,14 @@ int main(int argc, char** argv) {
         illuminance.seed = options.seed;
         illuminance.threads = options.threads;
         return grid == "night" ? RunNightScattering(illuminance) : RunIlluminance(illuminance);
+    }
+    if (grid == "haze") {
+        HazeOptions haze;
+        if (samples_given) haze.paths = options.samples;
+        haze.seed = options.seed;
+        haze.threads = options.threads;
+        haze.lut = options.lut_settings;
+        return RunHaze(haze);
     }
     if (grid == "twilight") {
         if (samples_given) twilight.samples = options.samples;
