@@ -495,8 +495,13 @@ std::vector<std::string> CheckBlocks(const Program& program,
                 errors.push_back(where + block + " binding " + std::to_string(binding) +
                                  ", bindings.glsl " + std::to_string(m.binding));
             }
+            // GL_BUFFER_DATA_SIZE is the implementation's minimum size for the block, which may
+            // pad the mirror's to 16 bytes: Mesa does for a runtime-sized array's block, NVIDIA
+            // does not (every other block's mirror is a multiple of 16 already).
             const GLint size = ResourceInt(program.name(), block_interface, b, GL_BUFFER_DATA_SIZE);
-            if (static_cast<std::size_t>(size) != m.size) {
+            const std::size_t padded = (m.size + 15) / 16 * 16;
+            if (static_cast<std::size_t>(size) < m.size ||
+                static_cast<std::size_t>(size) > padded) {
                 errors.push_back(where + block + " is " + std::to_string(size) +
                                  " bytes, its C++ mirror " + std::to_string(m.size));
             }

@@ -101,8 +101,8 @@ static_assert(sizeof(CloudUniforms) == 864);
 
 // clouds/geometry_list.glsl: CloudGeometryList, a storage block: a glDrawArraysIndirect command
 // (its vertex count, 6 per cell listed, written by the shader), the capacity in cells, then the
-// cells (x | y << 16; as many as the capacity). Four here: GL (Mesa) gives the block's size
-// with its runtime-sized array as one element rounded up to 16 bytes.
+// cells (x | y << 16; as many as the capacity). One here, as GL counts a runtime-sized array in
+// the block's minimum size (GL_BUFFER_DATA_SIZE: 36 bytes on NVIDIA; Mesa pads it to 48).
 struct CloudGeometryList {
     std::uint32_t vertices;
     std::uint32_t instances;
@@ -110,7 +110,7 @@ struct CloudGeometryList {
     std::uint32_t base_instance;
     std::uint32_t capacity;
     std::uint32_t unused[3];
-    std::uint32_t cells[4];
+    std::uint32_t cells[1];
 };
 static_assert(offsetof(CloudGeometryList, capacity) == 16);
 static_assert(offsetof(CloudGeometryList, cells) == 32);
