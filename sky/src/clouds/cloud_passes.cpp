@@ -412,7 +412,6 @@ void CloudPasses::MarchToGeometry() {
         geometry_list_.emplace(BuildCloudProgram(kGeometryListProgram));
         geometry_march_.emplace(BuildCloudProgram(kGeometryMarchProgram));
     }
-    const int block = settings_.block;
     if (geometry_color_ == 0) {
         geometry_color_ = gl::CreateTexture2D(size_);
         geometry_framebuffer_ = CreateFramebuffer({geometry_color_});
@@ -422,11 +421,12 @@ void CloudPasses::MarchToGeometry() {
                                      trace_size_.x);
         glNamedFramebufferParameteri(geometry_list_framebuffer_, GL_FRAMEBUFFER_DEFAULT_HEIGHT,
                                      trace_size_.y);
-        // Cells holding twice the trace's rays in pixels: at block 4 a band of 3 cells along an
-        // edge across the frame is 12 rows of pixels, 2 % of a 1280 x 720 frame's (the trace's
-        // 6 %) but 22 % of a 96 x 54 one's.
-        geometry_capacity_ =
-            static_cast<GLuint>(std::max(2 * trace_size_.x * trace_size_.y / (block * block), 1));
+        // Room for every cell (4 bytes each, 230 kB at 1280 x 720 and block 4), so that which
+        // cells are marched never depends on the order in which the GPU's invocations reach the
+        // list's counter: with fewer slots than cells found, an NVIDIA GPU marched a different
+        // subset each frame and the rest flickered in 4 x 4 blocks. The march's cost is bounded
+        // by the frame's pixels, each marched once at most.
+        geometry_capacity_ = static_cast<GLuint>(trace_size_.x * trace_size_.y);
         glCreateBuffers(1, &geometry_list_buffer_);
         glNamedBufferStorage(geometry_list_buffer_,
                              static_cast<GLsizeiptr>(offsetof(gl::CloudGeometryList, cells) +
