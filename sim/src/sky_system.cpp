@@ -117,6 +117,22 @@ struct SkySystem::Impl {
     }
 
     // The newest finished spherical harmonics of the environment into the lighting.
+    // The sky's light on the ground; under the clouds, their sky transmittance and their own
+    // light, as the renderer lights its ground (functions.glsl's ground term), from the newest
+    // shade the GPU has finished.
+    void TakeSkyIrradiance() {
+        SkyLighting& l = lighting;
+        l.sky_irradiance = ClearSkyIrradiance();
+        if (const std::optional<sky::CloudShade> shade = renderer->LatestCloudShade();
+            shade && observer.height_m() < shade->base_altitude) {
+            l.sky_irradiance = l.sky_irradiance * shade->ground_sky_transmittance +
+                               glm::pi<double>() * shade->ground_luminance;
+            l.sky_cloud_transmittance = shade->ground_sky_transmittance;
+        } else {
+            l.sky_cloud_transmittance = 1.0;
+        }
+    }
+
     void TakeEnvironmentSh() {
         const std::optional<sky::SphericalHarmonics9> sh = renderer->LatestEnvironmentSh();
         lighting.sky_radiance_sh = sh.value_or(sky::SphericalHarmonics9{});
@@ -428,17 +444,7 @@ void SkySystem::Update() {
     l.sun_illuminance *= l.sun_cloud_transmittance;
     l.moon_illuminance *= l.moon_cloud_transmittance;
     l.venus_illuminance *= l.venus_cloud_transmittance;
-    l.sky_irradiance = d.ClearSkyIrradiance();
-    // Under the clouds: their sky transmittance and their own light, as the renderer lights its
-    // ground (functions.glsl's ground term), from the newest shade the GPU has finished.
-    if (const std::optional<sky::CloudShade> shade = d.renderer->LatestCloudShade();
-        shade && height < shade->base_altitude) {
-        l.sky_irradiance = l.sky_irradiance * shade->ground_sky_transmittance +
-                           glm::pi<double>() * shade->ground_luminance;
-        l.sky_cloud_transmittance = shade->ground_sky_transmittance;
-    } else {
-        l.sky_cloud_transmittance = 1.0;
-    }
+    d.TakeSkyIrradiance();
     d.TakeEnvironmentSh();
     l.sun_elevation = d.frame.ephemeris.sun.topocentric.horizontal.elevation;
     l.moon_illuminated_fraction = d.frame.ephemeris.moon_phase.illuminated_fraction;
@@ -479,8 +485,11 @@ void SkySystem::Prepare(const glm::ivec2& size) {
         glDeleteTextures(1, &texture);
         d.reset_adaptation = true;  // the next Render meters from its own frame
     }
-    glFinish();             // the driver's compilation happens when the GPU runs the frame
-    d.TakeEnvironmentSh();  // the round's, now finished
+    glFinish();  // the driver's compilation happens when the GPU runs the frame
+    // The clouds' shade and the environment's round, now finished: Update took what the GPU had
+    // finished before the frame (on a GPU, not yet this weather's shade).
+    d.TakeSkyIrradiance();
+    d.TakeEnvironmentSh();
     d.reset_history = true;
 }
 

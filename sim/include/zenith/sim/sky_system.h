@@ -293,7 +293,8 @@ class SkySystem {
     // display pass, metered, over that frame into a scratch target (~100 ms once on llvmpipe at
     // 1280x720, taken from the first Render; BENCHMARKS.md), restarts its adaptation and reports
     // no exposure (exposure_ev100() waits for a Render). With an environment it draws all six
-    // faces, so the lighting has the sky's harmonics (sky_radiance_sh_valid) from then on. A
+    // faces, so the lighting has the sky's harmonics (sky_radiance_sh_valid) from then on; its
+    // sky_irradiance is under that frame's clouds (an Update's shade may lag on a GPU). A
     // host with scene depth still compiles the depth variant at its first Render.
     void Prepare(const glm::ivec2& size);
 
