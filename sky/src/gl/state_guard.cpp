@@ -8,21 +8,28 @@ namespace {
 // Capabilities the passes need off. Culling (a host's GL_CW front faces, or GL_FRONT culling,
 // removed the full-screen triangle), depth and stencil tests, rasterizer discard and the
 // multisample coverage operations would drop fragments; sRGB encoding, logic ops and dithering
-// would alter the values written (zenith writes linear luminance as computed).
-constexpr std::array<GLenum, 14> kCapabilities = {GL_CULL_FACE,
-                                                  GL_DEPTH_TEST,
-                                                  GL_STENCIL_TEST,
-                                                  GL_FRAMEBUFFER_SRGB,
-                                                  GL_RASTERIZER_DISCARD,
-                                                  GL_COLOR_LOGIC_OP,
-                                                  GL_SAMPLE_ALPHA_TO_COVERAGE,
-                                                  GL_SAMPLE_ALPHA_TO_ONE,
-                                                  GL_SAMPLE_COVERAGE,
-                                                  GL_SAMPLE_MASK,
-                                                  GL_SAMPLE_SHADING,
-                                                  GL_POLYGON_SMOOTH,
-                                                  GL_DITHER,
-                                                  GL_PROGRAM_POINT_SIZE};
+// would alter the values written (zenith writes linear luminance as computed). Primitive restart
+// is for indexed draws, but NVIDIA's driver applies it to glDrawArrays* too: a host's restart
+// index 7 cut the host-geometry march's triangle list on an H200 (the rain's streaks are drawn
+// the same way).
+constexpr std::array<GLenum, StateGuard::kCapabilityCount> kCapabilities = {
+    GL_CULL_FACE,
+    GL_DEPTH_TEST,
+    GL_STENCIL_TEST,
+    GL_FRAMEBUFFER_SRGB,
+    GL_RASTERIZER_DISCARD,
+    GL_COLOR_LOGIC_OP,
+    GL_SAMPLE_ALPHA_TO_COVERAGE,
+    GL_SAMPLE_ALPHA_TO_ONE,
+    GL_SAMPLE_COVERAGE,
+    GL_SAMPLE_MASK,
+    GL_SAMPLE_SHADING,
+    GL_POLYGON_SMOOTH,
+    GL_DITHER,
+    GL_PROGRAM_POINT_SIZE,
+    GL_PRIMITIVE_RESTART,
+    GL_PRIMITIVE_RESTART_FIXED_INDEX};
+static_assert(kCapabilities.back() != 0, "kCapabilityCount names more capabilities than listed");
 
 // Pixel store parameters of uploads (the noise, the weather maps, the night sky) and read-backs
 // (RenderOffscreen, the LUTs), with GL's initial values.

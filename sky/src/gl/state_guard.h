@@ -27,6 +27,7 @@ class StateGuard {
     static constexpr int kImageUnits = kShadowMapImageUnit + 1;
     static constexpr int kMaxDrawBuffers = 8;  // GL 4.5's minimum; more are left alone
     static constexpr int kMaxClipDistances = 8;
+    static constexpr std::size_t kCapabilityCount = 16;  // state_guard.cpp's kCapabilities
 
     explicit StateGuard(bool preserve);
     ~StateGuard();
@@ -43,7 +44,7 @@ class StateGuard {
     int clip_distances_ = 0;  // min(GL_MAX_CLIP_DISTANCES, kMaxClipDistances)
 
     // Capabilities (glIsEnabled), in the order of state_guard.cpp's kCapabilities.
-    std::array<GLboolean, 14> capabilities_{};
+    std::array<GLboolean, kCapabilityCount> capabilities_{};
     std::array<GLboolean, kMaxClipDistances> clip_distance_{};
     GLint polygon_mode_[2] = {};
     GLfloat point_size_ = 1.0f;

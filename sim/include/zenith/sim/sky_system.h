@@ -159,12 +159,14 @@ struct SkyLighting {
 //   mode), depth and stencil tests, colour masks and blending (enables, functions, equations; every
 //   draw buffer), scissor test and box, viewport, GL_FRAMEBUFFER_SRGB, rasterizer discard, logic
 //   op, alpha-to-coverage / alpha-to-one / sample coverage / sample mask / sample shading, polygon
-//   smooth, dither, clip distances, program, VAO, framebuffer bindings, textures and sampler
-//   objects on any unit, the active unit, uniform and storage buffer bindings, image units, the
-//   pixel pack / unpack / query buffers and every pixel store parameter.
+//   smooth, dither, clip distances, primitive restart (and its fixed index: zenith draws no
+//   indexed primitives, but NVIDIA's driver restarts glDrawArrays at the index too), program,
+//   VAO, framebuffer bindings, textures and sampler objects on any unit, the active unit, uniform
+//   and storage buffer bindings, image units, the pixel pack / unpack / query buffers and every
+//   pixel store parameter.
 // It may also leave anything else in any state, which zenith's passes do not depend on: depth
-//   func, mask and range, stencil funcs, ops and masks, polygon offset, depth clamp, primitive
-//   restart (zenith draws no indexed primitives), provoking vertex, point and line sizes,
+//   func, mask and range, stencil funcs, ops and masks, polygon offset, depth clamp, the
+//   primitive restart index, provoking vertex, point and line sizes,
 //   program pipelines (a glUseProgram(0) program gives them back), bound vertex/index/indirect
 //   buffers, a bound transform feedback object that is not active.
 // Preserved (preserve_gl_state, the default): each call restores exactly what it set or
