@@ -216,7 +216,7 @@ AtmospherePasses::AtmospherePasses(const Atmosphere& atmosphere, const LutSettin
                          GL_DYNAMIC_STORAGE_BIT);
     glNamedBufferStorage(buffers_[3], sizeof(gl::FrameUniforms), nullptr, GL_DYNAMIC_STORAGE_BIT);
     transmittance_ = gl::CreateTexture2D(s.transmittance_size);
-    multiple_scattering_ = gl::CreateTexture2D(MultipleScatteringTextureSize(s));
+    multiple_scattering_ = gl::CreateTexture2D(s.multiple_scattering_texture_size());
     irradiance_ = gl::CreateTexture2D(s.irradiance_size);
     sky_view_ = gl::CreateTexture2D(s.sky_view_size, GL_RGBA32F, GL_REPEAT);  // azimuth wraps
     aerial_perspective_ = gl::CreateTexture3D(s.aerial_perspective_size);
@@ -347,7 +347,7 @@ void AtmospherePasses::BuildStaticLuts() {
         ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
     night_ground_ = {};  // made over the old air
     multiple_scattering_cpu_ = ref::FromImage(
-        gl::ReadTexture(multiple_scattering_, glm::ivec3(MultipleScatteringTextureSize(s), 1)));
+        gl::ReadTexture(multiple_scattering_, glm::ivec3(s.multiple_scattering_texture_size(), 1)));
     irradiance_cpu_ =
         ref::FromImage(gl::ReadTexture(irradiance_, glm::ivec3(s.irradiance_size, 1)));
 }
@@ -357,7 +357,7 @@ void AtmospherePasses::BuildStaticLuts() {
 // writes itself to the other, adding itself to the LUT.
 void AtmospherePasses::BuildMultipleScattering() {
     const glm::ivec2 size = settings_.multiple_scattering_size;
-    const glm::ivec2 texture_size = MultipleScatteringTextureSize(settings_);
+    const glm::ivec2 texture_size = settings_.multiple_scattering_texture_size();
     std::array<GLuint, 2> orders = {gl::CreateTexture2D(texture_size),
                                     gl::CreateTexture2D(texture_size)};
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};

@@ -45,11 +45,6 @@ struct PrecipitationDraw {
 // in azimuth, finer toward the horizon.
 inline constexpr glm::ivec2 kNightSkyMapSize{128, 64};
 
-// The multiple-scattering LUT's texture: kMultipleScatteringTiles tiles side by side.
-inline glm::ivec2 MultipleScatteringTextureSize(const LutSettings& s) {
-    return {s.multiple_scattering_size.x * kMultipleScatteringTiles, s.multiple_scattering_size.y};
-}
-
 class AtmospherePasses {
   public:
     enum Pass : std::size_t {

@@ -417,7 +417,7 @@ LutImage RendererInspection::ReadTransmittance() const {
 LutImage RendererInspection::ReadMultipleScattering() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
     return Read(a.multiple_scattering(),
-                glm::ivec3(MultipleScatteringTextureSize(a.settings()), 1));
+                glm::ivec3(a.settings().multiple_scattering_texture_size(), 1));
 }
 LutImage RendererInspection::ReadGroundIrradiance() const {
     const AtmospherePasses& a = renderer_.impl_->atmosphere;
@@ -483,7 +483,7 @@ std::size_t RendererInspection::LutMemoryBytes() const {
     const std::size_t ap = static_cast<std::size_t>(s.aerial_perspective_size.x) *
                            static_cast<std::size_t>(s.aerial_perspective_size.y) *
                            static_cast<std::size_t>(s.aerial_perspective_size.z);
-    return 16 * (texels(s.transmittance_size) + texels(MultipleScatteringTextureSize(s)) +
+    return 16 * (texels(s.transmittance_size) + texels(s.multiple_scattering_texture_size()) +
                  texels(s.irradiance_size) + texels(s.sky_view_size) + ap);
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bindings.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sky {
@@ -36,6 +37,10 @@ LutSettings LutSettings::Mobile() {
     s.aerial_perspective_size = {32, 32, 16};
     s.aerial_perspective_steps = 8;
     return s;
+}
+
+glm::ivec2 LutSettings::multiple_scattering_texture_size() const {
+    return {multiple_scattering_size.x * kMultipleScatteringTiles, multiple_scattering_size.y};
 }
 
 void LutSettings::Validate() const {

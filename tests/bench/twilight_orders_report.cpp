@@ -54,8 +54,9 @@ sky::LutSettings Settings(int orders) {
 // Order 2 alone and H20's series after it (AccumulateScatteringOrder with K = 2), from the
 // renderer's shared GLSL at the report's resolution. The iterated LUT is AtmosphereReference's.
 struct SecondOrderLuts {
-    ref::Texture2D alone{kLutSize.x * sky::kMultipleScatteringTiles, kLutSize.y};
-    ref::Texture2D h20{kLutSize.x * sky::kMultipleScatteringTiles, kLutSize.y};
+    glm::ivec2 size = Settings(2).multiple_scattering_texture_size();
+    ref::Texture2D alone{size.x, size.y};
+    ref::Texture2D h20{size.x, size.y};
 };
 
 SecondOrderLuts BuildSecondOrder(const ref::AtmosphereParameters& atmosphere,

@@ -170,8 +170,7 @@ void TransmittanceTexelRMu(const Luts& luts, int x, int y, double* r, double* mu
 void MultipleScatteringTexelMuSAltitude(const Luts& luts, int x, int y, double* mu_s,
                                         double* altitude) {
     // Each of the LUT's tiles (functions.glsl: MultipleScatteringTexel) has the same coordinates.
-    const glm::ivec2 size(luts.multiple_scattering.size.x / sky::kMultipleScatteringTiles,
-                          luts.multiple_scattering.size.y);
+    const glm::ivec2 size = luts.settings.multiple_scattering_size;
     x %= size.x;
     const ref::AtmosphereParameters p = Parameters(luts);
     *mu_s = ref::SunCosineFromUnitRange(

@@ -42,6 +42,10 @@ struct LutSettings {
     double aerial_perspective_range = 32000.0;  // m
     int aerial_perspective_steps = 30;          // for the full range; fewer for nearer slices
 
+    // The multiple-scattering LUT's texture: its tiles (atmosphere/functions.glsl:
+    // MultipleScatteringTexel) side by side, each multiple_scattering_size.
+    glm::ivec2 multiple_scattering_texture_size() const;
+
     static LutSettings Pc() { return {}; }
     static LutSettings Mobile();
     // Throws zenith::ArgumentError naming the field, value and allowed range.
