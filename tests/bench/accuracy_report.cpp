@@ -46,9 +46,7 @@
 #include <vector>
 
 #include "night_sky_map.h"
-#include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
-#include "shader_parameters.h"
 #include "zenith/base/error.h"
 #include "zenith/sky/lighting.h"
 #include "zenith/sky/night_sky.h"
@@ -91,7 +89,8 @@ struct TwilightOptions {
     zenith::sky::LutSettings lut = zenith::sky::LutSettings::Pc();
 };
 
-struct TwilightView {
+// A view from the observer, its azimuth counted from the sun's.
+struct SunRelativeView {
     const char* name;
     double elevation;  // rad, above the astronomical horizon
     double azimuth;    // rad, from the sun's azimuth
@@ -99,7 +98,7 @@ struct TwilightView {
 
 // The horizon views look 1 deg above the astronomical horizon: a ray that stays in the air from
 // every altitude of the grid (from 1 m, 0 deg would graze the ground).
-const TwilightView kTwilightViews[] = {
+const SunRelativeView kSunRelativeViews[] = {
     {"horizon, sun side", 1.0 * kDeg, 0.0},
     {"horizon, 90 deg off", 1.0 * kDeg, 90.0 * kDeg},
     {"horizon, anti-solar", 1.0 * kDeg, 180.0 * kDeg},
@@ -282,7 +281,7 @@ int RunTwilight(const TwilightOptions& options) {
             const zenith::sky::LutImage sky_view = renderer.SkyView(camera, lights);
             const zenith::sky::LutImage sky_view_point = renderer_point.SkyView(camera, lights);
             renderer_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-            for (const TwilightView& view : kTwilightViews) {
+            for (const SunRelativeView& view : kSunRelativeViews) {
                 const glm::dvec3 direction = LocalDirection(view.elevation, view.azimuth);
                 TwilightRow row;
                 row.sun_zenith_deg = sun_zenith;
@@ -344,7 +343,7 @@ int RunTwilight(const TwilightOptions& options) {
             std::printf("| altitude %.0f km |%s\n", altitude < 100.0 ? 0.0 : altitude / 1e3,
                         Summary(rows, by_altitude(altitude), kind).c_str());
         }
-        for (const TwilightView& view : kTwilightViews) {
+        for (const SunRelativeView& view : kSunRelativeViews) {
             std::printf("| %s |%s\n", view.name, Summary(rows, by_view(view.name), kind).c_str());
         }
     };
@@ -597,12 +596,9 @@ int RunHaze(const HazeOptions& options) {
         "− 1 (R, G, B, Y) ± path-tracer SE | view marched in 4000 steps, Y | single "
         "scattering's share (path tracer) | single scattering, renderer / path tracer − 1, Y | "
         "path tracer, s |\n|---|---|---|---|---|---|---|---|---|\n");
-    const struct {
-        const char* name;
-        double elevation, azimuth;  // deg; azimuth from the sun's
-    } views[] = {{"horizon, 90 deg off the sun", 1.0, 90.0},
-                 {"30 deg up, away from the sun", 30.0, 180.0},
-                 {"zenith", 90.0, 0.0}};
+    const SunRelativeView views[] = {{"horizon, 90 deg off the sun", 1.0 * kDeg, 90.0 * kDeg},
+                                     {"30 deg up, away from the sun", 30.0 * kDeg, 180.0 * kDeg},
+                                     {"zenith", 90.0 * kDeg, 0.0}};
     std::uint64_t seed = options.seed;
     for (const double visibility : {200.0, 1000.0, 5000.0, 23000.0}) {
         const Atmosphere air =
@@ -613,31 +609,18 @@ int RunHaze(const HazeOptions& options) {
         lights.sun_illuminance = air.solar_illuminance;
         const glm::dvec3 camera(0.0, air.bottom_radius + 2.0, 0.0);
         const zenith::sky::LutImage sky_view = renderer.SkyView(camera, lights);
-        const auto parameters =
-            zenith::sky::MakeShaderParameters<zenith::sky::ref::AtmosphereParameters>(air);
-        const zenith::sky::ref::Texture2D transmittance =
-            zenith::sky::ref::FromImage(renderer.transmittance());
-        const zenith::sky::ref::Texture2D no_multiple_scattering(
-            lut.multiple_scattering_size.x * zenith::sky::kMultipleScatteringTiles,
-            lut.multiple_scattering_size.y);
-        const zenith::sky::ref::Texture2D no_irradiance(1, 1);
-        for (const auto& view : views) {
-            const glm::dvec3 direction = LocalDirection(view.elevation * kDeg, view.azimuth * kDeg);
+        for (const SunRelativeView& view : views) {
+            const glm::dvec3 direction = LocalDirection(view.elevation, view.azimuth);
             const glm::dvec4 lut_value = WithLuminance(
                 renderer.SampleSkyView(sky_view, camera, lights.sun_direction, direction));
             // The same LUTs with the view ray marched in 4000 steps: the Sky-View LUT's own
             // steps and texels told from the multiple-scattering LUT's approximation.
             const glm::dvec4 marched =
                 WithLuminance(renderer.RayMarch(camera, direction, lights, 4000));
-            // Single scattering alone: the renderer's march (4000 steps) with an empty
-            // multiple-scattering LUT against the path tracer's one-vertex paths, which tells the
-            // media and the sun's light from the multiple scattering.
-            const glm::dvec4 single_lut = WithLuminance(
-                zenith::sky::ref::IntegrateScatteredLuminance(
-                    parameters, transmittance, no_multiple_scattering, no_irradiance,
-                    zenith::sky::MakeLightSet<zenith::sky::ref::LightSet>(lights, camera),
-                    camera / 1000.0, 0.002, direction, 0.0, 1e9, 4000, true)
-                    .luminance);
+            // Single scattering alone (4000 steps) against the path tracer's one-vertex paths,
+            // which tells the media and the sun's light from the multiple scattering.
+            const glm::dvec4 single_lut =
+                WithLuminance(renderer.SingleScattering(camera, direction, lights, 4000));
             zenith::sky::reference::PathTraceOptions o;
             o.samples = options.paths;
             o.threads = options.threads;

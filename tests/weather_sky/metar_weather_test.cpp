@@ -11,9 +11,6 @@
 #include <string>
 #include <utility>
 
-#include "reference/atmosphere_functions.h"
-#include "reference/lut_texture.h"
-#include "shader_parameters.h"
 #include "zenith/base/units.h"
 #include "zenith/sky/reference/accuracy.h"
 #include "zenith/sky/reference/atmosphere_reference.h"
@@ -298,24 +295,17 @@ TEST(Visibility, FogIsTheLayersAndClearAirCannotBeClearerThanRayleigh) {
 }
 
 // The air a visibility sets is the same medium to the renderer and to the path tracer: single
-// scattering alone (the renderer's view march, shared GLSL compiled as C++, with an empty
-// multiple-scattering LUT, against the path tracer's one-vertex paths) agrees within 0.5 % at
+// scattering alone (AtmosphereReference::SingleScattering, the renderer's view march, shared
+// GLSL compiled as C++, against the path tracer's one-vertex paths) agrees within 0.5 % at
 // 5 and 23 km (BENCHMARKS.md, "Hazy air", whose multiple scattering does not: the error there
 // is the multiple-scattering LUT's, not the aerosols' definition).
 TEST(Visibility, HazyAirsSingleScatteringMatchesThePathTracer) {
-    namespace ref = sky::ref;
     const sky::Atmosphere earth = sky::LoadAtmosphere("earth");
     const double kDeg = std::numbers::pi / 180.0;
     for (const double v : {5000.0, 23000.0}) {
         const sky::Atmosphere air = AtmosphereForVisibility(earth, v, false, nullptr);
         const sky::LutSettings settings = sky::LutSettings::Pc();
         const sky::reference::AtmosphereReference renderer(air, settings);
-        const auto parameters = sky::MakeShaderParameters<ref::AtmosphereParameters>(air);
-        const ref::Texture2D transmittance = ref::FromImage(renderer.transmittance());
-        const ref::Texture2D no_multiple_scattering(
-            settings.multiple_scattering_size.x * sky::kMultipleScatteringTiles,
-            settings.multiple_scattering_size.y);
-        const ref::Texture2D no_irradiance(1, 1);
         sky::Lights lights;
         lights.sun_direction = sky::reference::LocalDirection(40.0 * kDeg, 0.0);
         lights.sun_illuminance = air.solar_illuminance;
@@ -326,12 +316,7 @@ TEST(Visibility, HazyAirsSingleScatteringMatchesThePathTracer) {
              {std::pair{1.0, 90.0}, std::pair{30.0, 180.0}, std::pair{90.0, 0.0}}) {
             const glm::dvec3 direction =
                 sky::reference::LocalDirection(elevation * kDeg, azimuth * kDeg);
-            const glm::dvec3 lut =
-                ref::IntegrateScatteredLuminance(
-                    parameters, transmittance, no_multiple_scattering, no_irradiance,
-                    sky::MakeLightSet<ref::LightSet>(lights, camera), camera / 1000.0, 0.002,
-                    direction, 0.0, 1e9, 1000, true)
-                    .luminance;
+            const glm::dvec3 lut = renderer.SingleScattering(camera, direction, lights, 1000);
             sky::reference::PathTraceOptions options;
             options.samples = 8192;
             options.max_bounces = 1;

@@ -61,8 +61,8 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
     // Orders 2 .. K (ComputeScatteringOrderTexel), each from the one before, as
     // AtmospherePasses::BuildMultipleScattering dispatches them.
     const glm::ivec2 ms_size = settings.multiple_scattering_size;
-    const int wide = ms_size.x * kMultipleScatteringTiles;
-    Texture2D ms(wide, ms_size.y), order(wide, ms_size.y), next(wide, ms_size.y);
+    const glm::ivec2 wide = settings.multiple_scattering_texture_size();
+    Texture2D ms(wide.x, wide.y), order(wide.x, wide.y), next(wide.x, wide.y);
     for (int k = 2; k <= settings.multiple_scattering_orders; ++k) {
         // Rows on every core: this LUT is most of the reference's construction.
         monte_carlo::ParallelFor(ms_size.y, 0, [&](std::int64_t row) {
@@ -179,6 +179,20 @@ glm::dvec3 AtmosphereReference::RayMarch(const glm::dvec3& origin, const glm::dv
     const Impl& d = *impl_;
     return ref::IntegrateScatteredLuminance(d.atmosphere, d.transmittance, d.multiple_scattering,
                                             d.irradiance, d.ToLightSet(lights, origin),
+                                            origin / kKm, d.AltitudeKm(origin), direction, 0.0, 1e9,
+                                            steps, true)
+        .luminance;
+}
+
+glm::dvec3 AtmosphereReference::SingleScattering(const glm::dvec3& origin,
+                                                 const glm::dvec3& direction, const Lights& lights,
+                                                 int steps) const {
+    const Impl& d = *impl_;
+    const glm::ivec2 size = d.settings.multiple_scattering_texture_size();
+    const Texture2D no_multiple_scattering(size.x, size.y);
+    const Texture2D no_irradiance(d.irradiance.width(), d.irradiance.height());
+    return ref::IntegrateScatteredLuminance(d.atmosphere, d.transmittance, no_multiple_scattering,
+                                            no_irradiance, d.ToLightSet(lights, origin),
                                             origin / kKm, d.AltitudeKm(origin), direction, 0.0, 1e9,
                                             steps, true)
         .luminance;

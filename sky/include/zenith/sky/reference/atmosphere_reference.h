@@ -41,6 +41,11 @@ class AtmosphereReference {
     // Luminance (cd/m^2) along a view ray by ray marching with `steps` steps, ground included.
     glm::dvec3 RayMarch(const glm::dvec3& origin, const glm::dvec3& direction, const Lights& lights,
                         int steps) const;
+    // Single scattering alone: RayMarch's march with an empty multiple-scattering LUT and no
+    // light from the ground, what the path tracer's one-vertex paths carry
+    // (PathTraceOptions::max_bounces = 1).
+    glm::dvec3 SingleScattering(const glm::dvec3& origin, const glm::dvec3& direction,
+                                const Lights& lights, int steps) const;
     // Luminance read from a Sky-View LUT made by SkyView(camera, lights).
     glm::dvec3 SampleSkyView(const LutImage& sky_view, const glm::dvec3& camera,
                              const glm::dvec3& sun_direction, const glm::dvec3& direction) const;
