@@ -487,8 +487,6 @@ ScatteringOrder ComputeScatteringOrderTexel(IN(AtmosphereParameters) atmosphere,
     vec3 position = vec3(0.0, 0.0, r);
     vec3 sun_direction = vec3(SafeSqrt(1.0 - mu_s * mu_s), 0.0, mu_s);
 
-    // Orders past the second see light already spread over the sky and take a quarter of the
-    // directions (ScatteringOrderDirections).
     int n = ScatteringOrderDirections(order, sqrt_directions);
     ScatteringOrder result;
     result.light = NoMultipleScattering();
