@@ -341,7 +341,7 @@ void AtmospherePasses::BuildStaticLuts() {
              Groups(s.transmittance_size.x, kLutGroupSize),
              Groups(s.transmittance_size.y, kLutGroupSize), 1);
     BuildMultipleScattering();
-    Dispatch(kIrradiancePass, irradiance_, false, Groups(s.irradiance_size.x, kIrradianceGroupSize),
+    Dispatch(kIrradiancePass, irradiance_, false, static_cast<GLuint>(s.irradiance_size.x),
              static_cast<GLuint>(s.irradiance_size.y), 1);
     transmittance_cpu_ =
         ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
@@ -376,7 +376,7 @@ void AtmospherePasses::BuildMultipleScattering() {
         glBindTextureUnit(kMultipleScatteringUnit, orders[previous]);
         glBindImageTexture(kScatteringOrderImageUnit, orders[1 - previous], 0, GL_FALSE, 0,
                            GL_WRITE_ONLY, GL_RGBA32F);
-        glDispatchCompute(Groups(size.x, kLutGroupSize), Groups(size.y, kLutGroupSize), 1);
+        glDispatchCompute(static_cast<GLuint>(size.x), static_cast<GLuint>(size.y), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }

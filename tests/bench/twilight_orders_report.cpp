@@ -66,8 +66,9 @@ SecondOrderLuts BuildSecondOrder(const ref::AtmosphereParameters& atmosphere,
     for (int y = 0; y < kLutSize.y; ++y) {
         for (int x = 0; x < kLutSize.x; ++x) {
             const ref::vec2 uv((x + 0.5) / kLutSize.x, (y + 0.5) / kLutSize.y);
-            const ref::ScatteringOrder o = ref::ComputeScatteringOrderTexel(
-                atmosphere, transmittance, no_order, 2, uv, kLutSize, kDirectionsSqrt, kSteps);
+            const ref::ScatteringOrder o =
+                ref::ComputeScatteringOrderTexel(atmosphere, transmittance, no_order, 2, uv,
+                                                 kLutSize, kDirectionsSqrt, kSteps, 0, 1);
             const ref::MultipleScatteringSample h20 =
                 ref::AccumulateScatteringOrder(o.light, o, 2, 2);
             for (int tile = 0; tile < sky::kMultipleScatteringTiles; ++tile) {

@@ -190,7 +190,7 @@ TEST(AtmosphereLuts, GroundIrradianceBetweenTexelsFollowsTwilight) {
                                                            settings.irradiance_size.x);
         const double exact = Luminance(glm::dvec3(ref::ComputeGroundIrradianceTexel(
             a, transmittance, multiple_scattering, unused, settings.irradiance_size, u,
-            settings.irradiance_directions_sqrt, settings.irradiance_steps)));
+            settings.irradiance_directions_sqrt, settings.irradiance_steps, 0, 1)));
         const double sampled = Luminance(SampleGroundIrradiance(reference.ground_irradiance(), mu));
         const double error = std::abs(sampled / exact - 1.0);
         if (error > worst) worst = error, worst_elevation = elevation;

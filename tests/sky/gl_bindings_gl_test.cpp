@@ -410,8 +410,8 @@ const std::map<std::string, int>& ExpectedUnits() {
 const std::map<std::string, glm::ivec3>& ExpectedGroupSizes() {
     static const std::map<std::string, glm::ivec3> sizes = {
         {"atmosphere/transmittance.comp", {kLutGroupSize, kLutGroupSize, 1}},
-        {"atmosphere/multiple_scattering.comp", {kLutGroupSize, kLutGroupSize, 1}},
-        {"atmosphere/irradiance.comp", {kIrradianceGroupSize, 1, 1}},
+        {"atmosphere/multiple_scattering.comp", {kDirectionsGroupSize, 1, 1}},
+        {"atmosphere/irradiance.comp", {kDirectionsGroupSize, 1, 1}},
         {"atmosphere/sky_view.comp", {kLutGroupSize, kLutGroupSize, 1}},
         {"atmosphere/aerial_perspective.comp", {kLutGroupSize, kLutGroupSize, 1}},
         {"clouds/shadow_map.comp", {kShadowMapGroupSize, kShadowMapGroupSize, 1}},

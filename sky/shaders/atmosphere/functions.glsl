@@ -472,11 +472,13 @@ struct ScatteringOrder {
     vec3 transfer;  // f_ms
 };
 
+// The directions first, first + stride, ... of the texel's (the GL pass spreads them over a
+// work group and sums its invocations'; the CPU takes them all, first 0 and stride 1).
 ScatteringOrder ComputeScatteringOrderTexel(IN(AtmosphereParameters) atmosphere,
                                             IN(TransmittanceTexture) transmittance_texture,
                                             IN(MultipleScatteringTexture) previous_order,
                                             int order, vec2 uv, ivec2 size, int sqrt_directions,
-                                            int steps) {
+                                            int steps, int first, int stride) {
     Number x_mu_s = GetUnitRangeFromTextureCoord(uv.x, size.x);
     Number x_h = GetUnitRangeFromTextureCoord(uv.y, size.y);
     Number mu_s = SunCosineFromUnitRange(x_mu_s);
@@ -491,7 +493,7 @@ ScatteringOrder ComputeScatteringOrderTexel(IN(AtmosphereParameters) atmosphere,
     ScatteringOrder result;
     result.light = NoMultipleScattering();
     result.transfer = vec3(0.0);
-    for (int i = 0; i < n; ++i) {
+    for (int i = first; i < n; i += stride) {
         vec3 direction = UniformSphereDirection(i, n);
         Number mu = direction.z;
         bool hits_ground = RayIntersectsGround(atmosphere, r, mu);
@@ -1037,12 +1039,13 @@ vec3 SampleSkyView(IN(AtmosphereParameters) atmosphere, IN(SkyViewTexture) sky_v
 // ---------------------------------------------------------------------------------------------
 // Ground sky irradiance LUT texel: E_sky(mu_s) = integral over the upper hemisphere of the sky's
 // luminance times cos(theta), for a unit sun, from a point on the ground.
+// The directions first, first + stride, ... of the texel's, as ComputeScatteringOrderTexel's.
 vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
                                   IN(TransmittanceTexture) transmittance_texture,
                                   IN(MultipleScatteringTexture) multiple_scattering_texture,
                                   IN(IrradianceTexture) unused_irradiance_texture,
-                                  ivec2 irradiance_size, Number u, int sqrt_directions,
-                                  int steps) {
+                                  ivec2 irradiance_size, Number u, int sqrt_directions, int steps,
+                                  int first, int stride) {
     Number mu_s = SunCosineFromUnitRange(GetUnitRangeFromTextureCoord(u, irradiance_size.x));
     // Not named `lights`: that is the uniform block member in the passes.
     LightSet unit_sun;
@@ -1064,7 +1067,7 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
     // Upper hemisphere in equal-solid-angle strata: cos(theta) uniform in (0, 1].
     vec3 irradiance = vec3(0.0);
     int n = sqrt_directions * sqrt_directions;
-    for (int i = 0; i < n; ++i) {
+    for (int i = first; i < n; i += stride) {
         Number cos_theta = (Number(i / sqrt_directions) + 0.5) / Number(sqrt_directions);
         Number phi = 2.0 * kPi * (Number(i - (i / sqrt_directions) * sqrt_directions) + 0.5) /
                      Number(sqrt_directions);

@@ -71,7 +71,7 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
                 const ref::ScatteringOrder o = ref::ComputeScatteringOrderTexel(
                     d.atmosphere, d.transmittance, order, k, TexelCentre(x, y, ms_size), ms_size,
                     settings.multiple_scattering_directions_sqrt,
-                    settings.multiple_scattering_steps);
+                    settings.multiple_scattering_steps, 0, 1);
                 const auto texel = [&](Texture2D& lut, int tile) -> ref::vec4& {
                     return lut.at(x + tile * ms_size.x, y);
                 };
@@ -96,7 +96,7 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
             const ref::vec3 value = ref::ComputeGroundIrradianceTexel(
                 d.atmosphere, d.transmittance, d.multiple_scattering, unused,
                 settings.irradiance_size, TexelCentre(x, y, settings.irradiance_size).x,
-                settings.irradiance_directions_sqrt, settings.irradiance_steps);
+                settings.irradiance_directions_sqrt, settings.irradiance_steps, 0, 1);
             irradiance.at(x, y) = ref::vec4(value, 1.0);
         }
     }
