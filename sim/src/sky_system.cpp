@@ -116,7 +116,6 @@ struct SkySystem::Impl {
         return *display;
     }
 
-    // The newest finished spherical harmonics of the environment into the lighting.
     // The sky's light on the ground; under the clouds, their sky transmittance and their own
     // light, as the renderer lights its ground (functions.glsl's ground term), from the newest
     // shade the GPU has finished.
@@ -133,6 +132,7 @@ struct SkySystem::Impl {
         }
     }
 
+    // The newest finished spherical harmonics of the environment into the lighting.
     void TakeEnvironmentSh() {
         const std::optional<sky::SphericalHarmonics9> sh = renderer->LatestEnvironmentSh();
         lighting.sky_radiance_sh = sh.value_or(sky::SphericalHarmonics9{});
