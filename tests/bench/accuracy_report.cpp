@@ -98,7 +98,7 @@ struct SunRelativeView {
 
 // The horizon views look 1 deg above the astronomical horizon: a ray that stays in the air from
 // every altitude of the grid (from 1 m, 0 deg would graze the ground).
-const SunRelativeView kSunRelativeViews[] = {
+const SunRelativeView kTwilightViews[] = {
     {"horizon, sun side", 1.0 * kDeg, 0.0},
     {"horizon, 90 deg off", 1.0 * kDeg, 90.0 * kDeg},
     {"horizon, anti-solar", 1.0 * kDeg, 180.0 * kDeg},
@@ -281,7 +281,7 @@ int RunTwilight(const TwilightOptions& options) {
             const zenith::sky::LutImage sky_view = renderer.SkyView(camera, lights);
             const zenith::sky::LutImage sky_view_point = renderer_point.SkyView(camera, lights);
             renderer_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-            for (const SunRelativeView& view : kSunRelativeViews) {
+            for (const SunRelativeView& view : kTwilightViews) {
                 const glm::dvec3 direction = LocalDirection(view.elevation, view.azimuth);
                 TwilightRow row;
                 row.sun_zenith_deg = sun_zenith;
@@ -343,7 +343,7 @@ int RunTwilight(const TwilightOptions& options) {
             std::printf("| altitude %.0f km |%s\n", altitude < 100.0 ? 0.0 : altitude / 1e3,
                         Summary(rows, by_altitude(altitude), kind).c_str());
         }
-        for (const SunRelativeView& view : kSunRelativeViews) {
+        for (const SunRelativeView& view : kTwilightViews) {
             std::printf("| %s |%s\n", view.name, Summary(rows, by_view(view.name), kind).c_str());
         }
     };

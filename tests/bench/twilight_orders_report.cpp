@@ -51,12 +51,17 @@ sky::LutSettings Settings(int orders) {
     return settings;
 }
 
+// A multiple-scattering LUT of the report's size, all zero.
+ref::Texture2D EmptyMultipleScatteringTexture() {
+    const glm::ivec2 size = Settings(2).multiple_scattering_texture_size();
+    return ref::Texture2D(size.x, size.y);
+}
+
 // Order 2 alone and H20's series after it (AccumulateScatteringOrder with K = 2), from the
 // renderer's shared GLSL at the report's resolution. The iterated LUT is AtmosphereReference's.
 struct SecondOrderLuts {
-    glm::ivec2 size = Settings(2).multiple_scattering_texture_size();
-    ref::Texture2D alone{size.x, size.y};
-    ref::Texture2D h20{size.x, size.y};
+    ref::Texture2D alone = EmptyMultipleScatteringTexture();
+    ref::Texture2D h20 = EmptyMultipleScatteringTexture();
 };
 
 SecondOrderLuts BuildSecondOrder(const ref::AtmosphereParameters& atmosphere,
