@@ -226,6 +226,23 @@ TEST(MetarExamples, WmoFormsConstructed) {
     EXPECT_EQ(m.sky.size(), 3u);
 }
 
+// Runway state groups (FM 15 reg. 15.13.6.1) come after QNH with the supplementary groups, in
+// winter on most European and Russian reports: they are in order there (no warning), kept as not
+// decoded, and not taken for RVR; elements not reported are '/'. (Before, they were read in
+// the RVR's place, and after QNH warned as out of order.)
+TEST(MetarExamples, RunwayStateAfterPressure) {
+    const Metar m = DecodeMetar(
+        "UUEE 271800Z 21004MPS 0800 R24L/1100D FZFG VV002 M04/M04 Q1019 R24L/590350 R06/9///95 "
+        "R/SNOCLO NOSIG");
+    EXPECT_TRUE(m.warnings.empty()) << Warnings(m);
+    ASSERT_EQ(m.rvr.size(), 1u);
+    EXPECT_EQ(m.rvr[0].runway, "24L");
+    EXPECT_EQ(m.rvr[0].rvr_m, 1100.0);
+    EXPECT_EQ(m.not_decoded, (std::vector<std::string>{"R24L/590350", "R06/9///95", "R/SNOCLO"}));
+    EXPECT_EQ(m.qnh_hpa, 1019.0);
+    EXPECT_EQ(m.trend_kind, TrendKind::kNosig);
+}
+
 // The issue's example (London Heathrow, the form of zenith render --metar).
 TEST(MetarExamples, IssueExample) {
     const Metar m = DecodeMetar("EGLL 211750Z 24012KT 9999 FEW035 SCT250 18/09 Q1018");

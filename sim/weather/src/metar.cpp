@@ -364,8 +364,12 @@ RunwayGroup DecodeRunway(std::string_view s, RunwayVisualRange& rvr) {
         s.remove_prefix(1);
     }
     if (!Take(s, "/")) return RunwayGroup::kNone;
-    // Runway state (FM 15 reg. 15.13.6.1, deposits and braking): six digits, or CLRD.
-    if ((s.size() == 6 && AllDigits(s)) || StartsWith(s, "CLRD")) return RunwayGroup::kState;
+    // Runway state (FM 15 reg. 15.13.6.1): deposit, extent, depth and braking, E C eeBB, each
+    // element '/' where not reported (R24L/590350, R14/9///95); CLRD and SNOCLO in their place.
+    const bool state_digits =
+        s.size() == 6 && !AllSlashes(s) &&
+        std::all_of(s.begin(), s.end(), [](char c) { return IsDigit(c) || c == '/'; });
+    if (state_digits || StartsWith(s, "CLRD") || s == "SNOCLO") return RunwayGroup::kState;
     if (AllSlashes(s)) return RunwayGroup::kMissing;
     rvr.runway = std::move(runway);
     auto take_value = [&s](Bound& bound) -> std::optional<double> {
@@ -664,9 +668,8 @@ class Decoder {
                     case RunwayGroup::kRvr:
                         if (m_.rvr.size() < 16) m_.rvr.push_back(std::move(rvr));
                         return true;
-                    case RunwayGroup::kState:
-                        NotDecoded(s);
-                        return true;
+                    case RunwayGroup::kState:  // supplementary, after QNH
+                        return false;
                     case RunwayGroup::kMissing:
                         return true;
                 }
@@ -812,9 +815,15 @@ class Decoder {
         return true;
     }
 
-    // Recent weather (REw'w'), wind shear (WS RWY24, WS R24, WS ALL RWY), sea (W15/S4, W15/H12).
+    // Recent weather (REw'w'), wind shear (WS RWY24, WS R24, WS ALL RWY), sea (W15/S4, W15/H12),
+    // runway state (R24L/590350, R/SNOCLO).
     bool TrySupplementary(std::size_t i, std::size_t& used) {
         const std::string_view s = groups_[i].text;
+        RunwayVisualRange unused;
+        if (s == "R/SNOCLO" || DecodeRunway(s, unused) == RunwayGroup::kState) {
+            NotDecoded(s);
+            return true;
+        }
         if (StartsWith(s, "RE") && s.size() > 2) {
             auto w = DecodeWeather(s.substr(2));
             if (!w) return false;
