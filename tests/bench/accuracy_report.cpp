@@ -7,6 +7,7 @@
 //   accuracy_report --grid twilight [--samples N] [--max-samples M] [--target-se E]
 //                   [--converged-se C] [--threads T] [--seed S] [--ms-* ...]
 //   accuracy_report --grid haze [--samples N] [--threads T] [--seed S] [--ms-* ...]
+//                   [--haze-mie-g G] [--haze-ground-albedo A]
 //   accuracy_report --grid illuminance|night [--samples N] [--threads T] [--seed S]
 //
 // --ms-width W, --ms-height H, --ms-directions-sqrt D, --ms-steps N, --ms-orders K rebuild the
@@ -19,6 +20,8 @@
 // haze (issue 18 §2, dense atmospheres): the Earth preset's aerosols set for a METAR's
 // visibility (200 m to 23 km), three views from the ground, the Sky-View LUT against the path
 // tracer, with single scattering alone on both sides (N paths per ray, default 16384).
+// --haze-mie-g and --haze-ground-albedo change the aerosols' asymmetry (the preset's 0.8) and the
+// ground's albedo (0.3) in both, to take the error apart (BENCHMARKS.md, "Hazy air").
 //
 // illuminance (issue 18 §2, measured twilight): the sky's horizontal illuminance on the ground,
 // sun +10 to -12 deg: the renderer's ground-irradiance LUT (as shipped and converged), the path
@@ -41,6 +44,7 @@
 #include <cstring>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -569,25 +573,31 @@ struct HazeOptions {
     std::uint64_t seed = 1;
     int threads = 2;
     zenith::sky::LutSettings lut = zenith::sky::LutSettings::Pc();
+    std::optional<double> mie_g;          // the preset's when not given
+    std::optional<double> ground_albedo;  // grey; the preset's when not given
 };
 
 // The Earth preset with its aerosols set for a visibility V (weather::AtmosphereForVisibility,
 // as a METAR's visibility sets it without fog), observer 2 m up, the sun 40 deg high: the sky in
 // three directions, the renderer's Sky-View LUT against the path tracer (ground albedo 0.3 in
-// both). Dense haze is where the multiple-scattering LUT's few orders and its steps, optically
-// thick there, matter (BENCHMARKS.md, discrepancy 3).
+// both, unless changed). Dense haze is where the multiple-scattering LUT's few orders and its
+// steps, optically thick there, matter (BENCHMARKS.md, discrepancy 3).
 int RunHaze(const HazeOptions& options) {
     using zenith::sky::Atmosphere;
     using zenith::sky::Lights;
     using zenith::sky::reference::AtmosphereReference;
-    const Atmosphere earth = zenith::sky::LoadAtmosphere("earth");
+    Atmosphere earth = zenith::sky::LoadAtmosphere("earth");
+    if (options.mie_g) earth.mie_g = *options.mie_g;
+    if (options.ground_albedo) earth.ground_albedo = glm::dvec3(*options.ground_albedo);
     const zenith::sky::LutSettings& lut = options.lut;
     std::printf(
         "Earth preset, aerosols for visibility V (weather::AtmosphereForVisibility, no fog), "
-        "ground albedo %.2g; observer 2 m up, sun 40 deg high; renderer: Sky-View LUT "
+        "aerosol asymmetry g %.2g, ground albedo %.2g; observer 2 m up, sun 40 deg high; renderer: "
+        "Sky-View LUT "
         "(multiple-scattering LUT %dx%d texels, %d directions, %d steps, orders 2..%d); "
         "reference: PathTrace, %lld paths per ray, seed %llu\n\n",
-        earth.ground_albedo.y, lut.multiple_scattering_size.x, lut.multiple_scattering_size.y,
+        earth.mie_g, earth.ground_albedo.y, lut.multiple_scattering_size.x,
+        lut.multiple_scattering_size.y,
         lut.multiple_scattering_directions_sqrt * lut.multiple_scattering_directions_sqrt,
         lut.multiple_scattering_steps, lut.multiple_scattering_orders,
         static_cast<long long>(options.paths), static_cast<unsigned long long>(options.seed));
@@ -665,6 +675,7 @@ int main(int argc, char** argv) {
     std::string only;
     std::string grid = "paper";
     TwilightOptions twilight;
+    HazeOptions haze;
     CLI::App app{"Accuracy of the LUT renderer against the path tracer (BENCHMARKS.md)"};
     app.add_option("--grid", grid, "paper (Hillaire 2020 §6), twilight, illuminance, night or haze")
         ->check(CLI::IsMember({"paper", "twilight", "illuminance", "night", "haze"}));
@@ -687,6 +698,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0, 1.0));
     app.add_option("--converged-se", twilight.converged_se,
                    "twilight grid: relative standard error of a converged ray")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--haze-mie-g", haze.mie_g, "haze grid: the aerosols' asymmetry g")
+        ->check(CLI::Range(-0.99, 0.99));
+    app.add_option("--haze-ground-albedo", haze.ground_albedo, "haze grid: the ground's albedo")
         ->check(CLI::Range(0.0, 1.0));
     CLI::Option_group* lut = app.add_option_group("the renderer's multiple-scattering LUT");
     lut->add_option("--ms-width", options.lut_settings.multiple_scattering_size.x);
@@ -717,8 +732,11 @@ int main(int argc, char** argv) {
         illuminance.threads = options.threads;
         return grid == "night" ? RunNightScattering(illuminance) : RunIlluminance(illuminance);
     }
+    if (grid != "haze" && (haze.mie_g || haze.ground_albedo)) {
+        std::fprintf(stderr, "accuracy_report: --haze-* apply to the haze grid\n");
+        return 2;
+    }
     if (grid == "haze") {
-        HazeOptions haze;
         if (samples_given) haze.paths = options.samples;
         haze.seed = options.seed;
         haze.threads = options.threads;
