@@ -4,6 +4,7 @@
 //   cloud_reference_report --part energy   [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S]
+//   cloud_reference_report --part formal
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -15,6 +16,10 @@
 //   over CPU-built LUTs from AtmosphereReference): its cloud luminance and transmittance.
 // cumulus: an isolated cumulus on a small image, sun behind, beside and in front (CumulusPart),
 //   N paths per pixel.
+// formal: the renderer's source per unit sigma_s (CloudSunScattering, the shared GLSL) through a
+//   homogeneous non-absorbing slab over a black ground, integrated along every exit direction by
+//   a fine deterministic quadrature instead of the march (FormalPart): R and T against the
+//   delta-Eddington closed form, up to a semi-infinite slab.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -80,6 +85,67 @@ void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
         std::fflush(stdout);
     }
     std::printf("\n(± one standard error; times are thread-seconds per path.)\n");
+}
+
+// The formal solution of the renderer's source: the radiance leaving the slab along a direction
+// of cosine mu to the vertical is the integral of the source over depth, attenuated by
+// exp(-(depth to the face) / mu); the source at optical depth t below the top (sun optical depth
+// t / mu0 along the light, tau - t below) is CloudSunScattering's. Depths on t = tau (i / n)^2,
+// the source constant over each interval and its attenuation integrated exactly; Gauss-Legendre
+// in mu, the midpoint rule in azimuth.
+double FormalSlabFlux(const ref::CloudScatteringParameters& p, double tau, double mu0, bool top) {
+    static const double kNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                                    0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
+                                    0.8983332387068134, 0.9801449282487681};
+    static const double kWeights[] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
+                                      0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
+                                      0.1111905172266872, 0.0506142681451881};
+    const int depths = 4000, azimuths = 48;
+    const ref::vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
+    double flux = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        const double mu = kNodes[i];
+        const double sin_theta = std::sqrt(1.0 - mu * mu);
+        for (int k = 0; k < azimuths; ++k) {
+            const double phi = 2.0 * kPi * (k + 0.5) / azimuths;
+            // The camera's view: down onto the top, or up into the base.
+            const ref::vec3 view(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
+                                 top ? -mu : mu);
+            double radiance = 0.0;
+            for (int j = 0; j < depths; ++j) {
+                const double t0 = tau * std::pow(double(j) / depths, 2.0);
+                const double t1 = tau * std::pow(double(j + 1) / depths, 2.0);
+                const double t = 0.5 * (t0 + t1);
+                const double source = ref::CloudSunScattering(p, t / mu0, tau - t, mu0,
+                                                              ref::dot(view, light), view.z);
+                const double d0 = top ? t0 : tau - t1, d1 = top ? t1 : tau - t0;
+                radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
+            }
+            flux += kWeights[i] * (2.0 * kPi / azimuths) * mu * radiance;
+        }
+    }
+    return flux / mu0;
+}
+
+void FormalPart() {
+    const ref::CloudScatteringParameters p = ref::DefaultScattering();
+    const double g = ref::CloudAsymmetry(p);
+    std::printf(
+        "The renderer's source (CloudSunScattering, default CloudSettings, g = %.2f) through a "
+        "homogeneous non-absorbing slab over a black ground, by quadrature: R and T (T with the "
+        "direct beam) against the delta-Eddington closed form.\n\n",
+        g);
+    std::printf("| tau | mu0 | R | R closed | T | T closed | R + T |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const double tau : {5.0, 10.0, 20.0, 50.0, 200.0}) {
+        for (const double mu0 : {1.0, 0.5, 0.25}) {
+            const double r = FormalSlabFlux(p, tau, mu0, true);
+            const double t = FormalSlabFlux(p, tau, mu0, false) + std::exp(-tau / mu0);
+            const ref::vec2 closed = ref::CloudSlabReflectanceTransmittance(g, tau, mu0);
+            std::printf("| %g | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", tau, mu0, r, closed.x,
+                        t, closed.y, r + t);
+        }
+    }
 }
 
 void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
@@ -208,9 +274,9 @@ int main(int argc, char** argv) {
     int threads = 2;
     std::uint64_t seed = 1;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
-    app.add_option("--part", part, "energy, overcast or cumulus")
+    app.add_option("--part", part, "energy, overcast, cumulus or formal")
         ->required()
-        ->check(CLI::IsMember({"energy", "overcast", "cumulus"}));
+        ->check(CLI::IsMember({"energy", "overcast", "cumulus", "formal"}));
     app.add_option("--samples", samples, "paths (default: 20000, 20000, 256 per pixel)")
         ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 32));
     app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
@@ -220,6 +286,8 @@ int main(int argc, char** argv) {
         EnergyPart(samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "overcast") {
         OvercastPart(samples > 0 ? samples : 20000, threads, seed);
+    } else if (part == "formal") {
+        FormalPart();
     } else {
         CumulusPart(samples > 0 ? samples : 256, threads, seed);
     }
