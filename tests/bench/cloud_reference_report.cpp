@@ -137,7 +137,7 @@ void FormalPart() {
         g);
     std::printf("| tau | mu0 | R | R closed | T | T closed | R + T |\n");
     std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const double tau : {5.0, 10.0, 20.0, 50.0, 200.0}) {
+    for (const double tau : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 200.0}) {
         for (const double mu0 : {1.0, 0.5, 0.25}) {
             const double r = FormalSlabFlux(p, tau, mu0, true);
             const double t = FormalSlabFlux(p, tau, mu0, false) + std::exp(-tau / mu0);
