@@ -94,17 +94,11 @@ void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
 // the source constant over each interval and its attenuation integrated exactly; Gauss-Legendre
 // in mu, the midpoint rule in azimuth.
 double FormalSlabFlux(const ref::CloudScatteringParameters& p, double tau, double mu0, bool top) {
-    static const double kNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
-                                    0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
-                                    0.8983332387068134, 0.9801449282487681};
-    static const double kWeights[] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
-                                      0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
-                                      0.1111905172266872, 0.0506142681451881};
     const int depths = 4000, azimuths = 48;
     const ref::vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
     double flux = 0.0;
     for (int i = 0; i < 8; ++i) {
-        const double mu = kNodes[i];
+        const double mu = ref::kGaussNodes[i];
         const double sin_theta = std::sqrt(1.0 - mu * mu);
         for (int k = 0; k < azimuths; ++k) {
             const double phi = 2.0 * kPi * (k + 0.5) / azimuths;
@@ -121,7 +115,7 @@ double FormalSlabFlux(const ref::CloudScatteringParameters& p, double tau, doubl
                 const double d0 = top ? t0 : tau - t1, d1 = top ? t1 : tau - t0;
                 radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
             }
-            flux += kWeights[i] * (2.0 * kPi / azimuths) * mu * radiance;
+            flux += ref::kGaussWeights[i] * (2.0 * kPi / azimuths) * mu * radiance;
         }
     }
     return flux / mu0;

@@ -20,6 +20,14 @@ namespace {  // like the shared GLSL types it uses (reference/cloud_march.h)
 
 constexpr double kR = 6360.0;  // km
 
+// Gauss-Legendre on [0, 1], 8 nodes: fluxes as integrals over the zenith cosine.
+constexpr double kGaussNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                                  0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
+                                  0.8983332387068134, 0.9801449282487681};
+constexpr double kGaussWeights[] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
+                                    0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
+                                    0.1111905172266872, 0.0506142681451881};
+
 // A sun of unit illuminance normal to its rays through a transparent atmosphere with no sky
 // light: what the march returns is the clouds' share of the sunlight alone.
 struct Sunlight {

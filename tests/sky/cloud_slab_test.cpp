@@ -66,24 +66,18 @@ struct Slab {
     // Hemispheric flux per unit horizontal sun illuminance leaving the top (above = true) or the
     // base: Gauss-Legendre in the zenith cosine, the midpoint rule in azimuth.
     double Flux(const Sunlight& sun, double mu0, bool above) const {
-        static const double kNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
-                                        0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
-                                        0.8983332387068134, 0.9801449282487681};
-        static const double kWeights[] = {
-            0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
-            0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
         const int azimuths = 12;
         const vec3 camera(0.0, 0.0, kR + (above ? 5.0 : 0.5));
         const CloudScatteringParameters scattering = DefaultScattering();
         double flux = 0.0;
         for (int i = 0; i < 8; ++i) {
-            const double mu = kNodes[i];
+            const double mu = kGaussNodes[i];
             const double sin_theta = std::sqrt(1.0 - mu * mu);
             for (int k = 0; k < azimuths; ++k) {
                 const double phi = 2.0 * kPi * (k + 0.5) / azimuths;
                 const vec3 view(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
                                 above ? -mu : mu);
-                flux += kWeights[i] * (2.0 * kPi / azimuths) * mu *
+                flux += kGaussWeights[i] * (2.0 * kPi / azimuths) * mu *
                         CloudLuminance(sun, layer, weather, shape, detail, scattering, march,
                                        camera, view, 4);
             }
