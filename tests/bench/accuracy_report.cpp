@@ -592,9 +592,9 @@ int RunHaze(const HazeOptions& options) {
     const zenith::sky::LutSettings& lut = options.lut;
     std::printf(
         "Earth preset, aerosols for visibility V (weather::AtmosphereForVisibility, no fog), "
-        "aerosol asymmetry g %.2g, ground albedo %.2g; observer 2 m up, sun 40 deg high; renderer: "
-        "Sky-View LUT "
-        "(multiple-scattering LUT %dx%d texels, %d directions, %d steps, orders 2..%d); "
+        "aerosol asymmetry g %.2g, ground albedo %.2g; observer 2 m up, sun 40 deg high; "
+        "renderer: Sky-View LUT (multiple-scattering LUT %dx%d texels, %d directions, %d steps, "
+        "orders 2..%d); "
         "reference: PathTrace, %lld paths per ray, seed %llu\n\n",
         earth.mie_g, earth.ground_albedo.y, lut.multiple_scattering_size.x,
         lut.multiple_scattering_size.y,
