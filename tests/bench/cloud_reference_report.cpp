@@ -123,21 +123,30 @@ double FormalSlabFlux(const ref::CloudScatteringParameters& p, double tau, doubl
 
 void FormalPart() {
     const ref::CloudScatteringParameters p = ref::DefaultScattering();
+    ref::CloudScatteringParameters single_only = p;
+    single_only.multiple_scattering = 0.0;
     const double g = ref::CloudAsymmetry(p);
     std::printf(
         "The renderer's source (CloudSunScattering, default CloudSettings, g = %.2f) through a "
         "homogeneous non-absorbing slab over a black ground, by quadrature: R and T (T with the "
-        "direct beam) against the delta-Eddington closed form.\n\n",
+        "direct beam) against the delta-Eddington closed form; and the light scattered more than "
+        "once that leaves the slab, the renderer's against all that the direct beam and the "
+        "first order leave (1 - direct - first order's R and T: the slab absorbs nothing).\n\n",
         g);
-    std::printf("| tau | mu0 | R | R closed | T | T closed | R + T |\n");
-    std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");
+    std::printf(
+        "| tau | mu0 | R | R closed | T | T closed | R + T | orders >= 2: renderer / all |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const double tau : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 200.0}) {
         for (const double mu0 : {1.0, 0.5, 0.25}) {
+            const double direct = std::exp(-tau / mu0);
             const double r = FormalSlabFlux(p, tau, mu0, true);
-            const double t = FormalSlabFlux(p, tau, mu0, false) + std::exp(-tau / mu0);
+            const double t = FormalSlabFlux(p, tau, mu0, false) + direct;
+            const double first = FormalSlabFlux(single_only, tau, mu0, true) +
+                                 FormalSlabFlux(single_only, tau, mu0, false);
             const ref::vec2 closed = ref::CloudSlabReflectanceTransmittance(g, tau, mu0);
-            std::printf("| %g | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", tau, mu0, r, closed.x,
-                        t, closed.y, r + t);
+            std::printf("| %g | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f |\n", tau, mu0, r,
+                        closed.x, t, closed.y, r + t,
+                        (r + t - direct - first) / (1.0 - direct - first));
         }
     }
 }
