@@ -3,7 +3,7 @@
 //
 //   cloud_reference_report --part energy   [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
-//   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S]
+//   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S] [--maps]
 //   cloud_reference_report --part formal
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
@@ -15,7 +15,8 @@
 //   same ray, evaluated on the CPU (reference/cloud_trace.h, the shared GLSL compiled as C++,
 //   over CPU-built LUTs from AtmosphereReference): its cloud luminance and transmittance.
 // cumulus: an isolated cumulus on a small image, sun behind, beside and in front (CumulusPart),
-//   N paths per pixel.
+//   N paths per pixel; --maps prints each case's reference image (% of its peak) and the
+//   renderer / reference ratio over the pixels the median counts.
 // formal: the renderer's source per unit sigma_s (CloudSunScattering, the shared GLSL) through a
 //   homogeneous non-absorbing slab over a black ground, integrated along every exit direction by
 //   a fine deterministic quadrature instead of the march (FormalPart): R and T against the
@@ -250,7 +251,30 @@ void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
 }
 
 // The isolated cumulus of cloud_march_support.h against the path tracer, N paths per pixel.
-void CumulusPart(std::int64_t samples, int threads, std::uint64_t seed) {
+// The reference in % of its peak beside renderer / reference where the median counts the pixel
+// (brighter than a fifth of the peak), '.' elsewhere; the top row first.
+void PrintCumulusMaps(const ref::IsolatedCumulusCase& c) {
+    const std::vector<double>& traced = c.reference_pixels;
+    const double peak = *std::max_element(traced.begin(), traced.end());
+    const std::size_t width = static_cast<std::size_t>(c.width);
+    std::printf("\n%s: the reference, %% of its peak | renderer / reference\n", c.name);
+    for (std::size_t row = traced.size() / width; row-- > 0;) {
+        for (std::size_t i = row * width; i < (row + 1) * width; ++i) {
+            std::printf("%4.0f", 100.0 * traced[i] / peak);
+        }
+        std::printf("  |");
+        for (std::size_t i = row * width; i < (row + 1) * width; ++i) {
+            if (traced[i] > 0.2 * peak) {
+                std::printf("%5.2f", c.renderer_pixels[i] / traced[i]);
+            } else {
+                std::printf("    .");
+            }
+        }
+        std::printf("\n");
+    }
+}
+
+void CumulusPart(std::int64_t samples, int threads, std::uint64_t seed, bool maps) {
     const CloudSettings settings;
     const auto start = std::chrono::steady_clock::now();
     const std::vector<ref::IsolatedCumulusCase> cases = ref::CompareIsolatedCumulus(
@@ -267,6 +291,9 @@ void CumulusPart(std::int64_t samples, int threads, std::uint64_t seed) {
     }
     std::printf("(%lld paths per pixel, %.1f s)\n", static_cast<long long>(samples),
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (maps) {
+        for (const ref::IsolatedCumulusCase& c : cases) PrintCumulusMaps(c);
+    }
 }
 
 }  // namespace
@@ -276,6 +303,7 @@ int main(int argc, char** argv) {
     std::int64_t samples = 0;
     int threads = 2;
     std::uint64_t seed = 1;
+    bool maps = false;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
     app.add_option("--part", part, "energy, overcast, cumulus or formal")
         ->required()
@@ -284,7 +312,12 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 32));
     app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
     app.add_option("--seed", seed)->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
+    app.add_flag("--maps", maps, "cumulus: print each case's images");
     CLI11_PARSE(app, argc, argv);
+    if (maps && part != "cumulus") {
+        std::fprintf(stderr, "cloud_reference_report: --maps applies to --part cumulus\n");
+        return 2;
+    }
     if (part == "energy") {
         EnergyPart(samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "overcast") {
@@ -292,7 +325,7 @@ int main(int argc, char** argv) {
     } else if (part == "formal") {
         FormalPart();
     } else {
-        CumulusPart(samples > 0 ? samples : 256, threads, seed);
+        CumulusPart(samples > 0 ? samples : 256, threads, seed, maps);
     }
     return 0;
 }

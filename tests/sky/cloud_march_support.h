@@ -134,6 +134,10 @@ struct IsolatedCumulusCase {
     double median_difference = 0.0;  // |renderer - reference| / reference, median over cloud
     double reference_noise = 0.0;    // the median a perfect renderer would show (0.674 sigma)
     std::size_t cloud_pixels = 0;
+    // The images, L / E per pixel, row 0 at the bottom, `width` per row.
+    int width = 0;
+    std::vector<double> renderer_pixels{};
+    std::vector<double> reference_pixels{};
 };
 
 // One cumulus 3.2 km wide over ground (0, 0) of a 16 km weather tile (repeating), base 1.5 km,
@@ -209,6 +213,9 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
             }
         }
         IsolatedCumulusCase& result = cases[c];
+        result.width = width;
+        result.renderer_pixels = renderer;
+        result.reference_pixels = traced;
         double variance = 0.0, peak = 0.0;
         for (std::size_t k = 0; k < traced.size(); ++k) {
             result.renderer += renderer[k];
