@@ -92,34 +92,28 @@ void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
 // of cosine mu to the vertical is the integral of the source over depth, attenuated by
 // exp(-(depth to the face) / mu); the source at optical depth t below the top (sun optical depth
 // t / mu0 along the light, tau - t below) is CloudSunScattering's. Depths on t = tau (i / n)^2,
-// the source constant over each interval and its attenuation integrated exactly; Gauss-Legendre
-// in mu, the midpoint rule in azimuth.
+// the source constant over each interval and its attenuation integrated exactly; the directions
+// SlabExitFlux's.
 double FormalSlabFlux(const ref::CloudScatteringParameters& p, double tau, double mu0, bool top) {
-    const int depths = 4000, azimuths = 48;
+    const int depths = 4000;
     const ref::vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
-    double flux = 0.0;
-    for (int i = 0; i < 8; ++i) {
-        const double mu = ref::kGaussNodes[i];
-        const double sin_theta = std::sqrt(1.0 - mu * mu);
-        for (int k = 0; k < azimuths; ++k) {
-            const double phi = 2.0 * kPi * (k + 0.5) / azimuths;
-            // The camera's view: down onto the top, or up into the base.
-            const ref::vec3 view(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
-                                 top ? -mu : mu);
-            double radiance = 0.0;
-            for (int j = 0; j < depths; ++j) {
-                const double t0 = tau * std::pow(double(j) / depths, 2.0);
-                const double t1 = tau * std::pow(double(j + 1) / depths, 2.0);
-                const double t = 0.5 * (t0 + t1);
-                const double source = ref::CloudSunScattering(p, t / mu0, tau - t, mu0,
-                                                              ref::dot(view, light), view.z);
-                const double d0 = top ? t0 : tau - t1, d1 = top ? t1 : tau - t0;
-                radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
-            }
-            flux += ref::kGaussWeights[i] * (2.0 * kPi / azimuths) * mu * radiance;
-        }
-    }
-    return flux / mu0;
+    return ref::SlabExitFlux(top, 48,
+                             [&](const ref::vec3& view) {
+                                 const double mu = std::abs(view.z);
+                                 double radiance = 0.0;
+                                 for (int j = 0; j < depths; ++j) {
+                                     const double t0 = tau * std::pow(double(j) / depths, 2.0);
+                                     const double t1 = tau * std::pow(double(j + 1) / depths, 2.0);
+                                     const double t = 0.5 * (t0 + t1);
+                                     const double source = ref::CloudSunScattering(
+                                         p, t / mu0, tau - t, mu0, ref::dot(view, light), view.z);
+                                     const double d0 = top ? t0 : tau - t1,
+                                                  d1 = top ? t1 : tau - t0;
+                                     radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
+                                 }
+                                 return radiance;
+                             }) /
+           mu0;
 }
 
 void FormalPart() {
@@ -264,7 +258,7 @@ void PrintCumulusMaps(const ref::IsolatedCumulusCase& c) {
         }
         std::printf("  |");
         for (std::size_t i = row * width; i < (row + 1) * width; ++i) {
-            if (traced[i] > 0.2 * peak) {
+            if (traced[i] > ref::kCumulusCloudPixelShare * peak) {
                 std::printf("%5.2f", c.renderer_pixels[i] / traced[i]);
             } else {
                 std::printf("    .");

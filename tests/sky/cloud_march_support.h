@@ -20,13 +20,33 @@ namespace {  // like the shared GLSL types it uses (reference/cloud_march.h)
 
 constexpr double kR = 6360.0;  // km
 
-// Gauss-Legendre on [0, 1], 8 nodes: fluxes as integrals over the zenith cosine.
-constexpr double kGaussNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
-                                  0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
-                                  0.8983332387068134, 0.9801449282487681};
-constexpr double kGaussWeights[] = {0.0506142681451881, 0.1111905172266872, 0.1568533229389436,
-                                    0.1813418916891810, 0.1813418916891810, 0.1568533229389436,
-                                    0.1111905172266872, 0.0506142681451881};
+// The flux a slab sends out of its top (top = true) or its base, integral of radiance(view) times
+// the cosine over the hemisphere of exit directions: Gauss-Legendre in the zenith cosine (8
+// nodes on [0, 1]), the midpoint rule in `azimuths` azimuths. `view` is the camera's direction,
+// down onto the top or up into the base.
+template <typename Radiance>
+double SlabExitFlux(bool top, int azimuths, const Radiance& radiance) {
+    static constexpr double kNodes[] = {0.0198550717512319, 0.1016667612931866, 0.2372337950418355,
+                                        0.4082826787521751, 0.5917173212478249, 0.7627662049581645,
+                                        0.8983332387068134, 0.9801449282487681};
+    static constexpr double kWeights[] = {
+        0.0506142681451881, 0.1111905172266872, 0.1568533229389436, 0.1813418916891810,
+        0.1813418916891810, 0.1568533229389436, 0.1111905172266872, 0.0506142681451881};
+    double flux = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        const double mu = kNodes[i];
+        const double sin_theta = std::sqrt(1.0 - mu * mu);
+        for (int k = 0; k < azimuths; ++k) {
+            const double phi = 2.0 * kPi * (k + 0.5) / azimuths;
+            const vec3 view(sin_theta * std::cos(phi), sin_theta * std::sin(phi), top ? -mu : mu);
+            flux += kWeights[i] * (2.0 * kPi / azimuths) * mu * radiance(view);
+        }
+    }
+    return flux;
+}
+
+// The pixels issue 15's per-pixel median counts: brighter than this share of the image's peak.
+constexpr double kCumulusCloudPixelShare = 0.2;
 
 // A sun of unit illuminance normal to its rays through a transparent atmosphere with no sky
 // light: what the march returns is the clouds' share of the sunlight alone.
@@ -229,7 +249,7 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
         result.reference_error = std::sqrt(variance) / count;
         std::vector<double> differences, noise_levels;
         for (std::size_t k = 0; k < traced.size(); ++k) {
-            if (traced[k] > 0.2 * peak) {
+            if (traced[k] > kCumulusCloudPixelShare * peak) {
                 differences.push_back(std::abs(renderer[k] - traced[k]) / traced[k]);
                 noise_levels.push_back(traced_error[k] / traced[k]);
             }

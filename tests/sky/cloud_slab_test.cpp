@@ -66,23 +66,14 @@ struct Slab {
     // Hemispheric flux per unit horizontal sun illuminance leaving the top (above = true) or the
     // base: Gauss-Legendre in the zenith cosine, the midpoint rule in azimuth.
     double Flux(const Sunlight& sun, double mu0, bool above) const {
-        const int azimuths = 12;
         const vec3 camera(0.0, 0.0, kR + (above ? 5.0 : 0.5));
         const CloudScatteringParameters scattering = DefaultScattering();
-        double flux = 0.0;
-        for (int i = 0; i < 8; ++i) {
-            const double mu = kGaussNodes[i];
-            const double sin_theta = std::sqrt(1.0 - mu * mu);
-            for (int k = 0; k < azimuths; ++k) {
-                const double phi = 2.0 * kPi * (k + 0.5) / azimuths;
-                const vec3 view(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
-                                above ? -mu : mu);
-                flux += kGaussWeights[i] * (2.0 * kPi / azimuths) * mu *
-                        CloudLuminance(sun, layer, weather, shape, detail, scattering, march,
-                                       camera, view, 4);
-            }
-        }
-        return flux / mu0;
+        return SlabExitFlux(above, 12,
+                            [&](const vec3& view) {
+                                return CloudLuminance(sun, layer, weather, shape, detail,
+                                                      scattering, march, camera, view, 4);
+                            }) /
+               mu0;
     }
 };
 
