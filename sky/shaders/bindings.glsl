@@ -66,10 +66,17 @@ const int kTextureUnitCount = 26;       // units 0 .. kTextureUnitCount - 1 are 
 
 // Image units.
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
-const int kShadeDirectionsImageUnit = 0;  // clouds/sky_shade.comp reads
+// clouds/sky_shade_trace.comp writes, sky_shade.comp reads:
+const int kShadeDirectionsImageUnit = 0;
 const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
 const int kScatteringOrderImageUnit = 1;  // atmosphere/multiple_scattering.comp writes
 const int kEnvironmentImageUnit = 0;      // atmosphere/environment_sh.comp reads the atlas
+// clouds/trace.comp writes the trace's three targets (trace.frag's outputs 0-2).
+const int kCloudTraceImageUnit = 0;
+const int kCloudTraceDepthImageUnit = 1;
+const int kCloudTraceProfileImageUnit = 2;
+const int kCloudHistoryImageUnit = 0;  // clouds/reconstruct.comp writes the history
+const int kImageUnitCount = 3;         // image units 0 .. kImageUnitCount - 1 are zenith's
 
 // Compute work-group sizes, which the host's dispatches divide by.
 const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations
@@ -79,6 +86,7 @@ const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 
 // 64; llvmpipe's pass 1.15x and 1.65x as long, its barriers being coroutine switches).
 const int kDirectionsGroupSize = 16;
 const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
+const int kCloudTraceGroupSize = 8;  // clouds/trace.comp, sky_shade_trace.comp, reconstruct.comp
 const int kEnvironmentShGroupSize = 64;  // atmosphere/environment_sh.comp: one group of 64
 
 // The light shafts are worked out once per kCloudLightShaftCell^2 trace cells.

@@ -108,6 +108,28 @@ BENCHMARK(BM_Frame720p)
     ->UseRealTime()
     ->MinTime(2.0);
 
+// The same frames at block 4 with the clouds' trace, sky shade and reconstruction in each GL
+// stage (CloudSettings::pass_stage; the default picks one by the driver). args: view (kViews),
+// 0 fragment, 1 compute.
+void BM_PassStage720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    const View& view = kViews[state.range(0)];
+    CloudSettings settings = Settings(4);
+    settings.pass_stage =
+        state.range(1) == 1 ? CloudPassStage::kCompute : CloudPassStage::kFragment;
+    f.renderer.SetWeather(f.weather, settings);
+    const PassTimes t = TimeFrames(state, f, f.CameraFor(view));
+    state.counters["cloud_shade_ms"] = t.cloud_shade;
+    state.counters["cloud_trace_ms"] = t.cloud_trace;
+    state.counters["cloud_reconstruct_ms"] = t.cloud_reconstruct;
+    state.SetLabel(std::string(view.name) + (state.range(1) == 1 ? " compute" : " fragment"));
+}
+BENCHMARK(BM_PassStage720p)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
 // The composite over a host's geometry in the clouds: a ridge 8 km away fills the frame's lower
 // part up to a line that rises and falls by 10 % of the height, rendered into the host's
 // framebuffer with its depth. From inside the cumulus layer the ridge's edge and face meet the

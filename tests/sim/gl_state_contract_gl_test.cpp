@@ -533,10 +533,12 @@ class GlStateContractTest : public ::testing::Test {
         return sky;
     }
 
-    // MakeSky's, under the overcast_stratus deck.
-    static std::unique_ptr<SkySystem> MakeOvercastSky() {
+    // MakeSky's, under the overcast_stratus deck, its passes in `stage`.
+    static std::unique_ptr<SkySystem> MakeOvercastSky(
+        sky::CloudPassStage stage = sky::CloudPassStage::kAuto) {
         auto sky = MakeSky(true);
         sky::CloudSettings settings;
+        settings.pass_stage = stage;
         settings.noise_cache_directory =
             std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
         sky->SetWeather(sky::clouds::LoadWeather("overcast_stratus"), settings);
@@ -632,17 +634,23 @@ TEST_F(GlStateContractTest, ClearSkyUnderAHostileHostState) {
     CheckEveryCall(*sky, host, reference, offscreen);
 }
 
+// In both stages of the clouds' passes (compute: image units the fragment stage leaves alone).
 TEST_F(GlStateContractTest, CloudsUnderAHostileHostState) {
     const Host host;
-    const auto sky = MakeOvercastSky();
-    // With the environment's faces (all six each Update), mip levels, projection and read-back.
-    sky::EnvironmentSettings environment;
-    environment.size = 16;
-    environment.faces_per_frame = 6;
-    sky->SetEnvironment(environment);
-    const std::vector<glm::vec4> reference = Reference(*sky, host);
-    const sky::LutImage offscreen = ReferenceOffscreen(*sky);
-    CheckEveryCall(*sky, host, reference, offscreen);
+    for (const sky::CloudPassStage stage :
+         {sky::CloudPassStage::kFragment, sky::CloudPassStage::kCompute}) {
+        SCOPED_TRACE(stage == sky::CloudPassStage::kCompute ? "compute" : "fragment");
+        const auto sky = MakeOvercastSky(stage);
+        // With the environment's faces (all six each Update), mip levels, projection and
+        // read-back.
+        sky::EnvironmentSettings environment;
+        environment.size = 16;
+        environment.faces_per_frame = 6;
+        sky->SetEnvironment(environment);
+        const std::vector<glm::vec4> reference = Reference(*sky, host);
+        const sky::LutImage offscreen = ReferenceOffscreen(*sky);
+        CheckEveryCall(*sky, host, reference, offscreen);
+    }
 }
 
 // Over the host's depth, the clouds in front of its geometry: the cells where they disagree are

@@ -226,6 +226,15 @@ TEST(CloudSettings, RejectsOutOfRangeValuesByName) {
     s = CloudSettings{};
     s.extinction = std::nan("");
     EXPECT_THROW(s.Validate(), zenith::ArgumentError);
+    s = CloudSettings{};
+    s.pass_stage = static_cast<CloudPassStage>(7);
+    try {
+        s.Validate();
+        FAIL();
+    } catch (const zenith::ArgumentError& e) {
+        EXPECT_STREQ(e.what(),
+                     "CloudSettings::pass_stage = 7 (expected 0 kAuto, 1 kFragment or 2 kCompute)");
+    }
 }
 
 TEST(CloudLightSet, DropsTheSunAtNightAndAFaintMoonByDay) {

@@ -30,7 +30,8 @@ layout(std140, binding = kCloudBlockBinding) uniform CloudBlock {
     int sky_shade_size;               // directions per side of the sky_shade passes
     // The layers in the order a ray from the camera meets them (CloudLayerOrder on the CPU: the
     // camera's layer and those below it downward, then those above upward). The same for every
-    // pixel, so the weather maps are indexed by a dynamically uniform index, as GLSL requires.
+    // pixel, so the weather maps are indexed by a dynamically uniform index, as GLSL requires
+    // (CloudWeatherMap, definitions.glsl).
     ivec4 cloud_layer_order;
     ivec4 cloud_ground_layer_order;  // the same from the ground (the sky shade's origin)
 };
@@ -38,6 +39,18 @@ layout(std140, binding = kCloudBlockBinding) uniform CloudBlock {
 layout(binding = kShapeNoiseUnit) uniform sampler3D shape_noise;
 layout(binding = kDetailNoiseUnit) uniform sampler3D detail_noise;
 layout(binding = kWeatherMapsUnit) uniform sampler2D weather_maps[kCloudMaxLayers];
+// Layer i's weather map as the march takes it (WeatherTexture, definitions.glsl).
+#ifdef CLOUD_COMPUTE_STAGE
+#define CloudWeatherMap(i) (i)
+vec4 SampleRepeat2D(int map, vec2 uv) {
+    if (map == 0) return textureLod(weather_maps[0], uv, 0.0);
+    if (map == 1) return textureLod(weather_maps[1], uv, 0.0);
+    if (map == 2) return textureLod(weather_maps[2], uv, 0.0);
+    return textureLod(weather_maps[3], uv, 0.0);
+}
+#else
+#define CloudWeatherMap(i) weather_maps[i]
+#endif
 // cloud_trace: rgb luminance, a transmittance; cloud_trace_depth: r, mean depth (km), -1 for
 // none, g where the ray enters cloud (km); cloud_trace_profile: where its transmittance fell below
 // CloudProfileThreshold(0..3) (km, -1 for never); cloud_shadow_map: r, transmittance to the light; cloud_ground_shadow: rgb,
@@ -144,7 +157,7 @@ CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, fl
         vec2 interval = CloudLayerInterval(cloud_layers[i], r, mu, altitude, march.max_distance);
         interval.y = min(interval.y, distance);
         MarchCloudLayer(atmosphere, transmittance_texture, irradiance_texture, cloud_layers[i],
-                        weather_maps[i], shape_noise, detail_noise, cloud_scattering, march,
+                        CloudWeatherMap(i), shape_noise, detail_noise, cloud_scattering, march,
                         cloud_lights, cloud_light_count, origin, direction, interval, jitter,
                         state);
     }
@@ -165,6 +178,86 @@ vec4 TraceClouds(vec3 view, float distance, float jitter, CloudMarchParameters m
                                        irradiance_texture, lights, camera_km,
                                        camera_altitude_km, view, state,
                                        cloud_aerial_perspective_steps);
+}
+
+// The cloud trace (H16 §6.1; trace.frag and trace.comp, CloudSettings::pass_stage): one cell
+// per block x block pixels, each marching the ray through the pixel of its block chosen for this
+// frame (trace_offset); with block 1 every pixel is traced. `cloud` is (L, T) of the clouds with
+// aerial perspective applied, `depth` their mean depth and where the ray enters cloud (km), and
+// `profile` the transmittance's profile (CloudMarchState.crossing).
+struct CloudTraceCell {
+    vec4 cloud;
+    vec4 depth;
+    vec4 profile;
+};
+
+CloudTraceCell TraceCloudCell(ivec2 cell) {
+    ivec2 pixel = cell * block + trace_offset;
+    CloudMarchState state;
+    CloudTraceCell result;
+    result.cloud = TraceClouds(CameraDirection(vec2(pixel), vec2(output_size)), 1e9,
+                               CloudJitter(pixel, frame_jitter), cloud_march, state);
+    result.depth = vec4(CloudMeanDepth(state), state.entry, 0.0, 0.0);
+    result.profile = state.crossing;
+    return result;
+}
+
+// The previous frame's texture coordinate of the point at `depth` km along `view` (the
+// direction alone when depth <= 0); false when it was outside the previous view.
+bool CloudReproject(vec3 view, float depth, out vec2 uv) {
+    mat3 previous_view = mat3(previous_view_from_frame[0].xyz, previous_view_from_frame[1].xyz,
+                              previous_view_from_frame[2].xyz);
+    vec3 v = depth > 0.0 ? previous_view * (view * depth - previous_camera_offset_km)
+                         : previous_view * view;
+    if (!(v.z < 0.0)) return false;
+    vec2 ndc = vec2(v.x / (-v.z * previous_tan_half_fov * previous_aspect),
+                    v.y / (-v.z * previous_tan_half_fov));
+    uv = 0.5 * ndc + 0.5;
+    return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+}
+
+// The clouds at a full-resolution pixel from this frame's trace and the previous frames (H16 §6.1,
+// F16 §5.5.3; reconstruct.frag and .comp, in the trace's stage). A pixel traced this frame takes
+// its new value, averaged with its reprojected history (history_weight) so the per-frame jitter
+// integrates over time; any other pixel takes its reprojected history. Reprojection follows the
+// cloud: the point at the clouds' mean depth (or the direction alone, for clear sky) is projected
+// into the previous camera, which handles rotation and flight at any speed. Where there is no
+// history (first frame, a cut, a point outside the previous view), the pixel falls back to this
+// frame's trace, upsampled. There is no depth test for disocclusion: a cloud's mean depth jumps
+// between neighbouring pixels at every edge and with every jitter, so such a test threw away good
+// history (measured: a static view never converged), while what it would catch, one cloud sliding
+// behind another, changes over many frames at flight speeds and is refreshed within block^2 frames.
+vec4 ReconstructCloudPixel(ivec2 pixel) {
+    ivec2 cell = pixel / block;
+    bool traced = all(equal(pixel - cell * block, trace_offset));
+    // This frame's trace around the pixel: the cell's own value, or the four nearest cells
+    // (the trace is sampled at pixel cell * block + trace_offset).
+    vec2 trace_uv = (vec2(pixel - trace_offset) / float(block) + 0.5) / vec2(trace_size);
+    vec4 current =
+        traced ? texelFetch(cloud_trace, cell, 0) : textureLod(cloud_trace, trace_uv, 0.0);
+    float depth = CloudTraceDepth(pixel);
+
+    vec3 view = CameraDirection(vec2(pixel), vec2(output_size));
+    vec2 uv;
+    bool valid = history_valid != 0 && CloudReproject(view, depth, uv);
+    vec4 history = valid ? textureLod(cloud_history, uv, 0.0) : vec4(0.0);
+    if (traced) return valid ? mix(current, history, history_weight) : current;
+    return valid ? history : current;
+}
+
+// What the clouds do to the light beneath them, one direction (sky_shade_trace.frag and .comp,
+// in the trace's stage): (L, T) of the layers seen from the ground below the camera along
+// CloudSkyShadeDirection `texel` (sky_shade_size^2 of the upper hemisphere, equal solid
+// angles), nothing in front. sky_shade.comp averages them.
+vec4 TraceSkyShadeDirection(ivec2 texel) {
+    vec3 up = normalize(camera_km);
+    mat3 to_weather = WeatherFromFrame();
+    vec3 direction =
+        CloudSkyShadeDirection(texel.y * sky_shade_size + texel.x, sky_shade_size, up);
+    CloudMarchState state = MarchCloudLayers(to_weather * (up * atmosphere.bottom_radius), 0.0,
+                                             to_weather * direction, 1e9, 0.5,
+                                             cloud_ground_layer_order, cloud_march);
+    return vec4(state.luminance, state.transmittance);
 }
 
 // A host's geometry `distance` km along a full-resolution pixel's ray, and the clouds in front of

@@ -19,7 +19,7 @@ void main() {
     float optical_depth = 0.0;
     for (int k = 0; k < cloud_layer_count; ++k) {
         int i = cloud_layer_order[k];
-        optical_depth += CloudLayerShadowDepth(cloud_layers[i], weather_maps[i], shape_noise,
+        optical_depth += CloudLayerShadowDepth(cloud_layers[i], CloudWeatherMap(i), shape_noise,
                                                detail_noise, cloud_march, origin, 0.0,
                                                cloud_lights.light[0].direction,
                                                shadow_map_steps);

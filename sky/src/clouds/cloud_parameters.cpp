@@ -63,6 +63,10 @@ void CloudSettings::Validate() const {
             "1..256");
     Require(shadow_map_interval >= 1 && shadow_map_interval <= 1000, "shadow_map_interval",
             shadow_map_interval, "1..1000");
+    const int stage = static_cast<int>(pass_stage);
+    Require(stage >= static_cast<int>(CloudPassStage::kAuto) &&
+                stage <= static_cast<int>(CloudPassStage::kCompute),
+            "pass_stage", stage, "0 kAuto, 1 kFragment or 2 kCompute");
 }
 
 std::vector<int> CloudLayerOrder(const clouds::Weather& weather, double camera_altitude) {

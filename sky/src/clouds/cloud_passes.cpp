@@ -123,9 +123,12 @@ float VanDerCorput(unsigned long long n) {
 // The programs of CloudPasses, in the order of BuildPrograms().
 enum CloudProgram : std::size_t {
     kTraceProgram,
+    kComputeTraceProgram,
     kReconstructProgram,
+    kComputeReconstructProgram,
     kShadowMapProgram,
     kShadeTraceProgram,
+    kComputeShadeTraceProgram,
     kShadeProgram,
     kGroundShadowProgram,
     kLightShaftProgram,
@@ -134,18 +137,49 @@ enum CloudProgram : std::size_t {
     kCloudProgramCount
 };
 
+// Compute programs read the weather maps with constant indices (clouds/definitions.glsl).
+constexpr std::string_view kComputeStage = "#define CLOUD_COMPUTE_STAGE 1\n";
+static_assert(kCloudMaxLayers == 4, "clouds/interface.glsl's SampleRepeat2D reads 4 maps");
+
+// CloudSettings::pass_stage with kAuto resolved in the current context.
+bool UsesComputePasses(CloudPassStage stage) {
+    if (stage != CloudPassStage::kAuto) return stage == CloudPassStage::kCompute;
+    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return renderer == nullptr ||
+           std::string_view(renderer).find("llvmpipe") == std::string_view::npos;
+}
+
+// The compute stage's pass of `program` over `size` cells or pixels in kCloudTraceGroupSize^2
+// groups, into the images bound, timed by `query` (0: none); what it wrote is then ready for
+// the passes that sample or load it and for read-backs.
+void DispatchCells(const gl::Program& program, glm::ivec2 size, GLuint query) {
+    program.Use();
+    if (query != 0) glBeginQuery(GL_TIME_ELAPSED, query);
+    const glm::ivec2 groups = (size + kCloudTraceGroupSize - 1) / kCloudTraceGroupSize;
+    glDispatchCompute(static_cast<GLuint>(groups.x), static_cast<GLuint>(groups.y), 1);
+    if (query != 0) glEndQuery(GL_TIME_ELAPSED);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 gl::Program BuildCloudProgram(CloudProgram program) {
     switch (program) {
         case kTraceProgram:
             return gl::FullscreenProgram("clouds/trace.frag", {}, kCloudParts);
+        case kComputeTraceProgram:
+            return gl::ComputeProgram("clouds/trace.comp", kCloudParts, kComputeStage);
         case kReconstructProgram:
             return gl::FullscreenProgram("clouds/reconstruct.frag", {}, kCloudParts);
+        case kComputeReconstructProgram:
+            return gl::ComputeProgram("clouds/reconstruct.comp", kCloudParts, kComputeStage);
         case kShadowMapProgram:
-            return gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts);
+            return gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts, kComputeStage);
         case kShadeTraceProgram:
             return gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts);
+        case kComputeShadeTraceProgram:
+            return gl::ComputeProgram("clouds/sky_shade_trace.comp", kCloudParts, kComputeStage);
         case kShadeProgram:
-            return gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts);
+            return gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts, kComputeStage);
         case kGroundShadowProgram:
             return gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts);
         case kLightShaftProgram:
@@ -180,10 +214,13 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
                          const std::vector<double>& tops, const clouds::CloudNoise& noise)
     : weather_(weather),
       settings_(settings),
-      trace_(BuildCloudProgram(kTraceProgram)),
-      reconstruct_(BuildCloudProgram(kReconstructProgram)),
+      compute_passes_(UsesComputePasses(settings.pass_stage)),
+      trace_(BuildCloudProgram(compute_passes_ ? kComputeTraceProgram : kTraceProgram)),
+      reconstruct_(
+          BuildCloudProgram(compute_passes_ ? kComputeReconstructProgram : kReconstructProgram)),
       shadow_pass_(BuildCloudProgram(kShadowMapProgram)),
-      shade_trace_pass_(BuildCloudProgram(kShadeTraceProgram)),
+      shade_trace_pass_(
+          BuildCloudProgram(compute_passes_ ? kComputeShadeTraceProgram : kShadeTraceProgram)),
       shade_pass_(BuildCloudProgram(kShadeProgram)),
       ground_shadow_(BuildCloudProgram(kGroundShadowProgram)),
       light_shafts_(BuildCloudProgram(kLightShaftProgram)),
@@ -346,9 +383,15 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
         glBeginQuery(GL_TIME_ELAPSED, queries_[kShadeQuery]);
-        gl::DrawFullscreen(shade_trace_pass_, vertex_array_, shade_framebuffer_,
-                           glm::ivec4(0, 0, kCloudSkyShadeSize, kCloudSkyShadeSize),
-                           gl::Blend::kReplace, 0);
+        if (compute_passes_) {
+            glBindImageTexture(kShadeDirectionsImageUnit, shade_directions_, 0, GL_FALSE, 0,
+                               GL_WRITE_ONLY, GL_RGBA32F);
+            DispatchCells(shade_trace_pass_, glm::ivec2(kCloudSkyShadeSize), 0);
+        } else {
+            gl::DrawFullscreen(shade_trace_pass_, vertex_array_, shade_framebuffer_,
+                               glm::ivec4(0, 0, kCloudSkyShadeSize, kCloudSkyShadeSize),
+                               gl::Blend::kReplace, 0);
+        }
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         shade_pass_.Use();
         glBindImageTexture(kShadeDirectionsImageUnit, shade_directions_, 0, GL_FALSE, 0,
@@ -378,8 +421,18 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     UploadUniforms(atmosphere, camera, lights, view, history_valid);
     BindTextures();
 
-    gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_, glm::ivec4(0, 0, trace_size_),
-                       gl::Blend::kReplace, queries_[kTraceQuery]);
+    if (compute_passes_) {
+        glBindImageTexture(kCloudTraceImageUnit, trace_color_, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RGBA32F);
+        glBindImageTexture(kCloudTraceDepthImageUnit, trace_depth_, 0, GL_FALSE, 0, GL_WRITE_ONLY,
+                           GL_RG32F);
+        glBindImageTexture(kCloudTraceProfileImageUnit, trace_profile_, 0, GL_FALSE, 0,
+                           GL_WRITE_ONLY, GL_RGBA32F);
+        DispatchCells(trace_, trace_size_, queries_[kTraceQuery]);
+    } else {
+        gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_, glm::ivec4(0, 0, trace_size_),
+                           gl::Blend::kReplace, queries_[kTraceQuery]);
+    }
     query_used_[kTraceQuery] = true;
 
     const std::size_t previous = current_;
@@ -387,8 +440,15 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     glBindTextureUnit(kCloudTraceUnit, trace_color_);
     glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
     glBindTextureUnit(kCloudHistoryUnit, history_color_[previous]);
-    gl::DrawFullscreen(reconstruct_, vertex_array_, history_framebuffer_[current_],
-                       glm::ivec4(0, 0, size_), gl::Blend::kReplace, queries_[kReconstructQuery]);
+    if (compute_passes_) {
+        glBindImageTexture(kCloudHistoryImageUnit, history_color_[current_], 0, GL_FALSE, 0,
+                           GL_WRITE_ONLY, GL_RGBA32F);
+        DispatchCells(reconstruct_, size_, queries_[kReconstructQuery]);
+    } else {
+        gl::DrawFullscreen(reconstruct_, vertex_array_, history_framebuffer_[current_],
+                           glm::ivec4(0, 0, size_), gl::Blend::kReplace,
+                           queries_[kReconstructQuery]);
+    }
     query_used_[kReconstructQuery] = true;
 
     glBindTextureUnit(kCloudShadowMapUnit, shadow_map_);

@@ -35,8 +35,9 @@ class CloudPasses {
     CloudPasses(const CloudPasses&) = delete;
     CloudPasses& operator=(const CloudPasses&) = delete;
 
-    // The programs a CloudPasses builds (trace, reconstruct, shadow map, sky shade trace, sky
-    // shade, ground shadow), for tests of the GL contract (renderer_programs.h).
+    // The programs a CloudPasses builds (the trace, the sky shade's trace and the reconstruction
+    // in both stages, shadow map, sky shade, ground shadow, ...), for tests of the GL contract
+    // (renderer_programs.h).
     static std::vector<gl::Program> BuildPrograms();
 
     const clouds::Weather& weather() const { return weather_; }
@@ -82,6 +83,7 @@ class CloudPasses {
 
     clouds::Weather weather_;
     CloudSettings settings_;
+    bool compute_passes_ = false;  // settings_.pass_stage, kAuto resolved for this context
     gl::Program trace_, reconstruct_, shadow_pass_, shade_trace_pass_, shade_pass_, ground_shadow_,
         light_shafts_;
     GLuint uniforms_ = 0;

@@ -74,9 +74,10 @@ Program FullscreenProgram(std::string_view fragment_file, std::string_view defin
     }
 }
 
-Program ComputeProgram(std::string_view pass_file, std::span<const std::string_view> extra_parts) {
+Program ComputeProgram(std::string_view pass_file, std::span<const std::string_view> extra_parts,
+                       std::string_view defines) {
     try {
-        return Program::Compute(ComposeShader(pass_file, {}, extra_parts), pass_file);
+        return Program::Compute(ComposeShader(pass_file, defines, extra_parts), pass_file);
     } catch (const ShaderError& e) {
         RethrowWithLegend(e, pass_file, extra_parts);
     }

@@ -20,7 +20,8 @@ std::string_view EmbeddedShaderFile(std::string_view name);
 std::string ComposeShader(std::string_view pass_file, std::string_view defines = {},
                           std::span<const std::string_view> extra_parts = {});
 Program ComputeProgram(std::string_view pass_file,
-                       std::span<const std::string_view> extra_parts = {});
+                       std::span<const std::string_view> extra_parts = {},
+                       std::string_view defines = {});
 // The same prelude for a fragment pass; the vertex shader is common/fullscreen.vert.
 Program FullscreenProgram(std::string_view fragment_file, std::string_view defines = {},
                           std::span<const std::string_view> extra_parts = {});

@@ -20,11 +20,11 @@ namespace zenith::sky::gl {
 class StateGuard {
   public:
     // Texture units 0..kTextureUnitCount - 1, uniform blocks 0..kPrecipitationBlockBinding,
-    // storage block 1, image units 0..1 and the indirect draw buffer: every one the passes bind
-    // (sky/shaders/bindings.glsl).
+    // storage block 1, image units 0..kImageUnitCount - 1 and the indirect draw buffer: every
+    // one the passes bind (sky/shaders/bindings.glsl).
     static constexpr int kTextureUnits = kTextureUnitCount;
     static constexpr int kUniformBindings = kPrecipitationBlockBinding + 1;
-    static constexpr int kImageUnits = kShadowMapImageUnit + 1;
+    static constexpr int kImageUnits = kImageUnitCount;
     static constexpr int kMaxDrawBuffers = 8;  // GL 4.5's minimum; more are left alone
     static constexpr int kMaxClipDistances = 8;
     static constexpr std::size_t kCapabilityCount = 16;  // state_guard.cpp's kCapabilities

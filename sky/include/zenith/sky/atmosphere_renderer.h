@@ -20,6 +20,14 @@ namespace zenith::sky {
 
 // The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
 // units; the defaults are what `zenith render --weather` uses.
+// The GL stage of the clouds' trace, sky shade trace and reconstruction
+// (CloudSettings::pass_stage): the same shared GLSL either way, and the same frames.
+enum class CloudPassStage {
+    kAuto,      // compute, except on Mesa's llvmpipe: see CloudSettings::pass_stage
+    kFragment,  // one fragment per trace cell, direction or pixel (clouds/*.frag)
+    kCompute,   // one invocation each, 8 x 8 work groups (clouds/*.comp)
+};
+
 struct CloudSettings {
     // Material (F16 §5.4.1, §5.7)
     double extinction = 0.04;  // 1/m at density 1: a mean free path of 25 m in a dense core
@@ -71,6 +79,12 @@ struct CloudSettings {
     // every pixel every frame (the reference, and single still frames).
     int block = 4;
     double history_weight = 0.5;  // share of the reprojected history kept when a pixel is traced
+    // The stage of the trace, the sky shade's trace and the reconstruction: on an NVIDIA H200
+    // the compute stage's trace took 0.32 ms where the fragment stage's took 2.44 (720p, block
+    // 4; a datacentre chip's fragment work runs on a fraction of it), on llvmpipe the compute
+    // stage's frame was 2x as long. kAuto takes the fragment stage when GL_RENDERER names
+    // llvmpipe and the compute stage otherwise (BENCHMARKS.md).
+    CloudPassStage pass_stage = CloudPassStage::kAuto;
     // The ground shadow map: sun transmittance through all layers over a square around the
     // camera's ground point
     int shadow_map_size = 128;           // 470 m texels

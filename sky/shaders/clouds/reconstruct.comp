@@ -1,0 +1,10 @@
+// The clouds' reconstruction, one invocation per pixel (ReconstructCloudPixel), into the history
+// reconstruct.frag draws.
+layout(local_size_x = kCloudTraceGroupSize, local_size_y = kCloudTraceGroupSize) in;
+layout(binding = kCloudHistoryImageUnit, rgba32f) uniform writeonly image2D history_image;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, output_size))) return;
+    imageStore(history_image, pixel, ReconstructCloudPixel(pixel));
+}
