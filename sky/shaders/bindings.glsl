@@ -76,7 +76,9 @@ const int kCloudTraceImageUnit = 0;
 const int kCloudTraceDepthImageUnit = 1;
 const int kCloudTraceProfileImageUnit = 2;
 const int kCloudHistoryImageUnit = 0;  // clouds/reconstruct.comp writes the history
-const int kImageUnitCount = 3;         // image units 0 .. kImageUnitCount - 1 are zenith's
+const int kCloudGroundShadowImageUnit = 0;  // clouds/ground_shadow.comp writes
+const int kCloudAirShadowImageUnit = 0;  // clouds/light_shafts.comp writes 4 parts (0-3)
+const int kImageUnitCount = 4;           // image units 0 .. kImageUnitCount - 1 are zenith's
 
 // Compute work-group sizes, which the host's dispatches divide by.
 const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations
@@ -86,7 +88,7 @@ const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 
 // 64; llvmpipe's pass 1.15x and 1.65x as long, its barriers being coroutine switches).
 const int kDirectionsGroupSize = 16;
 const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
-const int kCloudTraceGroupSize = 8;  // clouds/trace.comp, sky_shade_trace.comp, reconstruct.comp
+const int kCloudPassGroupSize = 8;  // the clouds' passes in the compute stage: 8 x 8
 const int kEnvironmentShGroupSize = 64;  // atmosphere/environment_sh.comp: one group of 64
 
 // The light shafts are worked out once per kCloudLightShaftCell^2 trace cells.

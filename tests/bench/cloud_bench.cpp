@@ -108,7 +108,7 @@ BENCHMARK(BM_Frame720p)
     ->UseRealTime()
     ->MinTime(2.0);
 
-// The same frames at block 4 with the clouds' trace, sky shade and reconstruction in each GL
+// The same frames at block 4 with the clouds' per-cell and per-pixel passes in each GL
 // stage (CloudSettings::pass_stage; the default picks one by the driver). args: view (kViews),
 // 0 fragment, 1 compute.
 void BM_PassStage720p(benchmark::State& state) {

@@ -30,6 +30,10 @@
 namespace zenith::sim {
 namespace {
 
+// Image units the host binds and the check reads: GL 4.5's minimum of GL_MAX_IMAGE_UNITS;
+// zenith binds units 0..3 (its clouds' passes in the compute stage).
+constexpr GLuint kImageUnits = 8;
+
 using zenith::test::Luminance;
 
 constexpr int kWidth = 64, kHeight = 48;
@@ -157,7 +161,7 @@ class Snapshot {
                 s.Indexed("ssbo " + Hex(e), e, i, 1);
             }
         }
-        for (GLuint i = 0; i < 3; ++i) {
+        for (GLuint i = 0; i < kImageUnits; ++i) {
             for (GLenum e : std::initializer_list<GLenum>{
                      GL_IMAGE_BINDING_NAME, GL_IMAGE_BINDING_LEVEL, GL_IMAGE_BINDING_LAYERED,
                      GL_IMAGE_BINDING_LAYER, GL_IMAGE_BINDING_ACCESS, GL_IMAGE_BINDING_FORMAT}) {
@@ -393,7 +397,7 @@ void ApplyHostileState(const Host& host, const Hostility& h) {
                           static_cast<GLintptr>(i) * host.ssbo_alignment, 128);
     }
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, host.other_buffer);
-    for (GLuint i = 0; i < 3; ++i) {
+    for (GLuint i = 0; i < kImageUnits; ++i) {
         glBindImageTexture(i, host.image, 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32F);
     }
     glBindBuffer(GL_PIXEL_PACK_BUFFER, host.buffer);
@@ -467,7 +471,8 @@ void ApplyDefaultState() {
     glActiveTexture(GL_TEXTURE0);
     for (GLuint i = 0; i < 8; ++i) glBindBufferBase(GL_UNIFORM_BUFFER, i, 0);
     for (GLuint i = 0; i < 4; ++i) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, 0);
-    for (GLuint i = 0; i < 3; ++i) glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
+    for (GLuint i = 0; i < kImageUnits; ++i)
+        glBindImageTexture(i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R8);
     for (GLenum target : std::initializer_list<GLenum>{
              GL_ARRAY_BUFFER, GL_UNIFORM_BUFFER, GL_SHADER_STORAGE_BUFFER, GL_PIXEL_PACK_BUFFER,
              GL_PIXEL_UNPACK_BUFFER, GL_QUERY_BUFFER, GL_DRAW_INDIRECT_BUFFER,

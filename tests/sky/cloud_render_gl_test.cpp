@@ -524,15 +524,17 @@ TEST_F(CloudRenderGlTest, ReprojectionFollowsAFastCameraWithoutSmearing) {
     EXPECT_LT(error_flying, error_still + 0.2);
 }
 
-// The two stages of the clouds' passes (CloudSettings::pass_stage: trace, sky shade and
-// reconstruction, the same GLSL) make the same frames: 16 frames of a camera flying at 250 m/s
-// and turning, block 4 (history, reprojection), the shade updated every 4th frame. On llvmpipe
+// The two stages of the clouds' passes (CloudSettings::pass_stage: trace, sky shade,
+// reconstruction, the ground's shadow and the light shafts, the same GLSL) make the same
+// frames: 16 frames of a camera flying at 250 m/s under the cumulus' base, looking a little
+// down and turning, block 4 (history, reprojection), the shade updated every 4th frame; the
+// clouds alone and the composite (with the shadow on the ground and the shafts). On llvmpipe
 // the compute stage once read the weather maps wrong (clouds/definitions.glsl).
 TEST_F(CloudRenderGlTest, BothPassStagesMakeTheSameFramesWhileFlying) {
     const Atmosphere earth;
     const Lights lights = Afternoon();
     const FrameOptions options = Options({96, 54});
-    std::vector<LutImage> frames;
+    std::vector<LutImage> frames, composites;
     std::vector<CloudShade> shades;
     for (const CloudPassStage stage : {CloudPassStage::kFragment, CloudPassStage::kCompute}) {
         CloudSettings settings = Settings(4);
@@ -540,22 +542,27 @@ TEST_F(CloudRenderGlTest, BothPassStagesMakeTheSameFramesWhileFlying) {
         AtmosphereRenderer renderer(earth);
         renderer.SetWeather(Cumulus(), settings);
         for (int frame = 0; frame < 16; ++frame) {
-            Camera camera = CameraAt(2000.0, 0.4 + 0.01 * frame, 0.05);
+            Camera camera = CameraAt(1000.0, 0.4 + 0.01 * frame, -0.1);
             camera.position.y += 250.0 / 30.0 * frame;
             RenderClouds(renderer, camera, lights, options, 1);
         }
         frames.push_back(Inspect(renderer).ReadClouds());
+        composites.push_back(Inspect(renderer).ReadFrame());
         shades.push_back(Inspect(renderer).ReadCloudShade());
     }
     const ImageDifference d = Difference(frames[1], frames[0]);
+    const ImageDifference frame = Difference(composites[1], composites[0]);
     std::printf(
-        "compute vs fragment stage after 16 frames: luminance %.2e per pixel (mean %.4g "
-        "cd/m^2), transmittance %.2e; shade: sky %.6f / %.6f, cloud light %.3f / %.3f cd/m^2\n",
-        d.luminance, MeanLuminance(frames[0]), d.transmittance, shades[1].sky_transmittance,
-        shades[0].sky_transmittance, shades[1].luminance.y, shades[0].luminance.y);
+        "compute vs fragment stage after 16 frames: clouds' luminance %.2e per pixel (mean "
+        "%.4g cd/m^2), transmittance %.2e; the frame %.2e (mean %.4g cd/m^2); shade: sky "
+        "%.6f / %.6f, cloud light %.3f / %.3f cd/m^2\n",
+        d.luminance, MeanLuminance(frames[0]), d.transmittance, frame.luminance,
+        MeanLuminance(composites[0]), shades[1].sky_transmittance, shades[0].sky_transmittance,
+        shades[1].luminance.y, shades[0].luminance.y);
     EXPECT_GT(MeanLuminance(frames[0]), 100.0);
     EXPECT_LT(d.luminance, 1e-3);
     EXPECT_LT(d.transmittance, 1e-4);
+    EXPECT_LT(frame.luminance, 1e-3);
     EXPECT_NEAR(shades[1].sky_transmittance, shades[0].sky_transmittance, 1e-5);
     EXPECT_NEAR(shades[1].luminance.y / shades[0].luminance.y, 1.0, 1e-4);
 }

@@ -404,6 +404,8 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"order_image", kScatteringOrderImageUnit},
         {"shade_image", kShadeDirectionsImageUnit},
         {"history_image", kCloudHistoryImageUnit},
+        {"ground_shadow_image", kCloudGroundShadowImageUnit},
+        {"air_shadow_images[0]", kCloudAirShadowImageUnit},  // and the next 3
         {"trace_cloud_image", kCloudTraceImageUnit},
         {"trace_depth_image", kCloudTraceDepthImageUnit},
         {"trace_profile_image", kCloudTraceProfileImageUnit},
@@ -421,9 +423,11 @@ const std::map<std::string, glm::ivec3>& ExpectedGroupSizes() {
         {"atmosphere/aerial_perspective.comp", {kLutGroupSize, kLutGroupSize, 1}},
         {"clouds/shadow_map.comp", {kShadowMapGroupSize, kShadowMapGroupSize, 1}},
         {"clouds/sky_shade.comp", {1, 1, 1}},
-        {"clouds/trace.comp", {kCloudTraceGroupSize, kCloudTraceGroupSize, 1}},
-        {"clouds/sky_shade_trace.comp", {kCloudTraceGroupSize, kCloudTraceGroupSize, 1}},
-        {"clouds/reconstruct.comp", {kCloudTraceGroupSize, kCloudTraceGroupSize, 1}},
+        {"clouds/trace.comp", {kCloudPassGroupSize, kCloudPassGroupSize, 1}},
+        {"clouds/sky_shade_trace.comp", {kCloudPassGroupSize, kCloudPassGroupSize, 1}},
+        {"clouds/reconstruct.comp", {kCloudPassGroupSize, kCloudPassGroupSize, 1}},
+        {"clouds/ground_shadow.comp", {kCloudPassGroupSize, kCloudPassGroupSize, 1}},
+        {"clouds/light_shafts.comp", {kCloudPassGroupSize, kCloudPassGroupSize, 1}},
         {"atmosphere/environment_sh.comp", {kEnvironmentShGroupSize, 1, 1}},
         {"display/histogram.comp", {kDisplayGroupSize, kDisplayGroupSize, 1}},
         {"display/meter.comp", {1, 1, 1}},
@@ -645,10 +649,10 @@ std::string Join(const std::vector<std::string>& lines) {
 
 TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
     // 5 LUT passes, 6 composites, the stars' points, the precipitation's streaks, the 6
-    // composites again with clouds, 12 cloud programs (the trace, the sky shade's trace and the
-    // reconstruction in both stages), 3 display programs, 4 environment faces (with and without
-    // clouds, ray march) and its projection.
-    ASSERT_EQ(programs_.size(), 39u);
+    // composites again with clouds, 14 cloud programs (the trace, the sky shade's trace, the
+    // reconstruction, the ground's shadow and the light shafts in both stages), 3 display
+    // programs, 4 environment faces (with and without clouds, ray march) and its projection.
+    ASSERT_EQ(programs_.size(), 41u);
     const std::map<std::string, BlockMirror> mirrors = Mirrors();
     std::set<std::string> seen;
     std::vector<std::string> errors;

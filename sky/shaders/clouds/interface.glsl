@@ -31,7 +31,7 @@ layout(std140, binding = kCloudBlockBinding) uniform CloudBlock {
     // The layers in the order a ray from the camera meets them (CloudLayerOrder on the CPU: the
     // camera's layer and those below it downward, then those above upward). The same for every
     // pixel, so the weather maps are indexed by a dynamically uniform index, as GLSL requires
-    // (CloudWeatherMap, definitions.glsl).
+    // (CloudWeatherMap, below).
     ivec4 cloud_layer_order;
     ivec4 cloud_ground_layer_order;  // the same from the ground (the sky shade's origin)
 };
@@ -372,4 +372,24 @@ CloudShaftProfile CloudAirShadow(vec3 view, float jitter) {
                                     map_light, lights.cloud_base, shadow_map_extent_km, camera_km,
                                     camera_altitude_km, view, 1e9,
                                     int(cloud_march.light_shaft_steps), jitter);
+}
+
+// The clouds' shadow on our own ground at trace cell `texel`'s centre (ground_shadow.frag and
+// .comp, in the trace's stage): the shadow map's texels are hundreds of metres wide, so the
+// composite interpolates these instead of working it out for every pixel (which cost llvmpipe
+// 19 ms at 720p).
+vec3 GroundShadowCell(ivec2 texel) {
+    vec2 pixel = vec2(texel) * float(block) + 0.5 * float(block - 1);
+    return GroundShadowCorrection(CameraDirection(pixel, vec2(output_size)));
+}
+
+// The light shafts (CloudAirShadow) at the centre of shaft cell `texel`, kCloudLightShaftCell^2
+// trace cells (light_shafts.frag and .comp, in the trace's stage), which the composite
+// interpolates (CloudLightShafts, CloudLightShaftsTo): they vary over the shadow map's texels,
+// hundreds of metres, and cost llvmpipe 44 ms at 720p worked out per trace cell. The samples
+// keep their place from frame to frame (nothing here averages a moving jitter away).
+CloudShaftProfile LightShaftCell(ivec2 texel) {
+    int cell = kCloudLightShaftCell * block;
+    vec2 pixel = vec2(texel) * float(cell) + 0.5 * float(cell - 1);
+    return CloudAirShadow(CameraDirection(pixel, vec2(output_size)), CloudJitter(texel, 0.0));
 }

@@ -1,6 +1,6 @@
 // The clouds' reconstruction, one invocation per pixel (ReconstructCloudPixel), into the history
 // reconstruct.frag draws.
-layout(local_size_x = kCloudTraceGroupSize, local_size_y = kCloudTraceGroupSize) in;
+layout(local_size_x = kCloudPassGroupSize, local_size_y = kCloudPassGroupSize) in;
 layout(binding = kCloudHistoryImageUnit, rgba32f) uniform writeonly image2D history_image;
 
 void main() {

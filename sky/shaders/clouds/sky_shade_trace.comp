@@ -1,6 +1,6 @@
 // The clouds' sky shade, one invocation per direction (TraceSkyShadeDirection), into the image
 // sky_shade.comp then reads.
-layout(local_size_x = kCloudTraceGroupSize, local_size_y = kCloudTraceGroupSize) in;
+layout(local_size_x = kCloudPassGroupSize, local_size_y = kCloudPassGroupSize) in;
 layout(binding = kShadeDirectionsImageUnit, rgba32f) uniform writeonly image2D shade_image;
 
 void main() {

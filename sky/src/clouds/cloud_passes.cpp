@@ -131,7 +131,9 @@ enum CloudProgram : std::size_t {
     kComputeShadeTraceProgram,
     kShadeProgram,
     kGroundShadowProgram,
+    kComputeGroundShadowProgram,
     kLightShaftProgram,
+    kComputeLightShaftProgram,
     kGeometryListProgram,
     kGeometryMarchProgram,
     kCloudProgramCount
@@ -149,13 +151,13 @@ bool UsesComputePasses(CloudPassStage stage) {
            std::string_view(renderer).find("llvmpipe") == std::string_view::npos;
 }
 
-// The compute stage's pass of `program` over `size` cells or pixels in kCloudTraceGroupSize^2
+// The compute stage's pass of `program` over `size` cells or pixels in kCloudPassGroupSize^2
 // groups, into the images bound, timed by `query` (0: none); what it wrote is then ready for
 // the passes that sample or load it and for read-backs.
 void DispatchCells(const gl::Program& program, glm::ivec2 size, GLuint query) {
     program.Use();
     if (query != 0) glBeginQuery(GL_TIME_ELAPSED, query);
-    const glm::ivec2 groups = (size + kCloudTraceGroupSize - 1) / kCloudTraceGroupSize;
+    const glm::ivec2 groups = (size + kCloudPassGroupSize - 1) / kCloudPassGroupSize;
     glDispatchCompute(static_cast<GLuint>(groups.x), static_cast<GLuint>(groups.y), 1);
     if (query != 0) glEndQuery(GL_TIME_ELAPSED);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
@@ -182,8 +184,12 @@ gl::Program BuildCloudProgram(CloudProgram program) {
             return gl::ComputeProgram("clouds/sky_shade.comp", kCloudParts, kComputeStage);
         case kGroundShadowProgram:
             return gl::FullscreenProgram("clouds/ground_shadow.frag", {}, kCloudParts);
+        case kComputeGroundShadowProgram:
+            return gl::ComputeProgram("clouds/ground_shadow.comp", kCloudParts, kComputeStage);
         case kLightShaftProgram:
             return gl::FullscreenProgram("clouds/light_shafts.frag", {}, kCloudParts);
+        case kComputeLightShaftProgram:
+            return gl::ComputeProgram("clouds/light_shafts.comp", kCloudParts, kComputeStage);
         case kGeometryListProgram:
             return gl::FullscreenProgram("clouds/geometry_list.frag", {}, kGeometryListParts);
         case kGeometryMarchProgram:
@@ -222,8 +228,10 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
       shade_trace_pass_(
           BuildCloudProgram(compute_passes_ ? kComputeShadeTraceProgram : kShadeTraceProgram)),
       shade_pass_(BuildCloudProgram(kShadeProgram)),
-      ground_shadow_(BuildCloudProgram(kGroundShadowProgram)),
-      light_shafts_(BuildCloudProgram(kLightShaftProgram)),
+      ground_shadow_(
+          BuildCloudProgram(compute_passes_ ? kComputeGroundShadowProgram : kGroundShadowProgram)),
+      light_shafts_(
+          BuildCloudProgram(compute_passes_ ? kComputeLightShaftProgram : kLightShaftProgram)),
       cloud_tops_(tops) {
     // The weather and settings were validated by AtmosphereRenderer::SetWeather.
     if (weather_.layers.size() > static_cast<std::size_t>(kCloudMaxLayers)) {
@@ -452,14 +460,28 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     query_used_[kReconstructQuery] = true;
 
     glBindTextureUnit(kCloudShadowMapUnit, shadow_map_);
-    gl::DrawFullscreen(ground_shadow_, vertex_array_, ground_shadow_framebuffer_,
-                       glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace,
-                       queries_[kGroundShadowQuery]);
+    if (compute_passes_) {
+        glBindImageTexture(kCloudGroundShadowImageUnit, ground_shadow_color_, 0, GL_FALSE, 0,
+                           GL_WRITE_ONLY, GL_RGBA32F);
+        DispatchCells(ground_shadow_, trace_size_, queries_[kGroundShadowQuery]);
+    } else {
+        gl::DrawFullscreen(ground_shadow_, vertex_array_, ground_shadow_framebuffer_,
+                           glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace,
+                           queries_[kGroundShadowQuery]);
+    }
     query_used_[kGroundShadowQuery] = true;
     if (settings_.light_shaft_steps > 0) {
-        gl::DrawFullscreen(light_shafts_, vertex_array_, shaft_framebuffer_,
-                           glm::ivec4(0, 0, shaft_size_), gl::Blend::kReplace,
-                           queries_[kLightShaftQuery]);
+        if (compute_passes_) {
+            for (std::size_t k = 0; k < air_shadow_color_.size(); ++k) {
+                glBindImageTexture(kCloudAirShadowImageUnit + static_cast<GLuint>(k),
+                                   air_shadow_color_[k], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+            }
+            DispatchCells(light_shafts_, shaft_size_, queries_[kLightShaftQuery]);
+        } else {
+            gl::DrawFullscreen(light_shafts_, vertex_array_, shaft_framebuffer_,
+                               glm::ivec4(0, 0, shaft_size_), gl::Blend::kReplace,
+                               queries_[kLightShaftQuery]);
+        }
         query_used_[kLightShaftQuery] = true;
     }
 

@@ -35,9 +35,9 @@ class CloudPasses {
     CloudPasses(const CloudPasses&) = delete;
     CloudPasses& operator=(const CloudPasses&) = delete;
 
-    // The programs a CloudPasses builds (the trace, the sky shade's trace and the reconstruction
-    // in both stages, shadow map, sky shade, ground shadow, ...), for tests of the GL contract
-    // (renderer_programs.h).
+    // The programs a CloudPasses builds (the trace, the sky shade's trace, the reconstruction,
+    // the ground's shadow and the light shafts in both stages, the shadow map, the sky shade,
+    // ...), for tests of the GL contract (renderer_programs.h).
     static std::vector<gl::Program> BuildPrograms();
 
     const clouds::Weather& weather() const { return weather_; }

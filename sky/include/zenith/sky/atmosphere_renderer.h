@@ -20,11 +20,12 @@ namespace zenith::sky {
 
 // The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
 // units; the defaults are what `zenith render --weather` uses.
-// The GL stage of the clouds' trace, sky shade trace and reconstruction
-// (CloudSettings::pass_stage): the same shared GLSL either way, and the same frames.
+// The GL stage of the clouds' per-cell and per-pixel passes: the trace, the sky shade's trace,
+// the reconstruction, the ground's shadow and the light shafts (CloudSettings::pass_stage). The
+// same shared GLSL either way, and the same frames.
 enum class CloudPassStage {
     kAuto,      // compute, except on Mesa's llvmpipe: see CloudSettings::pass_stage
-    kFragment,  // one fragment per trace cell, direction or pixel (clouds/*.frag)
+    kFragment,  // one fragment per cell, direction or pixel (clouds/*.frag)
     kCompute,   // one invocation each, 8 x 8 work groups (clouds/*.comp)
 };
 
@@ -79,11 +80,11 @@ struct CloudSettings {
     // every pixel every frame (the reference, and single still frames).
     int block = 4;
     double history_weight = 0.5;  // share of the reprojected history kept when a pixel is traced
-    // The stage of the trace, the sky shade's trace and the reconstruction: on an NVIDIA H200
-    // the compute stage's trace took 0.32 ms where the fragment stage's took 2.44 (720p, block
-    // 4; a datacentre chip's fragment work runs on a fraction of it), on llvmpipe the compute
-    // stage's frame was 2x as long. kAuto takes the fragment stage when GL_RENDERER names
-    // llvmpipe and the compute stage otherwise (BENCHMARKS.md).
+    // The stage of those passes (CloudPassStage): on an NVIDIA H200 the compute stage's trace
+    // took 0.32 ms where the fragment stage's took 2.45 and the cloudy frame 1.3 ms instead of
+    // 3.9 (720p, block 4; a datacentre chip's fragment work runs on a fraction of it); on
+    // llvmpipe the compute stage's frame was 2x as long. kAuto takes the fragment stage when
+    // GL_RENDERER names llvmpipe and the compute stage otherwise (BENCHMARKS.md).
     CloudPassStage pass_stage = CloudPassStage::kAuto;
     // The ground shadow map: sun transmittance through all layers over a square around the
     // camera's ground point
