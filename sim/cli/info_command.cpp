@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "zenith/geo/stars.h"
+#include "zenith/sky/atmosphere_renderer.h"
 #include "zenith/sky/gl/context.h"
 #include "zenith/sky/gl/error.h"
 #include "zenith/version.h"
@@ -17,6 +18,10 @@ Command AddInfoCommand(CLI::App& app) {
                 try {
                     const auto context = sky::gl::CreateHeadlessContextFromEnvironment();
                     fmt::print("GL context: {}\n", context->description());
+                    const bool compute = sky::ResolveCloudPassStage(sky::CloudPassStage::kAuto) ==
+                                         sky::CloudPassStage::kCompute;
+                    fmt::print("clouds' passes: the {} stage (CloudSettings::pass_stage)\n",
+                               compute ? "compute" : "fragment");
                 } catch (const sky::gl::GlError& e) {
                     fmt::print("GL context: unavailable: {}\n", e.what());
                 }

@@ -143,14 +143,6 @@ enum CloudProgram : std::size_t {
 constexpr std::string_view kComputeStage = "#define CLOUD_COMPUTE_STAGE 1\n";
 static_assert(kCloudMaxLayers == 4, "clouds/interface.glsl's SampleRepeat2D reads 4 maps");
 
-// CloudSettings::pass_stage with kAuto resolved in the current context.
-bool UsesComputePasses(CloudPassStage stage) {
-    if (stage != CloudPassStage::kAuto) return stage == CloudPassStage::kCompute;
-    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-    return renderer == nullptr ||
-           std::string_view(renderer).find("llvmpipe") == std::string_view::npos;
-}
-
 // The compute stage's pass of `program` over `size` cells or pixels in kCloudPassGroupSize^2
 // groups, into the images bound, timed by `query` (0: none); what it wrote is then ready for
 // the passes that sample or load it and for read-backs.
@@ -207,6 +199,14 @@ gl::Program BuildCloudProgram(CloudProgram program) {
 
 std::span<const std::string_view> CloudShaderParts() { return kCloudParts; }
 
+CloudPassStage ResolveCloudPassStage(CloudPassStage stage) {
+    if (stage != CloudPassStage::kAuto) return stage;
+    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const bool llvmpipe = renderer != nullptr &&
+                          std::string_view(renderer).find("llvmpipe") != std::string_view::npos;
+    return llvmpipe ? CloudPassStage::kFragment : CloudPassStage::kCompute;
+}
+
 std::vector<gl::Program> CloudPasses::BuildPrograms() {
     std::vector<gl::Program> programs;
     for (std::size_t i = 0; i < kCloudProgramCount; ++i) {
@@ -220,7 +220,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
                          const std::vector<double>& tops, const clouds::CloudNoise& noise)
     : weather_(weather),
       settings_(settings),
-      compute_passes_(UsesComputePasses(settings.pass_stage)),
+      compute_passes_(ResolveCloudPassStage(settings.pass_stage) == CloudPassStage::kCompute),
       trace_(BuildCloudProgram(compute_passes_ ? kComputeTraceProgram : kTraceProgram)),
       reconstruct_(
           BuildCloudProgram(compute_passes_ ? kComputeReconstructProgram : kReconstructProgram)),

@@ -29,6 +29,10 @@ enum class CloudPassStage {
     kCompute,   // one invocation each, 8 x 8 work groups (clouds/*.comp)
 };
 
+// The stage the clouds' passes take for `stage` in the current GL context (functions loaded):
+// kAuto resolved to kFragment where GL_RENDERER names llvmpipe and to kCompute elsewhere.
+CloudPassStage ResolveCloudPassStage(CloudPassStage stage);
+
 struct CloudSettings {
     // Material (F16 §5.4.1, §5.7)
     double extinction = 0.04;  // 1/m at density 1: a mean free path of 25 m in a dense core
