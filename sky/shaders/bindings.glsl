@@ -66,19 +66,15 @@ const int kTextureUnitCount = 26;       // units 0 .. kTextureUnitCount - 1 are 
 
 // Image units.
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
-// clouds/sky_shade_trace.comp writes, sky_shade.comp reads:
-const int kShadeDirectionsImageUnit = 0;
+const int kShadeDirectionsImageUnit = 0;  // clouds/sky_shade.comp reads
 const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
 const int kScatteringOrderImageUnit = 1;  // atmosphere/multiple_scattering.comp writes
 const int kEnvironmentImageUnit = 0;      // atmosphere/environment_sh.comp reads the atlas
-// clouds/trace.comp writes the trace's three targets (trace.frag's outputs 0-2).
-const int kCloudTraceImageUnit = 0;
-const int kCloudTraceDepthImageUnit = 1;
-const int kCloudTraceProfileImageUnit = 2;
-const int kCloudHistoryImageUnit = 0;  // clouds/reconstruct.comp writes the history
-const int kCloudGroundShadowImageUnit = 0;  // clouds/ground_shadow.comp writes
-const int kCloudAirShadowImageUnit = 0;  // clouds/light_shafts.comp writes 4 parts (0-3)
-const int kImageUnitCount = 4;           // image units 0 .. kImageUnitCount - 1 are zenith's
+// The clouds' passes in the compute stage (clouds/*.comp) write their targets, the fragment
+// stage's outputs 0, 1, ..., to image units kCloudPassImageUnit + 0, 1, ... (the light shafts'
+// four parts the most).
+const int kCloudPassImageUnit = 0;
+const int kImageUnitCount = 4;  // image units 0 .. kImageUnitCount - 1 are zenith's
 
 // Compute work-group sizes, which the host's dispatches divide by.
 const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 x 8 invocations

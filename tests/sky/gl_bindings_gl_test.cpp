@@ -402,13 +402,13 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"shadow_map_image", kShadowMapImageUnit},
         {"environment_atlas", kEnvironmentImageUnit},
         {"order_image", kScatteringOrderImageUnit},
-        {"shade_image", kShadeDirectionsImageUnit},
-        {"history_image", kCloudHistoryImageUnit},
-        {"ground_shadow_image", kCloudGroundShadowImageUnit},
-        {"air_shadow_images[0]", kCloudAirShadowImageUnit},  // and the next 3
-        {"trace_cloud_image", kCloudTraceImageUnit},
-        {"trace_depth_image", kCloudTraceDepthImageUnit},
-        {"trace_profile_image", kCloudTraceProfileImageUnit},
+        {"shade_image", kCloudPassImageUnit},
+        {"history_image", kCloudPassImageUnit},
+        {"ground_shadow_image", kCloudPassImageUnit},
+        {"air_shadow_images[0]", kCloudPassImageUnit},  // and the next 3
+        {"trace_cloud_image", kCloudPassImageUnit},
+        {"trace_depth_image", kCloudPassImageUnit + 1},
+        {"trace_profile_image", kCloudPassImageUnit + 2},
     };
     return units;
 }

@@ -1,7 +1,6 @@
 // The clouds' shadow on our own ground, one invocation per trace cell (GroundShadowCell).
 layout(local_size_x = kCloudPassGroupSize, local_size_y = kCloudPassGroupSize) in;
-layout(binding = kCloudGroundShadowImageUnit, rgba32f)
-    uniform writeonly image2D ground_shadow_image;
+layout(binding = kCloudPassImageUnit, rgba32f) uniform writeonly image2D ground_shadow_image;
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

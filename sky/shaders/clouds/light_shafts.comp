@@ -1,7 +1,7 @@
 // The light shafts, one invocation per shaft cell (LightShaftCell), into the four parts'
 // images that light_shafts.frag draws.
 layout(local_size_x = kCloudPassGroupSize, local_size_y = kCloudPassGroupSize) in;
-layout(binding = kCloudAirShadowImageUnit, rgba32f) uniform writeonly image2D air_shadow_images[4];
+layout(binding = kCloudPassImageUnit, rgba32f) uniform writeonly image2D air_shadow_images[4];
 
 void main() {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);

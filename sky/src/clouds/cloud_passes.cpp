@@ -143,19 +143,6 @@ enum CloudProgram : std::size_t {
 constexpr std::string_view kComputeStage = "#define CLOUD_COMPUTE_STAGE 1\n";
 static_assert(kCloudMaxLayers == 4, "clouds/interface.glsl's SampleRepeat2D reads 4 maps");
 
-// The compute stage's pass of `program` over `size` cells or pixels in kCloudPassGroupSize^2
-// groups, into the images bound, timed by `query` (0: none); what it wrote is then ready for
-// the passes that sample or load it and for read-backs.
-void DispatchCells(const gl::Program& program, glm::ivec2 size, GLuint query) {
-    program.Use();
-    if (query != 0) glBeginQuery(GL_TIME_ELAPSED, query);
-    const glm::ivec2 groups = (size + kCloudPassGroupSize - 1) / kCloudPassGroupSize;
-    glDispatchCompute(static_cast<GLuint>(groups.x), static_cast<GLuint>(groups.y), 1);
-    if (query != 0) glEndQuery(GL_TIME_ELAPSED);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
 gl::Program BuildCloudProgram(CloudProgram program) {
     switch (program) {
         case kTraceProgram:
@@ -391,15 +378,8 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
                         GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 
         glBeginQuery(GL_TIME_ELAPSED, queries_[kShadeQuery]);
-        if (compute_passes_) {
-            glBindImageTexture(kShadeDirectionsImageUnit, shade_directions_, 0, GL_FALSE, 0,
-                               GL_WRITE_ONLY, GL_RGBA32F);
-            DispatchCells(shade_trace_pass_, glm::ivec2(kCloudSkyShadeSize), 0);
-        } else {
-            gl::DrawFullscreen(shade_trace_pass_, vertex_array_, shade_framebuffer_,
-                               glm::ivec4(0, 0, kCloudSkyShadeSize, kCloudSkyShadeSize),
-                               gl::Blend::kReplace, 0);
-        }
+        RunCellPass(shade_trace_pass_, shade_framebuffer_, {{shade_directions_, GL_RGBA32F}},
+                    glm::ivec2(kCloudSkyShadeSize), 0);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         shade_pass_.Use();
         glBindImageTexture(kShadeDirectionsImageUnit, shade_directions_, 0, GL_FALSE, 0,
@@ -422,6 +402,28 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
                              kCloudMembersEnd - kCloudMembers);
 }
 
+void CloudPasses::RunCellPass(const gl::Program& program, GLuint framebuffer,
+                              std::initializer_list<PassTarget> targets, glm::ivec2 size,
+                              GLuint query) const {
+    if (!compute_passes_) {
+        gl::DrawFullscreen(program, vertex_array_, framebuffer, glm::ivec4(0, 0, size),
+                           gl::Blend::kReplace, query);
+        return;
+    }
+    GLuint unit = kCloudPassImageUnit;
+    for (const PassTarget& target : targets) {
+        glBindImageTexture(unit++, target.texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, target.format);
+    }
+    program.Use();
+    if (query != 0) glBeginQuery(GL_TIME_ELAPSED, query);
+    const glm::ivec2 groups = (size + kCloudPassGroupSize - 1) / kCloudPassGroupSize;
+    glDispatchCompute(static_cast<GLuint>(groups.x), static_cast<GLuint>(groups.y), 1);
+    if (query != 0) glEndQuery(GL_TIME_ELAPSED);
+    // What the images hold is then ready for the passes that sample or load it, and read-backs.
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
                          glm::ivec2 size, const CloudView& view) {
     if (size != size_) Resize(size);
@@ -429,18 +431,10 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     UploadUniforms(atmosphere, camera, lights, view, history_valid);
     BindTextures();
 
-    if (compute_passes_) {
-        glBindImageTexture(kCloudTraceImageUnit, trace_color_, 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                           GL_RGBA32F);
-        glBindImageTexture(kCloudTraceDepthImageUnit, trace_depth_, 0, GL_FALSE, 0, GL_WRITE_ONLY,
-                           GL_RG32F);
-        glBindImageTexture(kCloudTraceProfileImageUnit, trace_profile_, 0, GL_FALSE, 0,
-                           GL_WRITE_ONLY, GL_RGBA32F);
-        DispatchCells(trace_, trace_size_, queries_[kTraceQuery]);
-    } else {
-        gl::DrawFullscreen(trace_, vertex_array_, trace_framebuffer_, glm::ivec4(0, 0, trace_size_),
-                           gl::Blend::kReplace, queries_[kTraceQuery]);
-    }
+    RunCellPass(
+        trace_, trace_framebuffer_,
+        {{trace_color_, GL_RGBA32F}, {trace_depth_, GL_RG32F}, {trace_profile_, GL_RGBA32F}},
+        trace_size_, queries_[kTraceQuery]);
     query_used_[kTraceQuery] = true;
 
     const std::size_t previous = current_;
@@ -448,40 +442,21 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     glBindTextureUnit(kCloudTraceUnit, trace_color_);
     glBindTextureUnit(kCloudTraceDepthUnit, trace_depth_);
     glBindTextureUnit(kCloudHistoryUnit, history_color_[previous]);
-    if (compute_passes_) {
-        glBindImageTexture(kCloudHistoryImageUnit, history_color_[current_], 0, GL_FALSE, 0,
-                           GL_WRITE_ONLY, GL_RGBA32F);
-        DispatchCells(reconstruct_, size_, queries_[kReconstructQuery]);
-    } else {
-        gl::DrawFullscreen(reconstruct_, vertex_array_, history_framebuffer_[current_],
-                           glm::ivec4(0, 0, size_), gl::Blend::kReplace,
-                           queries_[kReconstructQuery]);
-    }
+    RunCellPass(reconstruct_, history_framebuffer_[current_],
+                {{history_color_[current_], GL_RGBA32F}}, size_, queries_[kReconstructQuery]);
     query_used_[kReconstructQuery] = true;
 
     glBindTextureUnit(kCloudShadowMapUnit, shadow_map_);
-    if (compute_passes_) {
-        glBindImageTexture(kCloudGroundShadowImageUnit, ground_shadow_color_, 0, GL_FALSE, 0,
-                           GL_WRITE_ONLY, GL_RGBA32F);
-        DispatchCells(ground_shadow_, trace_size_, queries_[kGroundShadowQuery]);
-    } else {
-        gl::DrawFullscreen(ground_shadow_, vertex_array_, ground_shadow_framebuffer_,
-                           glm::ivec4(0, 0, trace_size_), gl::Blend::kReplace,
-                           queries_[kGroundShadowQuery]);
-    }
+    RunCellPass(ground_shadow_, ground_shadow_framebuffer_, {{ground_shadow_color_, GL_RGBA32F}},
+                trace_size_, queries_[kGroundShadowQuery]);
     query_used_[kGroundShadowQuery] = true;
     if (settings_.light_shaft_steps > 0) {
-        if (compute_passes_) {
-            for (std::size_t k = 0; k < air_shadow_color_.size(); ++k) {
-                glBindImageTexture(kCloudAirShadowImageUnit + static_cast<GLuint>(k),
-                                   air_shadow_color_[k], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-            }
-            DispatchCells(light_shafts_, shaft_size_, queries_[kLightShaftQuery]);
-        } else {
-            gl::DrawFullscreen(light_shafts_, vertex_array_, shaft_framebuffer_,
-                               glm::ivec4(0, 0, shaft_size_), gl::Blend::kReplace,
-                               queries_[kLightShaftQuery]);
-        }
+        RunCellPass(light_shafts_, shaft_framebuffer_,
+                    {{air_shadow_color_[0], GL_RGBA32F},
+                     {air_shadow_color_[1], GL_RGBA32F},
+                     {air_shadow_color_[2], GL_RGBA32F},
+                     {air_shadow_color_[3], GL_RGBA32F}},
+                    shaft_size_, queries_[kLightShaftQuery]);
         query_used_[kLightShaftQuery] = true;
     }
 

@@ -9,6 +9,7 @@
 #include <glad/gl.h>
 
 #include <array>
+#include <initializer_list>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -80,6 +81,17 @@ class CloudPasses {
     void UploadUniforms(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
                         const CloudView& view, bool history_valid);
     void BindTextures() const;
+    // A per-cell (or per-pixel, per-direction) pass over `size` in the stage chosen, into
+    // `targets`: the fragment stage draws `framebuffer`, whose colour attachments they are in
+    // order; the compute stage binds them in that order to image units kCloudPassImageUnit + 0,
+    // 1, ... (clouds/*.comp). Timed by `query` (0: none).
+    struct PassTarget {
+        GLuint texture;
+        GLenum format;
+    };
+    void RunCellPass(const gl::Program& program, GLuint framebuffer,
+                     std::initializer_list<PassTarget> targets, glm::ivec2 size,
+                     GLuint query) const;
 
     clouds::Weather weather_;
     CloudSettings settings_;
