@@ -18,8 +18,6 @@
 
 namespace zenith::sky {
 
-// The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
-// units; the defaults are what `zenith render --weather` uses.
 // The GL stage of the clouds' per-cell and per-pixel passes: the trace, the sky shade's trace,
 // the reconstruction, the ground's shadow and the light shafts (CloudSettings::pass_stage). The
 // same shared GLSL either way, and the same frames.
@@ -33,6 +31,8 @@ enum class CloudPassStage {
 // kAuto resolved to kFragment where GL_RENDERER names llvmpipe and to kCompute elsewhere.
 CloudPassStage ResolveCloudPassStage(CloudPassStage stage);
 
+// The cloud material and how the layers are marched (Högfeldt 2016, Frostbite 2016 §5). SI
+// units; the defaults are what `zenith render --weather` uses.
 struct CloudSettings {
     // Material (F16 §5.4.1, §5.7)
     double extinction = 0.04;  // 1/m at density 1: a mean free path of 25 m in a dense core
