@@ -5,6 +5,7 @@
 //   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S] [--maps]
 //   cloud_reference_report --part formal
+// (--no-lit-face: overcast, cumulus and formal with CloudSettings::lit_face_source = false.)
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -116,8 +117,8 @@ double FormalSlabFlux(const ref::CloudScatteringParameters& p, double tau, doubl
            mu0;
 }
 
-void FormalPart() {
-    const ref::CloudScatteringParameters p = ref::DefaultScattering();
+void FormalPart(const CloudSettings& settings) {
+    const ref::CloudScatteringParameters p = ref::DefaultScattering(0.0, settings);
     ref::CloudScatteringParameters single_only = p;
     single_only.multiple_scattering = 0.0;
     const double g = ref::CloudAsymmetry(p);
@@ -146,12 +147,12 @@ void FormalPart() {
     }
 }
 
-void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
+void OvercastPart(const CloudSettings& settings, std::int64_t samples, int threads,
+                  std::uint64_t seed) {
     const double lat = 47.45, lon = 8.56;
     const zenith::geo::Time time = zenith::geo::TimeFromIso8601("2024-06-21T11:00:00Z");
     const Atmosphere earth = LoadAtmosphere("earth");
     const clouds::Weather weather = clouds::LoadWeather("overcast_stratus");
-    const CloudSettings settings;
     const clouds::CloudNoiseLoad noise = clouds::LoadOrGenerateCloudNoise(settings.noise);
     const CloudField field(weather, settings, noise.noise, earth.bottom_radius);
 
@@ -220,7 +221,7 @@ void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
                 l_below.radiance.y, l_below.radiance.z);
     std::printf("(± one standard error; times are thread-seconds per path.)\n");
 
-    // The renderer's cloud pass for the same rays (its CPU twin; block = 1, jitter 0.5).
+    // The renderer's cloud pass for the same rays (its CPU twin; block = 1).
     const AtmosphereReference luts(earth);
     Lights lights = state.scene.lights;
     const auto renderer = [&](const glm::dvec3& position, const glm::dvec3& view) {
@@ -229,8 +230,15 @@ void OvercastPart(std::int64_t samples, int threads, std::uint64_t seed) {
         const ref::CloudScene cloud_scene = ref::MakeCloudScene(
             earth, luts.transmittance(), luts.multiple_scattering(), luts.ground_irradiance(),
             weather, settings, noise.noise, camera, lights, CloudView{});
-        return ref::TraceClouds(cloud_scene, position / 1000.0,
-                                (glm::length(position) - r) / 1000.0, view, 0.5);
+        // The mean over the sample offsets the renderer's reprojection averages over frames.
+        constexpr int kJitters = 16;
+        glm::dvec4 sum(0.0);
+        for (int j = 0; j < kJitters; ++j) {
+            sum +=
+                ref::TraceClouds(cloud_scene, position / 1000.0,
+                                 (glm::length(position) - r) / 1000.0, view, (j + 0.5) / kJitters);
+        }
+        return sum / double(kJitters);
     };
     const glm::dvec4 above = renderer(high, down);
     const glm::dvec4 below = renderer(low, up);
@@ -268,8 +276,8 @@ void PrintCumulusMaps(const ref::IsolatedCumulusCase& c) {
     }
 }
 
-void CumulusPart(std::int64_t samples, int threads, std::uint64_t seed, bool maps) {
-    const CloudSettings settings;
+void CumulusPart(const CloudSettings& settings, std::int64_t samples, int threads,
+                 std::uint64_t seed, bool maps) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<ref::IsolatedCumulusCase> cases = ref::CompareIsolatedCumulus(
         settings, clouds::LoadOrGenerateCloudNoise(settings.noise).noise,
@@ -298,6 +306,7 @@ int main(int argc, char** argv) {
     int threads = 2;
     std::uint64_t seed = 1;
     bool maps = false;
+    CloudSettings settings;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
     app.add_option("--part", part, "energy, overcast, cumulus or formal")
         ->required()
@@ -307,6 +316,8 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
     app.add_option("--seed", seed)->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
     app.add_flag("--maps", maps, "cumulus: print each case's images");
+    app.add_flag("!--no-lit-face", settings.lit_face_source,
+                 "overcast, cumulus, formal: the renderer without the lit face's source");
     CLI11_PARSE(app, argc, argv);
     if (maps && part != "cumulus") {
         std::fprintf(stderr, "cloud_reference_report: --maps applies to --part cumulus\n");
@@ -315,11 +326,11 @@ int main(int argc, char** argv) {
     if (part == "energy") {
         EnergyPart(samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "overcast") {
-        OvercastPart(samples > 0 ? samples : 20000, threads, seed);
+        OvercastPart(settings, samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "formal") {
-        FormalPart();
+        FormalPart(settings);
     } else {
-        CumulusPart(samples > 0 ? samples : 256, threads, seed, maps);
+        CumulusPart(settings, samples > 0 ? samples : 256, threads, seed, maps);
     }
     return 0;
 }

@@ -1,10 +1,14 @@
 #include "clouds/cloud_parameters.h"
 
 #include <cmath>
+#include <mutex>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
+#include "reference/cloud_functions.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sky {
@@ -18,7 +22,135 @@ void Require(bool ok, const char* field, double value, const char* expected) {
     }
 }
 
+static_assert(ref::kCloudLitFaceSize == kCloudLitFaceSize);
+
+// The lit face's table (CloudLitFaceTable): the renderer's source (clouds/functions.glsl,
+// CloudSunScattering, first order and diffuse field, the lit face's source off) through a
+// homogeneous non-absorbing slab of optical depth tau_total over a black ground, the sun at
+// cosine mu0, by its formal solution: the flux leaving the slab is the source integrated over
+// depth and the sphere of directions, attenuated by exp(-depth to the face / |mu|).
+// - Directions: cells uniform in the vertical cosine mu (equal solid angles) and in the azimuth
+//   from the light's vertical plane over [0, pi] (the problem is symmetric about it); each
+//   cell's phase functions averaged over kLitFaceSubsamples^2 points, so the forward lobe (g up
+//   to 0.99) is integrated over its cells, not sampled at their centres, and renormalised to 1.
+// - Depths: kDepths intervals, denser at both faces (t = tau_total (1 - cos(pi k / n)) / 2), the
+//   source at each interval's middle and its attenuation integrated exactly over it.
+// The source is CloudSunScattering's own terms (the dual-lobe first order, the delta-Eddington
+// field, the delta peak's lobe), combined per cell as it combines them; tests/sky hold the
+// result to a separate quadrature of CloudSunScattering itself. The lit face's source
+// (CloudTwiceScatteredPhase times the sunlight left, unit scale) goes through the same cells.
+constexpr int kLitFaceCosines = 64;
+constexpr int kLitFaceAzimuths = 32;
+constexpr int kLitFaceSubsamples = 4;
+constexpr int kLitFaceDepths = 200;
+
+CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
+    constexpr double kPi = std::numbers::pi;
+    CloudSettings off = settings;
+    off.lit_face_source = false;
+    off.multiple_scattering = 1.0;
+    const auto p =
+        MakeCloudScatteringParameters<ref::CloudScatteringParameters>(off, glm::dvec3(0.0));
+    const double g = ref::CloudAsymmetry(p);
+    const double f = g * g;
+    const double d_mu = 2.0 / kLitFaceCosines;
+    const double d_phi = kPi / kLitFaceAzimuths;
+    const double cell_solid_angle = 2.0 * d_mu * d_phi;  // both sides of the light's plane
+
+    CloudLitFaceNodes table{};
+    for (int j = 0; j < kCloudLitFaceSize; ++j) {
+        const double mu0 = 0.05 + 0.95 * j / (kCloudLitFaceSize - 1);
+        const ref::vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
+        // Per cell: the means over the cell of the dual lobe (first order), the delta peak's
+        // lobe and the lit face's twice-scattered phase, along the light's way out of it (view
+        // = -direction of travel).
+        std::vector<double> first(static_cast<std::size_t>(kLitFaceCosines * kLitFaceAzimuths));
+        std::vector<double> peak(first.size()), twice(first.size());
+        double first_sum = 0.0, peak_sum = 0.0, twice_sum = 0.0;
+        for (int a = 0; a < kLitFaceCosines; ++a) {
+            for (int b = 0; b < kLitFaceAzimuths; ++b) {
+                double p1 = 0.0, p2 = 0.0, p3 = 0.0;
+                for (int u = 0; u < kLitFaceSubsamples; ++u) {
+                    for (int v = 0; v < kLitFaceSubsamples; ++v) {
+                        const double mu = -1.0 + (a + (u + 0.5) / kLitFaceSubsamples) * d_mu;
+                        const double phi = (b + (v + 0.5) / kLitFaceSubsamples) * d_phi;
+                        const double sine = std::sqrt(std::max(1.0 - mu * mu, 0.0));
+                        const double nu = -(sine * std::cos(phi) * light.x + mu * light.z);
+                        p1 += ref::CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
+                        p2 += ref::CloudHenyeyGreensteinPhase(g / (1.0 + g), nu);
+                        p3 += ref::CloudTwiceScatteredPhase(p.forward_g, p.backward_g,
+                                                            p.lobe_weight, nu);
+                    }
+                }
+                const auto cell = static_cast<std::size_t>(a * kLitFaceAzimuths + b);
+                first[cell] = p1 / (kLitFaceSubsamples * kLitFaceSubsamples);
+                peak[cell] = p2 / (kLitFaceSubsamples * kLitFaceSubsamples);
+                twice[cell] = p3 / (kLitFaceSubsamples * kLitFaceSubsamples);
+                first_sum += first[cell] * cell_solid_angle;
+                peak_sum += peak[cell] * cell_solid_angle;
+                twice_sum += twice[cell] * cell_solid_angle;
+            }
+        }
+        for (std::size_t cell = 0; cell < first.size(); ++cell) {
+            first[cell] /= first_sum;
+            peak[cell] /= peak_sum;
+            twice[cell] /= twice_sum;
+        }
+        // Node 0 (tau_total = 0) stays 0: the loss vanishes faster than the source's light.
+        for (int i = 1; i < kCloudLitFaceSize; ++i) {
+            const double tau_total = (std::exp2(i) - 1.0) / 8.0;
+            double renderer = 0.0, lit_face = 0.0;
+            for (int k = 0; k < kLitFaceDepths; ++k) {
+                const double t0 = 0.5 * tau_total * (1.0 - std::cos(kPi * k / kLitFaceDepths));
+                const double t1 =
+                    0.5 * tau_total * (1.0 - std::cos(kPi * (k + 1) / kLitFaceDepths));
+                const double t = 0.5 * (t0 + t1);
+                const double direct = std::exp(-t / mu0);
+                const ref::vec2 diffuse = ref::CloudDiffuseRadiance(g, t, tau_total, mu0, 0.0);
+                const double scaled = (1.0 - f) * (std::exp(-(1.0 - f) * t / mu0) - direct);
+                for (int a = 0; a < kLitFaceCosines; ++a) {
+                    const double mu = -1.0 + (a + 0.5) * d_mu;  // travel, up > 0
+                    const double m = std::abs(mu);
+                    const double escape = mu > 0.0 ? m * (std::exp(-t0 / m) - std::exp(-t1 / m))
+                                                   : m * (std::exp(-(tau_total - t1) / m) -
+                                                          std::exp(-(tau_total - t0) / m));
+                    const double field = diffuse.x - g * mu * diffuse.y;  // mu_view = -mu
+                    double source = 0.0, twice_row = 0.0;
+                    for (int b = 0; b < kLitFaceAzimuths; ++b) {
+                        const auto cell = static_cast<std::size_t>(a * kLitFaceAzimuths + b);
+                        source += first[cell] * direct + std::max(field + peak[cell] * scaled, 0.0);
+                        twice_row += twice[cell];
+                    }
+                    renderer += cell_solid_angle * source * escape;
+                    lit_face += cell_solid_angle * twice_row * direct * escape;
+                }
+            }
+            const double loss = 1.0 - std::exp(-tau_total / mu0) - renderer / mu0;
+            table[static_cast<std::size_t>(j * kCloudLitFaceSize + i)] =
+                std::max(loss, 0.0) / (lit_face / mu0);
+        }
+    }
+    return table;
+}
+
 }  // namespace
+
+CloudLitFaceNodes CloudLitFaceTable(const CloudSettings& s) {
+    if (!s.lit_face_source) return {};
+    // Each table costs tens of milliseconds; the last few phase functions are kept (a host
+    // sweeping them costs that per change, and no more memory).
+    constexpr std::size_t kKept = 8;
+    static std::mutex mutex;
+    static std::vector<std::pair<glm::dvec3, CloudLitFaceNodes>> cache;
+    const glm::dvec3 key(s.forward_g, s.backward_g, s.lobe_weight);
+    const std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [phase, table] : cache) {
+        if (phase == key) return table;
+    }
+    if (cache.size() == kKept) cache.erase(cache.begin());
+    cache.emplace_back(key, ComputeLitFaceTable(s));
+    return cache.back().second;
+}
 
 void CloudSettings::Validate() const {
     Require(std::isfinite(extinction) && extinction > 0.0 && extinction <= 10.0, "extinction",

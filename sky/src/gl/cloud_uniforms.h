@@ -40,8 +40,9 @@ struct CloudScatteringUniforms {  // clouds/functions.glsl: struct CloudScatteri
     float ground_albedo;
     float padding1;
     float padding2;
+    glm::vec4 lit_face[16];
 };
-static_assert(sizeof(CloudScatteringUniforms) == 32);
+static_assert(sizeof(CloudScatteringUniforms) == 32 + 16 * 16);
 
 struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float extinction;
@@ -86,18 +87,18 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     glm::ivec4 ground_layer_order;
 };
 static_assert(offsetof(CloudUniforms, scattering) == 256);
-static_assert(offsetof(CloudUniforms, march) == 288);
-static_assert(offsetof(CloudUniforms, lights) == 336);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 656);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 704);
-static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 752);
-static_assert(offsetof(CloudUniforms, trace_size) == 768);
-static_assert(offsetof(CloudUniforms, block) == 784);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 800);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 816);
-static_assert(offsetof(CloudUniforms, layer_order) == 832);
-static_assert(offsetof(CloudUniforms, ground_layer_order) == 848);
-static_assert(sizeof(CloudUniforms) == 864);
+static_assert(offsetof(CloudUniforms, march) == 544);
+static_assert(offsetof(CloudUniforms, lights) == 592);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 912);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 960);
+static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 1008);
+static_assert(offsetof(CloudUniforms, trace_size) == 1024);
+static_assert(offsetof(CloudUniforms, block) == 1040);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 1056);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 1072);
+static_assert(offsetof(CloudUniforms, layer_order) == 1088);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 1104);
+static_assert(sizeof(CloudUniforms) == 1120);
 
 // clouds/geometry_list.glsl: CloudGeometryList, a storage block: a glDrawArraysIndirect command
 // (its vertex count, 6 per cell listed, written by the shader), the capacity in cells, then the

@@ -43,6 +43,11 @@ struct CloudSettings {
     // Share of the light scattered more than once that is added: the delta-Eddington diffuse
     // field of clouds/functions.glsl (CloudSunScattering); 1 is physical, 0 single scattering.
     double multiple_scattering = 1.0;
+    // The light the diffuse field misses at the lit face (1-18 % of the incident light, most at
+    // low suns and optical depths 1-4) put back as a source there, sized per phase function so
+    // that a non-absorbing slab sends out all it receives (clouds/functions.glsl,
+    // CloudLitFaceScale); false leaves it out (the renderer of 2026-11-27).
+    bool lit_face_source = true;
     double ambient_scale = 1.0;  // F16 §5.5.1: scale of the sky's ambient light
     // Shape: world size of one tile of each noise (H16 §4.3: the shape volume is 4x wider than
     // tall, so it covers shape_period x shape_period / 4 x shape_period)
