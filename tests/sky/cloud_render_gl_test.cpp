@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "bindings.h"
@@ -371,14 +373,19 @@ TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbi
     const glm::ivec2 size(48, 27);
     AtmosphereRenderer renderer(earth);
     const auto noise = clouds::test::CachedNoise();
+    const View views[] = {{"ground, looking up", 300.0, 0.35},
+                          {"inside the layer", 2700.0, 0.0},
+                          {"12 km, looking down", 12000.0, -0.45},
+                          {"orbit, 400 km", 400000.0, -1.2}};
+    // The CPU's image of each view, which does not depend on the stage: traced once.
+    std::vector<LutImage> cpu_images;
     for (const CloudPassStage stage : {CloudPassStage::kFragment, CloudPassStage::kCompute}) {
         CloudSettings settings = Settings();
         settings.pass_stage = stage;
         renderer.SetWeather(weather, settings);
         const char* stage_name = stage == CloudPassStage::kCompute ? "compute" : "fragment";
-        for (const View& v :
-             {View{"ground, looking up", 300.0, 0.35}, View{"inside the layer", 2700.0, 0.0},
-              View{"12 km, looking down", 12000.0, -0.45}, View{"orbit, 400 km", 400000.0, -1.2}}) {
+        for (std::size_t i = 0; i < std::size(views); ++i) {
+            const View& v = views[i];
             SCOPED_TRACE(stage_name);
             const Camera camera = CameraAt(v.altitude, 0.4, v.pitch);
             FrameOptions options = Options(size);
@@ -404,16 +411,21 @@ TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbi
                             0.005)
                     << v.name;
             }
-            LutImage cpu(size.x, size.y, 1);
-            const glm::dvec3 camera_km = glm::dvec3(glm::vec3(camera.position / kKm));
-            for (int y = 0; y < size.y; ++y) {
-                for (int x = 0; x < size.x; ++x) {
-                    const glm::dvec3 view = camera.Direction(2.0 * (x + 0.5) / size.x - 1.0,
-                                                             2.0 * (y + 0.5) / size.y - 1.0);
-                    cpu.at(x, y) = glm::vec4(ref::TraceClouds(scene, camera_km, v.altitude / kKm,
-                                                              view, ref::CloudJitter({x, y}, 0.0)));
+            if (cpu_images.size() == i) {
+                LutImage traced(size.x, size.y, 1);
+                const glm::dvec3 camera_km = glm::dvec3(glm::vec3(camera.position / kKm));
+                for (int y = 0; y < size.y; ++y) {
+                    for (int x = 0; x < size.x; ++x) {
+                        const glm::dvec3 view = camera.Direction(2.0 * (x + 0.5) / size.x - 1.0,
+                                                                 2.0 * (y + 0.5) / size.y - 1.0);
+                        traced.at(x, y) =
+                            glm::vec4(ref::TraceClouds(scene, camera_km, v.altitude / kKm, view,
+                                                       ref::CloudJitter({x, y}, 0.0)));
+                    }
                 }
+                cpu_images.push_back(std::move(traced));
             }
+            const LutImage& cpu = cpu_images[i];
             double cover = 0.0;
             for (const glm::vec4& t : cpu.texels) cover += 1.0 - t.a;
             cover /= static_cast<double>(cpu.texels.size());
