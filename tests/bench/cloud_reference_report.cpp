@@ -89,34 +89,6 @@ void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
     std::printf("\n(± one standard error; times are thread-seconds per path.)\n");
 }
 
-// The formal solution of the renderer's source: the radiance leaving the slab along a direction
-// of cosine mu to the vertical is the integral of the source over depth, attenuated by
-// exp(-(depth to the face) / mu); the source at optical depth t below the top (sun optical depth
-// t / mu0 along the light, tau - t below) is CloudSunScattering's. Depths on t = tau (i / n)^2,
-// the source constant over each interval and its attenuation integrated exactly; the directions
-// SlabExitFlux's.
-double FormalSlabFlux(const ref::CloudScatteringParameters& p, double tau, double mu0, bool top) {
-    const int depths = 4000;
-    const ref::vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
-    return ref::SlabExitFlux(top, 48,
-                             [&](const ref::vec3& view) {
-                                 const double mu = std::abs(view.z);
-                                 double radiance = 0.0;
-                                 for (int j = 0; j < depths; ++j) {
-                                     const double t0 = tau * std::pow(double(j) / depths, 2.0);
-                                     const double t1 = tau * std::pow(double(j + 1) / depths, 2.0);
-                                     const double t = 0.5 * (t0 + t1);
-                                     const double source = ref::CloudSunScattering(
-                                         p, t / mu0, tau - t, mu0, ref::dot(view, light), view.z);
-                                     const double d0 = top ? t0 : tau - t1,
-                                                  d1 = top ? t1 : tau - t0;
-                                     radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
-                                 }
-                                 return radiance;
-                             }) /
-           mu0;
-}
-
 void FormalPart(const CloudSettings& settings) {
     const ref::CloudScatteringParameters p = ref::DefaultScattering(0.0, settings);
     ref::CloudScatteringParameters single_only = p;
@@ -135,10 +107,10 @@ void FormalPart(const CloudSettings& settings) {
     for (const double tau : {0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 200.0}) {
         for (const double mu0 : {1.0, 0.5, 0.25}) {
             const double direct = std::exp(-tau / mu0);
-            const double r = FormalSlabFlux(p, tau, mu0, true);
-            const double t = FormalSlabFlux(p, tau, mu0, false) + direct;
-            const double first = FormalSlabFlux(single_only, tau, mu0, true) +
-                                 FormalSlabFlux(single_only, tau, mu0, false);
+            const double r = ref::FormalSlabFlux(p, tau, mu0, true, 4000, 48);
+            const double t = ref::FormalSlabFlux(p, tau, mu0, false, 4000, 48) + direct;
+            const double first = ref::FormalSlabFlux(single_only, tau, mu0, true, 4000, 48) +
+                                 ref::FormalSlabFlux(single_only, tau, mu0, false, 4000, 48);
             const ref::vec2 closed = ref::CloudSlabReflectanceTransmittance(g, tau, mu0);
             std::printf("| %g | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f |\n", tau, mu0, r,
                         closed.x, t, closed.y, r + t,

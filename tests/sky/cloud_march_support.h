@@ -45,6 +45,33 @@ double SlabExitFlux(bool top, int azimuths, const Radiance& radiance) {
     return flux;
 }
 
+// The flux the renderer's source (CloudSunScattering) sends out of the top (top = true) or the
+// base of a homogeneous non-absorbing slab of optical depth tau over a black ground, per unit
+// incident flux, by its formal solution: the source at optical depth t below the top (the
+// sunlight's path t / mu0, tau - t below) integrated over `depths` intervals on t = tau (i /
+// n)^2, constant over each and its attenuation toward the face integrated exactly, along
+// SlabExitFlux's directions (`azimuths` of them per zenith cosine).
+inline double FormalSlabFlux(const CloudScatteringParameters& p, double tau, double mu0, bool top,
+                             int depths, int azimuths) {
+    const vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
+    return SlabExitFlux(top, azimuths,
+                        [&](const vec3& view) {
+                            const double mu = std::abs(view.z);
+                            double radiance = 0.0;
+                            for (int j = 0; j < depths; ++j) {
+                                const double t0 = tau * std::pow(double(j) / depths, 2.0);
+                                const double t1 = tau * std::pow(double(j + 1) / depths, 2.0);
+                                const double t = 0.5 * (t0 + t1);
+                                const double source = CloudSunScattering(p, t / mu0, tau - t, mu0,
+                                                                         dot(view, light), view.z);
+                                const double d0 = top ? t0 : tau - t1, d1 = top ? t1 : tau - t0;
+                                radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
+                            }
+                            return radiance;
+                        }) /
+           mu0;
+}
+
 // The pixels issue 15's per-pixel median counts: brighter than this share of the image's peak.
 constexpr double kCumulusCloudPixelShare = 0.2;
 

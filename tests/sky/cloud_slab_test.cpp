@@ -77,37 +77,11 @@ struct Slab {
     }
 };
 
-// The flux the renderer's source (CloudSunScattering, the shared GLSL) sends out of a
-// homogeneous slab of optical depth tau over a black ground, per unit incident flux, by its
-// formal solution: the source at optical depth t below the top (the sunlight's path t / mu0,
-// tau - t below) integrated over depth with its attenuation toward the face, over every exit
-// direction (SlabExitFlux: 8 zenith cosines by 24 azimuths, and 1,500 depths on t = tau (i /
-// n)^2 from the lit face: not the cells and depths CloudLitFaceTable sizes the source with).
-double FormalSlabFlux(const CloudScatteringParameters& p, double tau, double mu0, bool top) {
-    const int depths = 1500;
-    const vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
-    return SlabExitFlux(top, 24,
-                        [&](const vec3& view) {
-                            const double mu = std::abs(view.z);
-                            double radiance = 0.0;
-                            for (int j = 0; j < depths; ++j) {
-                                const double t0 = tau * std::pow(double(j) / depths, 2.0);
-                                const double t1 = tau * std::pow(double(j + 1) / depths, 2.0);
-                                const double t = 0.5 * (t0 + t1);
-                                const double source = CloudSunScattering(p, t / mu0, tau - t, mu0,
-                                                                         dot(view, light), view.z);
-                                const double d0 = top ? t0 : tau - t1, d1 = top ? t1 : tau - t0;
-                                radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
-                            }
-                            return radiance;
-                        }) /
-           mu0;
-}
-
 // Issue 15: R + T = 1 +- 2 % for the renderer's own non-absorbing slab. Its source alone (no
-// march) over optical depths and sun angles between the lit face table's nodes: measured
-// 0.989-1.000 (2026-11-28); without the lit face's source 0.84-0.99, short most at low suns
-// and optical depths 0.5-4 (BENCHMARKS.md).
+// march: FormalSlabFlux, 1,500 depths by 8 x 24 directions, not the cells and depths
+// CloudLitFaceTable sizes the source with) over optical depths and sun angles between the
+// table's nodes: measured 0.989-1.000 (2026-11-28); without the lit face's source 0.84-0.99,
+// short most at low suns and optical depths 0.5-4 (BENCHMARKS.md).
 TEST(CloudSlab, SourceSendsOutAllThatANonAbsorbingSlabReceives) {
     const CloudScatteringParameters with = DefaultScattering();
     CloudSettings settings;
@@ -117,10 +91,10 @@ TEST(CloudSlab, SourceSendsOutAllThatANonAbsorbingSlabReceives) {
     for (const double tau : {0.3, 1.4, 3.0, 12.0, 60.0}) {
         for (const double mu0 : {0.3, 0.7, 1.0}) {
             const double direct = std::exp(-tau / mu0);
-            const double sum = FormalSlabFlux(with, tau, mu0, true) +
-                               FormalSlabFlux(with, tau, mu0, false) + direct;
-            const double before = FormalSlabFlux(without, tau, mu0, true) +
-                                  FormalSlabFlux(without, tau, mu0, false) + direct;
+            const double sum = FormalSlabFlux(with, tau, mu0, true, 1500, 24) +
+                               FormalSlabFlux(with, tau, mu0, false, 1500, 24) + direct;
+            const double before = FormalSlabFlux(without, tau, mu0, true, 1500, 24) +
+                                  FormalSlabFlux(without, tau, mu0, false, 1500, 24) + direct;
             std::printf("  %4.1f  %.2f   %.4f  %.4f\n", tau, mu0, sum, before);
             EXPECT_NEAR(sum, 1.0, 0.02) << "tau " << tau << " mu0 " << mu0;
             if (mu0 < 0.5 && tau > 1.0) {
