@@ -44,7 +44,7 @@ struct CloudSettings {
     // field of clouds/functions.glsl (CloudSunScattering); 1 is physical, 0 single scattering.
     double multiple_scattering = 1.0;
     // The light the diffuse field misses at the lit face (1-18 % of the incident light, most at
-    // low suns and optical depths 1-4) put back as a source there, sized per phase function so
+    // low suns and optical depths 0.5-4) put back as a source there, sized per phase function so
     // that a non-absorbing slab sends out all it receives (clouds/functions.glsl,
     // CloudLitFaceScale); false leaves it out (the renderer of 2026-11-27).
     bool lit_face_source = true;
