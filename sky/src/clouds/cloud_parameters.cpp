@@ -61,40 +61,43 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
     for (int j = 0; j < kCloudLitFaceSize; ++j) {
         const double mu0 = 0.05 + 0.95 * j / (kCloudLitFaceSize - 1);
         const ref::vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
-        // Per cell: the means over the cell of the dual lobe (first order), the delta peak's
-        // lobe and the lit face's twice-scattered phase, along the light's way out of it (view
-        // = -direction of travel).
-        std::vector<double> first(static_cast<std::size_t>(kLitFaceCosines * kLitFaceAzimuths));
-        std::vector<double> peak(first.size()), twice(first.size());
-        double first_sum = 0.0, peak_sum = 0.0, twice_sum = 0.0;
-        for (int a = 0; a < kLitFaceCosines; ++a) {
-            for (int b = 0; b < kLitFaceAzimuths; ++b) {
-                double p1 = 0.0, p2 = 0.0, p3 = 0.0;
-                for (int u = 0; u < kLitFaceSubsamples; ++u) {
-                    for (int v = 0; v < kLitFaceSubsamples; ++v) {
-                        const double mu = -1.0 + (a + (u + 0.5) / kLitFaceSubsamples) * d_mu;
-                        const double phi = (b + (v + 0.5) / kLitFaceSubsamples) * d_phi;
-                        const double sine = std::sqrt(std::max(1.0 - mu * mu, 0.0));
-                        const double nu = -(sine * std::cos(phi) * light.x + mu * light.z);
-                        p1 += ref::CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
-                        p2 += ref::CloudHenyeyGreensteinPhase(g / (1.0 + g), nu);
-                        p3 += ref::CloudTwiceScatteredPhase(p.forward_g, p.backward_g,
-                                                            p.lobe_weight, nu);
+        // The mean of phase(nu) over each cell, along the light's way out of it (view =
+        // -direction of travel), normalised to integrate to 1.
+        const auto cell_means = [&](const auto& phase) {
+            std::vector<double> means(static_cast<std::size_t>(kLitFaceCosines * kLitFaceAzimuths));
+            double sum = 0.0;
+            for (int a = 0; a < kLitFaceCosines; ++a) {
+                for (int b = 0; b < kLitFaceAzimuths; ++b) {
+                    double mean = 0.0;
+                    for (int u = 0; u < kLitFaceSubsamples; ++u) {
+                        for (int v = 0; v < kLitFaceSubsamples; ++v) {
+                            const double mu = -1.0 + (a + (u + 0.5) / kLitFaceSubsamples) * d_mu;
+                            const double phi = (b + (v + 0.5) / kLitFaceSubsamples) * d_phi;
+                            const double sine = std::sqrt(std::max(1.0 - mu * mu, 0.0));
+                            mean += phase(-(sine * std::cos(phi) * light.x + mu * light.z));
+                        }
                     }
+                    mean /= kLitFaceSubsamples * kLitFaceSubsamples;
+                    means[static_cast<std::size_t>(a * kLitFaceAzimuths + b)] = mean;
+                    sum += mean * cell_solid_angle;
                 }
-                const auto cell = static_cast<std::size_t>(a * kLitFaceAzimuths + b);
-                first[cell] = p1 / (kLitFaceSubsamples * kLitFaceSubsamples);
-                peak[cell] = p2 / (kLitFaceSubsamples * kLitFaceSubsamples);
-                twice[cell] = p3 / (kLitFaceSubsamples * kLitFaceSubsamples);
-                first_sum += first[cell] * cell_solid_angle;
-                peak_sum += peak[cell] * cell_solid_angle;
-                twice_sum += twice[cell] * cell_solid_angle;
             }
-        }
-        for (std::size_t cell = 0; cell < first.size(); ++cell) {
-            first[cell] /= first_sum;
-            peak[cell] /= peak_sum;
-            twice[cell] /= twice_sum;
+            for (double& mean : means) mean /= sum;
+            return means;
+        };
+        // The dual lobe (first order), the delta peak's lobe, and the lit face's source summed
+        // over each cosine's row of cells (it is the same at every depth).
+        const std::vector<double> first = cell_means([&](double nu) {
+            return ref::CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
+        });
+        const std::vector<double> peak = cell_means(
+            [&](double nu) { return ref::CloudHenyeyGreensteinPhase(g / (1.0 + g), nu); });
+        const std::vector<double> twice = cell_means([&](double nu) {
+            return ref::CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
+        });
+        std::vector<double> twice_rows(kLitFaceCosines, 0.0);
+        for (std::size_t cell = 0; cell < twice.size(); ++cell) {
+            twice_rows[cell / kLitFaceAzimuths] += twice[cell];
         }
         // Node 0 (tau_total = 0) stays 0: the loss vanishes faster than the source's light.
         for (int i = 1; i < kCloudLitFaceSize; ++i) {
@@ -115,14 +118,14 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
                                                    : m * (std::exp(-(tau_total - t1) / m) -
                                                           std::exp(-(tau_total - t0) / m));
                     const double field = diffuse.x - g * mu * diffuse.y;  // mu_view = -mu
-                    double source = 0.0, twice_row = 0.0;
+                    double source = 0.0;
                     for (int b = 0; b < kLitFaceAzimuths; ++b) {
                         const auto cell = static_cast<std::size_t>(a * kLitFaceAzimuths + b);
                         source += first[cell] * direct + std::max(field + peak[cell] * scaled, 0.0);
-                        twice_row += twice[cell];
                     }
                     renderer += cell_solid_angle * source * escape;
-                    lit_face += cell_solid_angle * twice_row * direct * escape;
+                    lit_face += cell_solid_angle * twice_rows[static_cast<std::size_t>(a)] *
+                                direct * escape;
                 }
             }
             const double loss = 1.0 - std::exp(-tau_total / mu0) - renderer / mu0;
