@@ -5,7 +5,8 @@
 //   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S] [--maps]
 //   cloud_reference_report --part formal
-// (--no-lit-face: overcast, cumulus and formal with CloudSettings::lit_face_source = false.)
+//   cloud_reference_report --part decks    [--samples N] [--threads T] [--seed S]
+// (--no-lit-face: overcast, cumulus, formal and decks with CloudSettings::lit_face_source = false.)
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -22,6 +23,10 @@
 //   homogeneous non-absorbing slab over a black ground, integrated along every exit direction by
 //   a fine deterministic quadrature instead of the march (FormalPart): R and T against the
 //   delta-Eddington closed form, up to a semi-infinite slab.
+// decks: where the march's fluxes through decks of optical depth 8-128 part from the path
+//   tracer's (DecksPart): R and T of the path tracer (photons), of the renderer's source by
+//   quadrature (formal), and of the march (the slab test's parabolic deck) at its default steps,
+//   with fine primary steps, and with fine primary and shadow steps.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -115,6 +120,71 @@ void FormalPart(const CloudSettings& settings) {
             std::printf("| %g | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f |\n", tau, mu0, r,
                         closed.x, t, closed.y, r + t,
                         (r + t - direct - first) / (1.0 - direct - first));
+        }
+    }
+}
+
+// The march's R and T (direct beam included) through the slab test's deck, with its primary
+// step at most `step_km` (0: the default) and, if fine_shadow, a shadow march of 100 samples
+// 15 m apart (1.5 km: through the deck at the sun's 60 deg).
+std::pair<double, double> MarchedSlabFluxes(const CloudSettings& settings, double tau, double mu0,
+                                            double step_km, bool fine_shadow) {
+    ref::Slab slab(tau);
+    slab.march = MakeCloudMarchParameters<ref::CloudMarchParameters>(settings);
+    slab.march.extinction = tau / (0.5 * 2.0 / 3.0);
+    slab.march.min_transmittance = 0.0;
+    if (step_km > 0.0) {
+        slab.march.min_step = step_km;
+        slab.march.max_steps = 1024.0;
+    }
+    if (fine_shadow) {
+        slab.march.shadow_steps = 100.0;
+        slab.march.shadow_first_step = 0.015;
+        slab.march.shadow_growth = 1.0;
+    }
+    const ref::Sunlight sun(mu0);
+    return {slab.Flux(sun, mu0, true), slab.Flux(sun, mu0, false) + std::exp(-tau / mu0)};
+}
+
+void DecksPart(const CloudSettings& settings, std::int64_t samples, int threads,
+               std::uint64_t seed) {
+    const ref::CloudScatteringParameters p = ref::DefaultScattering(0.0, settings);
+    std::printf(
+        "Non-absorbing decks (default dual lobe) over a black ground: R and T (T with the direct "
+        "beam) of the path tracer (%lld photons, ± one standard error), of the renderer's source "
+        "by quadrature (formal) and of its march through the parabolic deck: default steps "
+        "(%.0f m primary, %d shadow samples from %.0f m), primary steps of 8 m, and 8 m with 100 "
+        "shadow samples 15 m apart.\n\n",
+        static_cast<long long>(samples), settings.min_step, settings.shadow_steps,
+        settings.shadow_first_step);
+    std::printf(
+        "| tau | mu0 | path tracer R | T | formal R | T | march R | T | 8 m steps R | T | 8 m "
+        "steps, fine shadow R | T |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const double tau : {8.0, 32.0, 128.0}) {
+        for (const double mu0 : {1.0, 0.5}) {
+            SlabProblem problem;
+            problem.optical_depth = tau;
+            problem.phase =
+                CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
+            problem.mu0 = mu0;
+            CloudPathTraceOptions options;
+            options.threads = threads;
+            options.seed = seed;
+            options.samples = samples;
+            const SlabFluxes traced = SlabFluxesFromPhotons(problem, options);
+            const double direct = std::exp(-tau / mu0);
+            const auto coarse = MarchedSlabFluxes(settings, tau, mu0, 0.0, false);
+            const auto fine = MarchedSlabFluxes(settings, tau, mu0, 0.008, false);
+            const auto finest = MarchedSlabFluxes(settings, tau, mu0, 0.008, true);
+            std::printf(
+                "| %g | %.1f | %.4f ± %.4f | %.4f ± %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | "
+                "%.4f | %.4f | %.4f |\n",
+                tau, mu0, traced.reflectance, traced.reflectance_error, traced.transmittance,
+                traced.transmittance_error, ref::FormalSlabFlux(p, tau, mu0, true, 4000, 48),
+                ref::FormalSlabFlux(p, tau, mu0, false, 4000, 48) + direct, coarse.first,
+                coarse.second, fine.first, fine.second, finest.first, finest.second);
+            std::fflush(stdout);
         }
     }
 }
@@ -280,16 +350,17 @@ int main(int argc, char** argv) {
     bool maps = false;
     CloudSettings settings;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
-    app.add_option("--part", part, "energy, overcast, cumulus or formal")
+    app.add_option("--part", part, "energy, overcast, cumulus, formal or decks")
         ->required()
-        ->check(CLI::IsMember({"energy", "overcast", "cumulus", "formal"}));
-    app.add_option("--samples", samples, "paths (default: 20000, 20000, 256 per pixel)")
+        ->check(CLI::IsMember({"energy", "overcast", "cumulus", "formal", "decks"}));
+    app.add_option("--samples", samples,
+                   "paths (default: energy, overcast 20000; cumulus 256 per pixel; decks 40000)")
         ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 32));
     app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
     app.add_option("--seed", seed)->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
     app.add_flag("--maps", maps, "cumulus: print each case's images");
     app.add_flag("!--no-lit-face", settings.lit_face_source,
-                 "overcast, cumulus, formal: the renderer without the lit face's source");
+                 "overcast, cumulus, formal, decks: the renderer without the lit face's source");
     CLI11_PARSE(app, argc, argv);
     if (maps && part != "cumulus") {
         std::fprintf(stderr, "cloud_reference_report: --maps applies to --part cumulus\n");
@@ -301,6 +372,8 @@ int main(int argc, char** argv) {
         OvercastPart(settings, samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "formal") {
         FormalPart(settings);
+    } else if (part == "decks") {
+        DecksPart(settings, samples > 0 ? samples : 40000, threads, seed);
     } else {
         CumulusPart(settings, samples > 0 ? samples : 256, threads, seed, maps);
     }

@@ -138,6 +138,65 @@ double CloudLuminance(const Sunlight& sun, const CloudLayerParameters& layer,
     return sum / jitters;
 }
 
+// The march of default CloudSettings, without the early exit.
+inline CloudMarchParameters DefaultMarch() {
+    CloudMarchParameters march = MakeCloudMarchParameters<CloudMarchParameters>(CloudSettings{});
+    march.min_transmittance = 0.0;  // the flux below a thick slab is what is measured
+    return march;
+}
+
+// A plane-parallel slab of optical depth tau: a stratus layer 1-3 km whose clouds fill its
+// bottom quarter (1-1.5 km) with the height signal's parabola, uniform across the ground. Its
+// transfer depends only on the optical depth, so it is the homogeneous slab of the closed form.
+struct Slab {
+    CloudLayerParameters layer{};
+    RepeatTexture2D weather{1, 1};
+    Texture3D shape{1, 1, 1, true}, detail{1, 1, 1, true};
+    CloudMarchParameters march = DefaultMarch();
+
+    explicit Slab(double tau) {
+        layer.bottom_radius = kR;
+        layer.base_altitude = 1.0;
+        layer.top_altitude = 3.0;
+        layer.cloud_top_altitude = 1.5;
+        layer.extinction_scale = 1.0;
+        layer.weather_period = 40.0;
+        layer.shape_period = 14.0;
+        layer.shape_period_y = 3.5;
+        layer.detail_period = 1.8;
+        weather.at(0, 0) = vec4(1.0, 0.0, 0.0, 1.0);  // coverage 1, no rain, stratus, full height
+        shape.at(0, 0, 0) = vec4(1.0);
+        detail.at(0, 0, 0) = vec4(0.0, 0.0, 0.0, 1.0);
+        // The parabola's mean over the cloud's 0.5 km is 2/3.
+        march.extinction = tau / (0.5 * 2.0 / 3.0);
+    }
+
+    double OpticalDepth() const {
+        const int n = 20000;
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double altitude = 1.0 + 0.5 * (i + 0.5) / n;
+            sum +=
+                SampleCloudDensityAt(layer, weather, shape, detail, vec2(0.0), altitude).density *
+                march.extinction * 0.5 / n;
+        }
+        return sum;
+    }
+
+    // Hemispheric flux per unit horizontal sun illuminance leaving the top (above = true) or the
+    // base: Gauss-Legendre in the zenith cosine, the midpoint rule in azimuth.
+    double Flux(const Sunlight& sun, double mu0, bool above) const {
+        const vec3 camera(0.0, 0.0, kR + (above ? 5.0 : 0.5));
+        const CloudScatteringParameters scattering = DefaultScattering();
+        return SlabExitFlux(above, 12,
+                            [&](const vec3& view) {
+                                return CloudLuminance(sun, layer, weather, shape, detail,
+                                                      scattering, march, camera, view, 4);
+                            }) /
+               mu0;
+    }
+};
+
 // One layer of a weather as the CPU march sees it: its parameters, its map and the noise as
 // textures, the march's settings and the material (default: CloudSettings{}).
 struct LayerMarch {
