@@ -6,7 +6,8 @@
 //   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S] [--maps]
 //   cloud_reference_report --part formal
 //   cloud_reference_report --part decks    [--samples N] [--threads T] [--seed S]
-// (--no-lit-face: overcast, cumulus, formal and decks with CloudSettings::lit_face_source = false.)
+// (--no-lit-face: overcast, cumulus, formal and decks with CloudSettings::lit_face_source = false;
+// --no-column-steps: overcast, cumulus and decks with CloudSettings::column_steps = false.)
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -361,6 +362,8 @@ int main(int argc, char** argv) {
     app.add_flag("--maps", maps, "cumulus: print each case's images");
     app.add_flag("!--no-lit-face", settings.lit_face_source,
                  "overcast, cumulus, formal, decks: the renderer without the lit face's source");
+    app.add_flag("!--no-column-steps", settings.column_steps,
+                 "decks, overcast, cumulus: each step's sample for a point (the midpoint rule)");
     CLI11_PARSE(app, argc, argv);
     if (maps && part != "cumulus") {
         std::fprintf(stderr, "cloud_reference_report: --maps applies to --part cumulus\n");

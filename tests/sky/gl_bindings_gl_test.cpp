@@ -256,6 +256,10 @@ void AddCloudMarch(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, max_distance);
     ZENITH_SAME(S, oriented_slabs);
     ZENITH_SAME(S, light_shaft_steps);
+    ZENITH_SAME(S, column_steps);
+    ZENITH_SAME(S, padding1);
+    ZENITH_SAME(S, padding2);
+    ZENITH_SAME(S, padding3);
 }
 
 void AddCloud(Layout& layout, const std::string& prefix, std::size_t base) {

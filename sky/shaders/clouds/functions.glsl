@@ -203,10 +203,13 @@ Number CloudApplyCoverage(Number base, Number coverage) {
     return clamp(base - (1.0 - coverage), 0.0, coverage);
 }
 
-// Detail noise as an erosion amount in [0, 1] (H16 §4.5.2): the Worley FBM, inverted toward the
-// cloud's base for wispy edges and as stored (billowing) above.
-Number CloudDetail(vec4 detail_texel, Number cloud_fraction) {
-    Number fbm = detail_texel.x * 0.625 + detail_texel.y * 0.25 + detail_texel.z * 0.125;
+// Detail noise as an erosion amount in [0, 1] (H16 §4.5.2): the Worley FBM (CloudDetailFbm),
+// inverted toward the cloud's base for wispy edges and as stored (billowing) above.
+Number CloudDetailFbm(vec4 detail_texel) {
+    return detail_texel.x * 0.625 + detail_texel.y * 0.25 + detail_texel.z * 0.125;
+}
+
+Number CloudDetail(Number fbm, Number cloud_fraction) {
     return mix(1.0 - fbm, fbm, CloudSaturate(4.0 * cloud_fraction));
 }
 
@@ -217,13 +220,50 @@ Number CloudErode(Number density, Number erosion) {
     return CloudSaturate((density - e) / (1.0 - e));
 }
 
+// A density sample, and what it read of its column: the weather (coverage, type, the cloud's
+// height) and the noise (shape, and the detail's FBM; -1 where the sample did not need them),
+// from which CloudColumnDensity gives the density at the column's other heights.
 struct CloudSample {
     Number density;
     Number height_fraction;
     Number cloud_fraction;
     Number precipitation;
     Number type;  // the weather's cloud type, which sets the height gradient
+    Number coverage;
+    Number cloud_height;  // km
+    Number shape;         // CloudShape, or -1
+    Number detail;        // CloudDetailFbm, or -1
 };
+
+// The density at `altitude` of the column `s` was read in (H16 Alg. 4.1's height-dependent
+// parts there, the sample's weather and noise values held): exactly s.density at the sample's
+// own altitude. 0 where the sample stopped before a value the height needs (above or below its
+// cloud, or eroded to nothing by the coverage: no detail read). Rain and snow shafts are
+// homogeneous in height.
+Number CloudColumnDensity(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number altitude) {
+    if (!(altitude > layer.base_altitude && altitude < layer.top_altitude)) return 0.0;
+    if (layer.precipitation_shaft > 0.5) return s.density;
+    Number height_fraction =
+        (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
+    if (layer.ground_fog > 0.5) {
+        return s.coverage * CloudSaturate((1.0 - height_fraction) / (1.0 - kCloudFogFlat)) *
+               layer.extinction_scale;
+    }
+    if (!(s.detail >= 0.0)) return 0.0;
+    Number convection = CloudConvection(s.type);
+    Number tower = CloudTowerSignal(altitude, layer.base_altitude, s.cloud_height, convection);
+    Number anvil = CloudAnvilSignal(convection, height_fraction);
+    Number density = max(CloudApplyCoverage(s.shape * tower, s.coverage),
+                         anvil * CloudApplyCoverage(s.shape * convection, kCloudAnvilCoverage));
+    if (!(density > 0.0)) return 0.0;
+    Number cloud_fraction = (altitude - layer.base_altitude) / s.cloud_height;
+    density = CloudErode(density, layer.erosion_strength * CloudDetail(s.detail, cloud_fraction));
+    density *= CloudHeightGradient(s.type, cloud_fraction);
+    // H16 §4.5.1: densities above 1 are clamped. The layer's material then scales it, so that
+    // everything that reads density (the march, the shadow map, the path tracer's medium) sees
+    // the layer's extinction.
+    return CloudSaturate(density) * layer.extinction_scale;
+}
 
 // H16 Alg. 4.1 at a ground position and altitude:
 //   weather; density = coverage; *= height signal; *= shape; -= detail; *= height gradient,
@@ -241,6 +281,10 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     s.cloud_fraction = 0.0;
     s.precipitation = 0.0;
     s.type = 0.0;
+    s.coverage = 0.0;
+    s.cloud_height = 0.0;
+    s.shape = -1.0;
+    s.detail = -1.0;
     if (!(altitude > layer.base_altitude && altitude < layer.top_altitude)) return s;
 
     CloudWeather weather =
@@ -254,41 +298,35 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     }
     s.precipitation = weather.precipitation;
     s.type = weather.type;
+    s.coverage = weather.coverage;
     if (!(weather.coverage > 0.0)) return s;
     if (layer.ground_fog > 0.5) {
         // Fog: as dense at the ground as the coverage says, whatever the noise, so that its
         // extinction there (and the visibility in it) is the one the layer was given.
         s.cloud_fraction = s.height_fraction;
-        s.density = weather.coverage *
-                    CloudSaturate((1.0 - s.height_fraction) / (1.0 - kCloudFogFlat)) *
-                    layer.extinction_scale;
+        s.density = CloudColumnDensity(layer, s, altitude);
         return s;
     }
 
-    Number cloud_height = (layer.top_altitude - layer.base_altitude) *
-                          CloudTypeHeightFraction(weather.type) * weather.height;
+    s.cloud_height = (layer.top_altitude - layer.base_altitude) *
+                     CloudTypeHeightFraction(weather.type) * weather.height;
     Number convection = CloudConvection(weather.type);
-    Number tower = CloudTowerSignal(altitude, layer.base_altitude, cloud_height, convection);
+    Number tower = CloudTowerSignal(altitude, layer.base_altitude, s.cloud_height, convection);
     Number anvil = CloudAnvilSignal(convection, s.height_fraction);
     if (!(max(tower, anvil) > 0.0)) return s;
-    s.cloud_fraction = (altitude - layer.base_altitude) / cloud_height;
+    s.cloud_fraction = (altitude - layer.base_altitude) / s.cloud_height;
 
     vec2 shifted = CloudWindShiftedGround(layer, ground);
     vec3 shape_uvw = vec3(shifted.x / layer.shape_period, altitude / layer.shape_period_y,
                           shifted.y / layer.shape_period);
-    Number shape = CloudShape(SampleTexture3D(shape_noise, shape_uvw));
-    Number density = max(CloudApplyCoverage(shape * tower, weather.coverage),
-                         anvil * CloudApplyCoverage(shape * convection, kCloudAnvilCoverage));
-    if (!(density > 0.0)) return s;
-
+    s.shape = CloudShape(SampleTexture3D(shape_noise, shape_uvw));
+    if (!(max(CloudApplyCoverage(s.shape * tower, weather.coverage),
+              anvil * CloudApplyCoverage(s.shape * convection, kCloudAnvilCoverage)) > 0.0)) {
+        return s;
+    }
     vec3 detail_uvw = vec3(shifted.x, altitude, shifted.y) / layer.detail_period;
-    Number detail = CloudDetail(SampleTexture3D(detail_noise, detail_uvw), s.cloud_fraction);
-    density = CloudErode(density, layer.erosion_strength * detail);
-    density *= CloudHeightGradient(weather.type, s.cloud_fraction);
-    // H16 §4.5.1: densities above 1 are clamped. The layer's material then scales it, so that
-    // everything that reads density (the march, the shadow map, the path tracer's medium) sees
-    // the layer's extinction.
-    s.density = CloudSaturate(density) * layer.extinction_scale;
+    s.detail = CloudDetailFbm(SampleTexture3D(detail_noise, detail_uvw));
+    s.density = CloudColumnDensity(layer, s, altitude);
     return s;
 }
 

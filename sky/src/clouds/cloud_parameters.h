@@ -98,6 +98,7 @@ Parameters MakeCloudMarchParameters(const CloudSettings& s) {
     p.ambient_scale = Scalar(s.ambient_scale);
     p.thick_step_refinement = Scalar(s.thick_step_refinement);
     p.oriented_slabs = Scalar(s.oriented_slabs ? 1.0 : 0.0);
+    p.column_steps = Scalar(s.column_steps ? 1.0 : 0.0);
     p.min_transmittance = Scalar(s.min_transmittance);
     p.max_distance = Scalar(s.max_distance / kKm);
     p.light_shaft_steps = Scalar(s.light_shaft_steps);

@@ -57,8 +57,12 @@ struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float max_distance;
     float oriented_slabs;
     float light_shaft_steps;
+    float column_steps;
+    float padding1;
+    float padding2;
+    float padding3;
 };
-static_assert(sizeof(CloudMarchUniforms) == 48);
+static_assert(sizeof(CloudMarchUniforms) == 64);
 
 struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     CloudLayerUniforms layers[kCloudMaxLayers];
@@ -88,17 +92,17 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
 };
 static_assert(offsetof(CloudUniforms, scattering) == 256);
 static_assert(offsetof(CloudUniforms, march) == 544);
-static_assert(offsetof(CloudUniforms, lights) == 592);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 912);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 960);
-static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 1008);
-static_assert(offsetof(CloudUniforms, trace_size) == 1024);
-static_assert(offsetof(CloudUniforms, block) == 1040);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 1056);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 1072);
-static_assert(offsetof(CloudUniforms, layer_order) == 1088);
-static_assert(offsetof(CloudUniforms, ground_layer_order) == 1104);
-static_assert(sizeof(CloudUniforms) == 1120);
+static_assert(offsetof(CloudUniforms, lights) == 608);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 928);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 976);
+static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 1024);
+static_assert(offsetof(CloudUniforms, trace_size) == 1040);
+static_assert(offsetof(CloudUniforms, block) == 1056);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 1072);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 1088);
+static_assert(offsetof(CloudUniforms, layer_order) == 1104);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 1120);
+static_assert(sizeof(CloudUniforms) == 1136);
 
 // clouds/geometry_list.glsl: CloudGeometryList, a storage block: a glDrawArraysIndirect command
 // (its vertex count, 6 per cell listed, written by the shader), the capacity in cells, then the

@@ -469,7 +469,7 @@ struct CloudField::Impl {
                 return ref::SampleCloudDensity(layers[i], weather_maps[i], shape, detail, km);
             }
         }
-        return ref::CloudSample{0.0, 0.0, 0.0, 0.0, 0.0};
+        return ref::CloudSample{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, -1.0};
     }
 };
 
