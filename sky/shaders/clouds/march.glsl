@@ -164,10 +164,10 @@ vec2 CloudLayerInterval(IN(CloudLayerParameters) layer, Number r, Number mu, Num
 // across it. A step that leaves its cloud through the top or the base counts only its part
 // inside, and one across a deck's parabolic profile its curve. The sample alone (the midpoint
 // rule) put the depth of a dense deck's diffuse light and its thick steps' emission points off,
-// and the light below a deck of optical depth 32 13-17 % too bright (BENCHMARKS.md,
+// and the light below a deck of optical depth 32 up to 17 % too bright (BENCHMARKS.md,
 // cloud_reference_report --part decks). A step that stays inside its cloud within a tenth of
 // the cloud's height (a level one, at a cumulus' side) keeps its sample's density: there the
-// profile is nearly straight, and the columns cost 18 % of the trace on llvmpipe.
+// profile is nearly straight. On llvmpipe the columns cost the trace 1.2-1.5x.
 const int kCloudColumnPoints = 4;
 
 bool CloudColumnIsLevel(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number from,

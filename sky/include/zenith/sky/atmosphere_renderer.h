@@ -77,8 +77,8 @@ struct CloudSettings {
     // CloudStepColumnDensity), in the shadow march and in a thick primary step, so a step
     // leaving a cloud's top counts only its part inside and one across a deck's profile its
     // curve. Against the path tracer the deck grid's worst error went from 11.8 to 8.8 %
-    // (the light below a deck of optical depth 32); false is the midpoint rule, for a 15 %
-    // faster frame on llvmpipe (BENCHMARKS.md).
+    // (the light below a deck of optical depth 32); false is the midpoint rule, the march
+    // before, for a frame 1.2x faster on llvmpipe (BENCHMARKS.md).
     bool column_steps = true;
     double min_transmittance = 0.01;   // early exit
     double max_distance = 250000.0;    // m marched in one layer at most, from where a ray enters
