@@ -130,10 +130,7 @@ void FormalPart(const CloudSettings& settings) {
 // 15 m apart (1.5 km: through the deck at the sun's 60 deg).
 std::pair<double, double> MarchedSlabFluxes(const CloudSettings& settings, double tau, double mu0,
                                             double step_km, bool fine_shadow) {
-    ref::Slab slab(tau);
-    slab.march = MakeCloudMarchParameters<ref::CloudMarchParameters>(settings);
-    slab.march.extinction = tau / (0.5 * 2.0 / 3.0);
-    slab.march.min_transmittance = 0.0;
+    ref::Slab slab(tau, settings);
     if (step_km > 0.0) {
         slab.march.min_step = step_km;
         slab.march.max_steps = 1024.0;

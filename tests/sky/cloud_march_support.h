@@ -138,9 +138,9 @@ double CloudLuminance(const Sunlight& sun, const CloudLayerParameters& layer,
     return sum / jitters;
 }
 
-// The march of default CloudSettings, without the early exit.
-inline CloudMarchParameters DefaultMarch() {
-    CloudMarchParameters march = MakeCloudMarchParameters<CloudMarchParameters>(CloudSettings{});
+// The march of `settings` (default: CloudSettings{}), without the early exit.
+inline CloudMarchParameters DefaultMarch(const CloudSettings& settings = {}) {
+    CloudMarchParameters march = MakeCloudMarchParameters<CloudMarchParameters>(settings);
     march.min_transmittance = 0.0;  // the flux below a thick slab is what is measured
     return march;
 }
@@ -148,13 +148,14 @@ inline CloudMarchParameters DefaultMarch() {
 // A plane-parallel slab of optical depth tau: a stratus layer 1-3 km whose clouds fill its
 // bottom quarter (1-1.5 km) with the height signal's parabola, uniform across the ground. Its
 // transfer depends only on the optical depth, so it is the homogeneous slab of the closed form.
+// Marched with `settings`' march (DefaultMarch).
 struct Slab {
     CloudLayerParameters layer{};
     RepeatTexture2D weather{1, 1};
     Texture3D shape{1, 1, 1, true}, detail{1, 1, 1, true};
-    CloudMarchParameters march = DefaultMarch();
+    CloudMarchParameters march;
 
-    explicit Slab(double tau) {
+    explicit Slab(double tau, const CloudSettings& settings = {}) : march(DefaultMarch(settings)) {
         layer.bottom_radius = kR;
         layer.base_altitude = 1.0;
         layer.top_altitude = 3.0;
