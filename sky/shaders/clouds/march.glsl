@@ -224,14 +224,14 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture
     for (int i = 0; i < int(march.shadow_steps) + refinement; ++i) {
         vec3 q = p + light_direction * (t + 0.5 * step_length);
         CloudSample s = SampleCloudDensity(layer, weather_map, shape_noise, detail_noise, q);
-        Number next_altitude = CloudAltitude(layer, p + light_direction * (t + step_length));
         Number density = s.density;
         for (int c = 0; c < (march.column_steps > 0.0 ? 1 : 0); ++c) {
+            Number next_altitude = CloudAltitude(layer, p + light_direction * (t + step_length));
             s = CloudStepColumn(layer, s, origin, 0.5 * (altitude + next_altitude));
             density = CloudStepColumnDensity(layer, s, altitude, next_altitude);
+            altitude = next_altitude;
         }
         optical_depth += density * march.extinction * step_length;
-        altitude = next_altitude;
         t += step_length;
         step_length *= march.shadow_growth;
     }
