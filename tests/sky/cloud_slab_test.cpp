@@ -49,9 +49,10 @@ TEST(CloudSlab, SourceSendsOutAllThatANonAbsorbingSlabReceives) {
 // The march (default steps) against the exact solution of its own source (FormalSlabFlux): the
 // light through decks of optical depth 8 and 32, where the midpoint rule of the shadow march and
 // the thick steps' homogeneous halves had put it 5.8-13.6 % over (CloudSettings::column_steps
-// off). Measured with the steps standing for their columns: within 0.3 % (BENCHMARKS.md,
-// cloud_reference_report --part decks); the old march is checked to be past 5 % at tau = 32, so
-// the comparison can tell them apart.
+// off). Measured with the steps standing for their columns: within 1.6 % (0.3 % before the
+// thick steps were judged by their columns, when the top steps' missing light hid part of it;
+// BENCHMARKS.md, cloud_reference_report --part decks); the old march is checked to be past 5 %
+// at tau = 32, so the comparison can tell them apart.
 TEST(CloudSlab, MarchTransmitsWhatItsSourceDoes) {
     CloudSettings off;
     off.column_steps = false;
@@ -73,6 +74,56 @@ TEST(CloudSlab, MarchTransmitsWhatItsSourceDoes) {
     }
 }
 
+// The first scattering of the sunlight off a deck's top with the sun 60 deg from the zenith:
+// the march (default steps, the higher orders off) against the plane-parallel integral along
+// the view, int sigma(z) p(nu) exp(-tau(z) (1 / mu0 + 1 / mu)) dz / mu with tau(z) the optical
+// depth above z, of the same density profile at 20,000 heights. The deck's top step is thick
+// while its jittered sample may lie in the step's thin edge; judged by that sample alone it
+// emitted too little (0.84-0.90 of the integral at tau = 32), and a thin step at the top
+// (optical depth 0.7, tau = 8) lit at its sample 0.86 (BENCHMARKS.md). Measured: 1.2-3.4 % over.
+TEST(CloudSlab, FirstScatteringOffADeckTopWithTheSunLow) {
+    CloudSettings settings;
+    settings.multiple_scattering = 0.0;
+    const CloudScatteringParameters scattering = DefaultScattering(0.0, settings);
+    const double mu0 = 0.5;
+    const Sunlight sun(mu0);
+    const vec3 light = sun.lights.light[0].direction;
+    for (const double tau : {8.0, 32.0}) {
+        const Slab slab(tau, settings);
+        const int n = 20000;
+        std::vector<double> sigma(n);  // 1/km, top (1.5 km) down to the base (1 km)
+        for (int k = 0; k < n; ++k) {
+            const double altitude = 1.5 - 0.5 * (k + 0.5) / n;
+            sigma[std::size_t(k)] = SampleCloudDensityAt(slab.layer, slab.weather, slab.shape,
+                                                         slab.detail, vec2(0.0), altitude)
+                                        .density *
+                                    slab.march.extinction;
+        }
+        for (const double mu : {0.98, 0.76, 0.41}) {
+            for (const double azimuth : {0.0, 0.5 * kPi, kPi}) {
+                const double sin_theta = std::sqrt(1.0 - mu * mu);
+                const vec3 view(sin_theta * std::cos(azimuth), sin_theta * std::sin(azimuth), -mu);
+                const double phase = CloudDualLobePhase(scattering.forward_g, scattering.backward_g,
+                                                        scattering.lobe_weight, dot(view, light));
+                double expected = 0.0, above = 0.0;
+                const double dz = 0.5 / n;
+                for (const double s : sigma) {
+                    const double depth = above + 0.5 * s * dz;
+                    expected += s * phase * std::exp(-depth * (1.0 / mu0 + 1.0 / mu)) * dz / mu;
+                    above += s * dz;
+                }
+                const double marched =
+                    CloudLuminance(sun, slab.layer, slab.weather, slab.shape, slab.detail,
+                                   scattering, slab.march, vec3(0.0, 0.0, kR + 5.0), view, 16);
+                std::printf("  tau %4.0f mu %.2f azimuth %3.0f: march %.5f, integral %.5f (%.3f)\n",
+                            tau, mu, azimuth * 180.0 / kPi, marched, expected, marched / expected);
+                EXPECT_NEAR(marched, expected, 0.05 * expected)
+                    << "tau " << tau << " mu " << mu << " azimuth " << azimuth;
+            }
+        }
+    }
+}
+
 TEST(CloudSlab, ReflectsAndTransmitsAsTheDeltaEddingtonSlabAndConservesEnergy) {
     const double g = CloudAsymmetry(DefaultScattering());
     std::printf("renderer's slab (default march) vs delta-Eddington, g = %.2f:\n", g);
@@ -89,14 +140,15 @@ TEST(CloudSlab, ReflectsAndTransmitsAsTheDeltaEddingtonSlabAndConservesEnergy) {
             const vec2 closed = CloudSlabReflectanceTransmittance(g, tau, mu0);
             std::printf("  %4.0f  %.2f   %.4f   %.4f    %.4f   %.4f    %.4f\n", tau, mu0, r,
                         closed.x, t, closed.y, r + t);
-            // Measured: T within 0.009 of the closed form, R within 3.3 %, R + T 0.971-0.997
-            // (with CloudSettings::column_steps off: 0.020, 3.4 %, 0.982-1.022).
+            // Measured: T within 0.008 of the closed form, R within 1.0 %, R + T 0.989-0.999
+            // (thick steps judged by their sample alone: 0.009, 3.3 %, 0.971-0.997; with
+            // CloudSettings::column_steps off: 0.020, 3.4 %, 0.982-1.022).
             // Without the lit face's source R was 3-5 % low at mu0 = 1 and 8-12 % at mu0 = 0.5
             // whatever tau, and R + T down to 0.92: the formal solution of the Eddington field
             // near the top, not the march's step (a fine march gave the same).
-            EXPECT_NEAR(r, closed.x, 0.05 * closed.x) << "tau " << tau << " mu0 " << mu0;
+            EXPECT_NEAR(r, closed.x, 0.03 * closed.x) << "tau " << tau << " mu0 " << mu0;
             EXPECT_NEAR(t, closed.y, 0.03) << "tau " << tau << " mu0 " << mu0;
-            EXPECT_NEAR(r + t, 1.0, 0.03) << "tau " << tau << " mu0 " << mu0;
+            EXPECT_NEAR(r + t, 1.0, 0.02) << "tau " << tau << " mu0 " << mu0;  // issue 15
         }
     }
 }
