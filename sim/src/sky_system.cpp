@@ -391,6 +391,7 @@ void SkySystem::Update() {
     setup.vertical_fov = d.vertical_fov;
     setup.aspect = d.aspect;
     setup.refraction = d.refraction;
+    if (d.reset_history) d.refraction_table.Clear();  // a cut owes nothing to earlier frames
     d.frame = sky::BuildSkyFrame(*d.calculator, setup, d.atmosphere, &d.refraction_table);
     if (!d.weather_origin) {
         d.weather_origin = glm::dvec2(d.observer.lat_deg(), d.observer.lon_deg());

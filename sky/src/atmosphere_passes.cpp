@@ -444,6 +444,12 @@ void AtmospherePasses::SetFrame(const SkyScene& scene, const SkyView& view, int 
     const Camera& camera = view.camera;
     const bool night_sky = scene.night_sky.enabled && scene.night_sky.settings.enabled;
     if (night_sky) scene.night_sky.settings.Validate();
+    if (scene.clouds.reset_history) {
+        // A cut: this frame's night light is its own, whatever was drawn before (replayed,
+        // resumed and sharded frames match).
+        night_sky_map_for_.reset();
+        night_ground_.inputs.reset();
+    }
     UpdateNightGroundIrradiance(scene, camera.position);
     auto lights = MakeLightSet<gl::LightUniforms>(scene.lights, camera.position);
     lights.night_ground_irradiance = glm::vec3(night_ground_.value);

@@ -601,5 +601,50 @@ TEST_F(SkySystemTest, NightSkySettingsAreCheckedAndKept) {
     EXPECT_GT(bortle7_lux, 5.0 * dark_lux);  // the city's glow, ~28x the natural zenith
 }
 
+// After ResetCloudHistory a frame is the same whatever was drawn before (a replay resumed or
+// sharded writes the bytes of a whole run): the night sky's map and its light on the ground,
+// and the refraction table, which a frame loop keeps while the sky turns, the camera moves or
+// climbs by less than they can show, are made again for the frame after a cut. Each case draws
+// its frame after a far one (a day before, 1 km higher: nothing holds), then after the far one
+// and a near one (whose night light and refraction would hold for it).
+TEST_F(SkySystemTest, AFrameAfterACutOwesNothingToTheFramesBefore) {
+    struct Near {
+        const char* what;
+        double seconds_before, east_m, metres_below;
+    };
+    // 100 s and 5 km hold the ground's light (0.01 rad, 10 km); 1 s, 5 m and 0.3 m hold the
+    // map (1e-4 rad, 10 m) and the refraction table (0.5 m near the ground).
+    const Near cases[] = {{"100 s and 5 km before", 100.0, 5000.0, 0.0},
+                          {"1 s, 5 m and 0.3 m before", 1.0, 5.0, 0.3}};
+    const double at_s = 1712538000.0;  // 2024-04-08T01:00:00Z, moonless
+    const double lat = 28.7606, lon = -17.8816, height = 40.0;
+    const double metres_per_deg_lon = 111320.0 * std::cos(glm::radians(lat));
+    sky_->SetAttitude(glm::radians(100.0), glm::radians(-5.0), 0.0);  // the horizon and ground
+    sky_->SetProjection(glm::radians(60.0), 16.0 / 9.0);
+    const auto frame = [&](double seconds, double east_m, double up_m) {
+        sky_->SetTime(geo::TimeFromUnixSeconds(at_s + seconds));
+        sky_->SetGeodetic(lat, lon + east_m / metres_per_deg_lon, height + up_m);
+        sky_->ResetCloudHistory();
+        sky_->Update();
+        return sky_->RenderOffscreen({48, 27});
+    };
+    for (const Near& near : cases) {
+        SCOPED_TRACE(near.what);
+        frame(-86400.0, 0.0, 1000.0);
+        const sky::LutImage after_far = frame(0.0, 0.0, 0.0);
+        const glm::dvec3 light_after_far = sky_->lighting().sky_irradiance;
+        frame(-86400.0, 0.0, 1000.0);
+        frame(-near.seconds_before, -near.east_m, -near.metres_below);
+        const sky::LutImage after_near = frame(0.0, 0.0, 0.0);
+        EXPECT_EQ(sky_->lighting().sky_irradiance, light_after_far);
+        ASSERT_EQ(after_near.texels.size(), after_far.texels.size());
+        std::size_t differ = 0;
+        for (std::size_t i = 0; i < after_far.texels.size(); ++i) {
+            if (after_near.texels[i] != after_far.texels[i]) ++differ;
+        }
+        EXPECT_EQ(differ, 0u) << "of " << after_far.texels.size() << " pixels";
+    }
+}
+
 }  // namespace
 }  // namespace zenith::sim

@@ -269,7 +269,9 @@ class SkySystem {
     const sky::Atmosphere& atmosphere() const;
     const sky::clouds::Weather& weather() const;
     // The next frame does not reproject earlier ones (after a cut or a jump in time or place),
-    // and its jitter sequence starts over, so it is the same whatever was drawn before; a
+    // its jitter sequence starts over and what a frame loop keeps while it cannot show (the
+    // night sky's light, the refraction table) is made again, so it is the same whatever was
+    // drawn before (replayed, resumed and sharded frames match); a
     // metered display exposure starts from that frame's own (no adaptation across the cut). Call
     // it before that frame's Update(), which renews the clouds' shadow map on a cut.
     void ResetCloudHistory();

@@ -112,6 +112,7 @@ class RefractionCache {
   public:
     const geo::RefractionTable& Get(const geo::RefractionAir& air, double height_m,
                                     double planet_radius_m);
+    void Clear() { table_.reset(); }  // the next Get makes its table for its own height
 
   private:
     std::optional<geo::RefractionTable> table_;
