@@ -293,8 +293,10 @@ void OvercastPart(const CloudSettings& settings, std::int64_t samples, int threa
 }
 
 // The isolated cumulus of cloud_march_support.h against the path tracer, N paths per pixel.
-// The reference in % of its peak beside renderer / reference where the median counts the pixel
-// (brighter than a fifth of the peak), '.' elsewhere; the top row first.
+// The reference in % of its peak beside renderer / reference wherever the reference has over
+// 1 % of its peak, '*' where the median counts the pixel (over a fifth of the peak), '.'
+// elsewhere; the top row first. Then the share of the image's light in the pixels the median
+// leaves out, and the renderer's over the reference's there.
 void PrintCumulusMaps(const ref::IsolatedCumulusCase& c) {
     const std::vector<double>& traced = c.reference_pixels;
     const double peak = *std::max_element(traced.begin(), traced.end());
@@ -306,14 +308,27 @@ void PrintCumulusMaps(const ref::IsolatedCumulusCase& c) {
         }
         std::printf("  |");
         for (std::size_t i = row * width; i < (row + 1) * width; ++i) {
-            if (traced[i] > ref::kCumulusCloudPixelShare * peak) {
-                std::printf("%5.2f", c.renderer_pixels[i] / traced[i]);
+            if (traced[i] > 0.01 * peak) {
+                const bool counted = traced[i] > ref::kCumulusCloudPixelShare * peak;
+                std::printf("%5.2f%c", c.renderer_pixels[i] / traced[i], counted ? '*' : ' ');
             } else {
-                std::printf("    .");
+                std::printf("     .");
             }
         }
         std::printf("\n");
     }
+    double dim_reference = 0.0, dim_renderer = 0.0, all_reference = 0.0;
+    for (std::size_t i = 0; i < traced.size(); ++i) {
+        all_reference += traced[i];
+        if (!(traced[i] > ref::kCumulusCloudPixelShare * peak)) {
+            dim_reference += traced[i];
+            dim_renderer += c.renderer_pixels[i];
+        }
+    }
+    std::printf(
+        "pixels the median leaves out: %.1f %% of the reference's light; renderer / "
+        "reference there %.3f\n",
+        100.0 * dim_reference / all_reference, dim_renderer / dim_reference);
 }
 
 void CumulusPart(const CloudSettings& settings, std::int64_t samples, int threads,
