@@ -115,26 +115,89 @@ TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConserves
     EXPECT_GT(CloudSlabReflectanceTransmittance(0.85, 1e5, 1.0).x, 0.9998);
 }
 
+// The slab whose diffuse light leaks out sideways (a transverse buckling B): its own boundary
+// conditions at both faces over a black and a grey ground, the diffusion length 1 / B deep
+// inside a thick slab (the mean radiance falls as exp(-B tau) per unit of unscaled optical
+// depth, whatever the phase), less light out of both faces the more it leaks, and the
+// non-leaking slab as B -> 0.
+TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength) {
+    for (const double g : {0.0, 0.47, 0.85}) {
+        for (const double mu0 : {1.0, 0.5, 0.15}) {
+            const double f = g * g;
+            for (const double a : {0.0, 0.3}) {
+                for (const double tau_total : {0.5, 5.0, 50.0}) {
+                    const vec2 top = CloudLeakingDiffuseRadiance(g, 0.0, tau_total, mu0, a, 0.1);
+                    const vec2 bottom =
+                        CloudLeakingDiffuseRadiance(g, tau_total, tau_total, mu0, a, 0.1);
+                    EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
+                    const double beam = mu0 * std::exp(-(1.0 - f) * tau_total / mu0);
+                    EXPECT_NEAR((1.0 - a) * bottom.x - 2.0 / 3.0 * (1.0 + a) * bottom.y,
+                                a * beam / kPi, 1e-12);
+                }
+            }
+            // Deep inside a slab of optical depth 400 the beam is gone and the mode growing toward
+            // the base is exp(-2 B 290) < 1e-5 of the other: I0 falls by exp(-B d) over d.
+            for (const double leakage : {0.02, 0.05, 0.1}) {
+                const double d = 10.0;
+                const vec2 near = CloudLeakingDiffuseRadiance(g, 100.0, 400.0, mu0, 0.0, leakage);
+                const vec2 far =
+                    CloudLeakingDiffuseRadiance(g, 100.0 + d, 400.0, mu0, 0.0, leakage);
+                EXPECT_NEAR(far.x / near.x, std::exp(-leakage * d), 1e-5)
+                    << "g " << g << " mu0 " << mu0 << " B " << leakage;
+            }
+            // Upward flux at the top and downward flux (with the beam) at the base: less light
+            // leaves through the faces the more leaks out; with none they sum to the light in.
+            for (const double tau_total : {2.0, 20.0}) {
+                double previous_r = 2.0, previous_t = 2.0;
+                for (const double leakage : {0.0, 0.01, 0.05, 0.2}) {
+                    const vec2 top =
+                        CloudLeakingDiffuseRadiance(g, 0.0, tau_total, mu0, 0.0, leakage);
+                    const vec2 bottom =
+                        CloudLeakingDiffuseRadiance(g, tau_total, tau_total, mu0, 0.0, leakage);
+                    const double r = kPi * (top.x - 2.0 / 3.0 * top.y) / mu0;
+                    const double t = (kPi * (bottom.x + 2.0 / 3.0 * bottom.y) +
+                                      mu0 * std::exp(-(1.0 - f) * tau_total / mu0)) /
+                                     mu0;
+                    if (leakage == 0.0) {
+                        EXPECT_NEAR(r + t, 1.0, 1e-12);
+                    }
+                    EXPECT_LT(r, previous_r);
+                    EXPECT_LE(t, previous_t);
+                    previous_r = r;
+                    previous_t = t;
+                }
+            }
+            // B -> 0: the non-leaking slab, within O(B tau) on both sides of the switch at
+            // B tau = 1e-3.
+            for (const double x : {0.0, 0.5, 1.0}) {
+                const vec2 tight = CloudDiffuseRadiance(g, x * 10.0, 10.0, mu0, 0.3);
+                const vec2 leaking = CloudLeakingDiffuseRadiance(g, x * 10.0, 10.0, mu0, 0.3, 2e-4);
+                EXPECT_NEAR(leaking.x, tight.x, 5e-3 * tight.x);
+            }
+        }
+    }
+}
+
 TEST(CloudSunScattering, FirstOrderAloneInThinCloudsAndTheDiffuseLightInThickOnes) {
     const CloudScatteringParameters full = Scattering(1.0);
     const CloudScatteringParameters single = Scattering(0.0);
     for (const double nu : {-1.0, -0.3, 0.4, 0.99}) {
         // Single scattering: the dual lobe in the shadow.
-        EXPECT_NEAR(CloudSunScattering(single, 2.0, 3.0, 0.8, nu, 0.5),
+        EXPECT_NEAR(CloudSunScattering(single, 2.0, 3.0, 0.8, nu, 0.5, 0.0),
                     CloudDualLobePhase(0.8, -0.5, 0.2, nu) * std::exp(-2.0), 1e-15);
         // The thin limit: at the top of a slab of no depth the diffuse field is nothing.
-        EXPECT_NEAR(CloudSunScattering(full, 0.0, 0.0, 0.8, nu, -nu),
-                    CloudSunScattering(single, 0.0, 0.0, 0.8, nu, -nu), 1e-12);
+        EXPECT_NEAR(CloudSunScattering(full, 0.0, 0.0, 0.8, nu, -nu, 0.0),
+                    CloudSunScattering(single, 0.0, 0.0, 0.8, nu, -nu, 0.0), 1e-12);
         // Deep inside a thick cloud the first order is gone and the diffuse light remains.
-        EXPECT_GT(CloudSunScattering(full, 20.0, 20.0, 0.8, nu, -nu),
-                  1e3 * CloudSunScattering(single, 20.0, 20.0, 0.8, nu, -nu));
+        EXPECT_GT(CloudSunScattering(full, 20.0, 20.0, 0.8, nu, -nu, 0.0),
+                  1e3 * CloudSunScattering(single, 20.0, 20.0, 0.8, nu, -nu, 0.0));
     }
     // Silver lining kept: looking toward the sun at the sunlit edge, forward scattering wins.
-    EXPECT_GT(CloudSunScattering(full, 0.2, 10.0, 0.8, 0.99, 0.8),
-              3.0 * CloudSunScattering(full, 0.2, 10.0, 0.8, -0.3, 0.8));
+    EXPECT_GT(CloudSunScattering(full, 0.2, 10.0, 0.8, 0.99, 0.8, 0.0),
+              3.0 * CloudSunScattering(full, 0.2, 10.0, 0.8, -0.3, 0.8, 0.0));
     // The base of a thick cloud is darker than its top.
-    EXPECT_LT(CloudSunScattering(full, 40.0, 0.1, 1.0, 0.0, 1.0),
-              0.3 * CloudSunScattering(full, 0.1, 40.0, 1.0, 0.0, -1.0));
+    EXPECT_LT(CloudSunScattering(full, 40.0, 0.1, 1.0, 0.0, 1.0, 0.0),
+              0.3 * CloudSunScattering(full, 0.1, 40.0, 1.0, 0.0, -1.0, 0.0));
 }
 
 TEST(CloudSkyScattering, HalfTheSkyInThinCloudsAllOfItOverWhiteGroundDarkBasesInThickOnes) {
@@ -200,7 +263,7 @@ struct Scene {
             step *= 2.0;
         }
         // The cloud below p plays no part here: a fixed slab of depth 10 under it.
-        return CloudSunScattering(scattering, depth, 10.0, sun.y, nu, 0.0);
+        return CloudSunScattering(scattering, depth, 10.0, sun.y, nu, 0.0, 0.0);
     }
 
     // Scattered luminance along a ray through the layer (altitudes as flat y: the shell's

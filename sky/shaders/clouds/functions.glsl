@@ -364,6 +364,27 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
     return extinction * min(s.density / max(profile, 0.05), 1.0) * cloud_height * integral;
 }
 
+// The transverse buckling B (per unit optical depth) of the diffuse light in a slab across a
+// cloud's side, from the cloud's own height: in the diffusion limit light in a body of finite
+// size leaks out of it like an absorption that keeps a diffusion length 1 / B, B^2 the sum of
+// (pi / width)^2 over the directions across the slab, each width its optical depth plus twice
+// the extrapolation length 0.7104 / (1 - g) (Case & Zweifel). The vertical is one of them by
+// 1 - (normal . up)^2 of its square; its width is the column of the sample's cloud at full
+// density, (1 + b) / 3 of its height times the layer's extinction (the profile of
+// CloudDepthBelow integrated base to top): the cloud's size, not the eroded sample's. The
+// horizontal ones, which the weather map would have to show, are left out (infinite), as is
+// the whole of a deck, whose slab is level, and of fog and precipitation.
+Number CloudSlabLeakage(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number g,
+                        Number extinction, Number normal_up) {
+    if (!(s.detail >= 0.0) || layer.ground_fog > 0.5 || layer.precipitation_shaft > 0.5) {
+        return 0.0;
+    }
+    Number column = extinction * layer.extinction_scale * s.cloud_height *
+                    (1.0 + CloudHeightGradient(s.type, 0.0)) / 3.0;
+    Number width = column + 2.0 * 0.7104 / (1.0 - g);
+    return kPi / width * sqrt(max(1.0 - normal_up * normal_up, 0.0));
+}
+
 // H16 §4.4.1: rain clouds are darkened by a gradient, strongest at their base, multiplied with
 // the light they scatter; all clouds keep one absorption coefficient. 1 without precipitation.
 Number CloudPrecipitationLightScale(Number precipitation, Number cloud_fraction) {
@@ -463,6 +484,53 @@ vec2 CloudDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
     return vec2(b - (1.0 - g) * a * tau - k * mu0 * e, a - k * e);
 }
 
+// The same in a slab of finite width, whose diffuse light also leaks out sideways: in the
+// diffusion limit a transverse buckling B (per unit optical depth; pi / the cloud's width) acts
+// on the light along the normal as an absorption that keeps the diffusion length 1 / B, so the
+// P1 equations are solved with the single-scattering albedo w < 1 that gives
+// lambda^2 = 3 (1 - w)(1 - w g') = (B / (1 - f))^2 in the delta-scaled depth (JWW76 Eq. 2-3):
+//   I0 = C1 exp(-lambda (tau_total - tau)) + C2 exp(-lambda tau) + alpha e(tau),
+//   I1 = -P (C1 exp(-lambda (tau_total - tau)) - C2 exp(-lambda tau)) + beta e(tau),
+// P = lambda / (1 - w g'), with the particular solution alpha, beta of the direct beam and C1, C2
+// from the same boundary conditions. B -> 0 is CloudDiffuseRadiance.
+vec2 CloudLeakingDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
+                                 Number ground_albedo, Number leakage) {
+    Number f = g * g;
+    Number lambda = leakage / (1.0 - f);
+    if (!(lambda * (1.0 - f) * tau_total > 1e-3)) {
+        return CloudDiffuseRadiance(g, tau, tau_total, mu0, ground_albedo);
+    }
+    lambda = min(lambda, 0.5 / mu0);  // away from the particular solution's pole
+    // w from 3 (1 - w)(1 - w g') = lambda^2: gs w^2 - (1 + gs) w + 1 - lambda^2 / 3 = 0, the
+    // root at 1 for lambda = 0.
+    Number gs = g / (1.0 + g);
+    Number qb = 1.0 + gs;
+    Number qc = 1.0 - lambda * lambda / 3.0;
+    Number w = gs > 1e-6 ? (qb - sqrt(max(qb * qb - 4.0 * gs * qc, 0.0))) / (2.0 * gs) : qc;
+    Number p_ratio = lambda / (1.0 - w * gs);
+    Number c = 3.0 * w / (4.0 * kPi);
+    Number alpha = c * mu0 * mu0 * (1.0 + gs * (1.0 - w)) / (lambda * lambda * mu0 * mu0 - 1.0);
+    Number beta = mu0 * (3.0 * (1.0 - w) * alpha - c);
+    Number ts = (1.0 - f) * tau;
+    Number total = (1.0 - f) * tau_total;
+    Number e = exp(-ts / mu0);
+    Number e_total = exp(-total / mu0);
+    Number big_e = exp(-lambda * total);
+    Number a = CloudSaturate(ground_albedo);
+    Number m11 = big_e * (1.0 - 2.0 / 3.0 * p_ratio);
+    Number m12 = 1.0 + 2.0 / 3.0 * p_ratio;
+    Number r1 = -(alpha + 2.0 / 3.0 * beta);
+    Number m21 = (1.0 - a) + 2.0 / 3.0 * (1.0 + a) * p_ratio;
+    Number m22 = big_e * ((1.0 - a) - 2.0 / 3.0 * (1.0 + a) * p_ratio);
+    Number r2 = e_total * (a * mu0 / kPi - (1.0 - a) * alpha + 2.0 / 3.0 * (1.0 + a) * beta);
+    Number det = m11 * m22 - m12 * m21;
+    Number c1 = (r1 * m22 - m12 * r2) / det;
+    Number c2 = (m11 * r2 - m21 * r1) / det;
+    Number x1 = exp(-lambda * (total - ts));
+    Number x2 = exp(-lambda * ts);
+    return vec2(c1 * x1 + c2 * x2 + alpha * e, -p_ratio * (c1 * x1 - c2 * x2) + beta * e);
+}
+
 // The slab's reflectance R (upward flux at the top over mu0 E) and transmittance T = 1 - R
 // (direct and diffuse) over a black ground from the same solution: the closed form the march is
 // tested against.
@@ -536,14 +604,16 @@ Number CloudLitFaceScale(IN(CloudScatteringParameters) p, Number tau_total, Numb
 // camera (-view) and the slab's inward normal (down, for a deck). mu0 is clamped to 0.05: a
 // light grazing the slab still enters it.
 Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_depth,
-                          Number depth_below, Number mu0, Number nu, Number mu_view) {
+                          Number depth_below, Number mu0, Number nu, Number mu_view,
+                          Number leakage) {
     Number single = CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
                     exp(-sun_optical_depth);
     Number g = CloudAsymmetry(p);
     Number f = g * g;
     Number mu = max(mu0, 0.05);
     Number tau = sun_optical_depth * mu;
-    vec2 diffuse = CloudDiffuseRadiance(g, tau, tau + depth_below, mu, p.ground_albedo);
+    vec2 diffuse =
+        CloudLeakingDiffuseRadiance(g, tau, tau + depth_below, mu, p.ground_albedo, leakage);
     Number peak = (1.0 - f) * CloudHenyeyGreensteinPhase(g / (1.0 + g), nu) *
                   (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
     Number lit_face = CloudLitFaceScale(p, tau + depth_below, mu) *

@@ -317,6 +317,8 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
     for (int oriented = 0; oriented < (march.oriented_slabs > 0.0 ? 1 : 0); ++oriented) {
         normal = CloudOutwardNormal(layer, weather_map, p);
     }
+    Number leakage = CloudSlabLeakage(layer, s, CloudAsymmetry(scattering), march.extinction,
+                                      dot(normal, up));
     vec3 direct = vec3(0.0);
     vec3 ambient = vec3(0.0);
     for (int l = 0; l < light_count; ++l) {
@@ -339,7 +341,7 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         direct += lights.light[l].illuminance * atmosphere_transmittance *
                   CloudSunScattering(scattering, optical_depth, depth_beyond,
                                      dot(facing, direction), dot(view, direction),
-                                     dot(view, facing));
+                                     dot(view, facing), leakage);
         // The depth below the cloud's top as the sun's slab has it.
         Number depth_above = optical_depth * max(mu_l, 0.05);
         ambient += lights.light[l].illuminance *
