@@ -167,6 +167,21 @@ TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength)
                     previous_t = t;
                 }
             }
+            // Finite and non-negative over the whole range the renderer can ask for (a cloud
+            // of no height leaks at pi / (1.42 / (1 - g)), the light grazing at mu0 0.05).
+            for (const double mu : {0.05, 0.2, 0.7}) {
+                for (const double tau_total : {0.01, 1.0, 30.0, 3000.0}) {
+                    for (const double leakage : {1e-3, 0.3, 2.2, 1e3}) {
+                        for (const double x : {0.0, 0.01, 0.5, 1.0}) {
+                            const vec2 i = CloudLeakingDiffuseRadiance(g, x * tau_total, tau_total,
+                                                                       mu, 0.3, leakage);
+                            EXPECT_TRUE(std::isfinite(i.x) && std::isfinite(i.y));
+                            EXPECT_GE(i.x, -1e-12) << "g " << g << " mu0 " << mu << " tau "
+                                                   << tau_total << " B " << leakage << " x " << x;
+                        }
+                    }
+                }
+            }
             // B -> 0: the non-leaking slab, within O(B tau) on both sides of the switch at
             // B tau = 1e-3.
             for (const double x : {0.0, 0.5, 1.0}) {

@@ -500,7 +500,10 @@ vec2 CloudLeakingDiffuseRadiance(Number g, Number tau, Number tau_total, Number 
     if (!(lambda * (1.0 - f) * tau_total > 1e-3)) {
         return CloudDiffuseRadiance(g, tau, tau_total, mu0, ground_albedo);
     }
-    lambda = min(lambda, 0.5 / mu0);  // away from the particular solution's pole
+    // Away from the particular solution's pole (lambda mu0 = 1), and within what an albedo in
+    // [0, 1] can give (3 (1 - w)(1 - w g') <= 3): only a cloud under an optical depth or so
+    // across, whose diffuse light is small anyway, leaks this fast.
+    lambda = min(lambda, min(0.5 / mu0, 1.5));
     // w from 3 (1 - w)(1 - w g') = lambda^2: gs w^2 - (1 + gs) w + 1 - lambda^2 / 3 = 0, the
     // root at 1 for lambda = 0.
     Number gs = g / (1.0 + g);
