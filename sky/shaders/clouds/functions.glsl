@@ -605,7 +605,9 @@ Number CloudLitFaceScale(IN(CloudScatteringParameters) p, Number tau_total, Numb
 //   out of it with (1 - f) and the scaled lobe g'; and the lit face's source (CloudLitFaceScale).
 // nu = dot(view, light); mu_view = dot(view, normal), the cosine between the light's way to the
 // camera (-view) and the slab's inward normal (down, for a deck). mu0 is clamped to 0.05: a
-// light grazing the slab still enters it.
+// light grazing the slab still enters it. `leakage` is the slab's transverse buckling
+// (CloudSlabLeakage; 0: an infinite slab), through which its diffuse light leaks out sideways
+// (CloudLeakingDiffuseRadiance); the lit face's source is sized for the infinite slab.
 Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_depth,
                           Number depth_below, Number mu0, Number nu, Number mu_view,
                           Number leakage) {

@@ -297,10 +297,12 @@ vec3 CloudOutwardNormal(IN(CloudLayerParameters) layer, IN(WeatherTexture) weath
 // (CloudDepthBelow); on the side of a cumulus it stands upright, lit at the cosine between the
 // light and the side, and its depth beyond p is marched like the shadow. A horizontal slab lit
 // through a cumulus' side made its sunlit face 37 % too dark and its shadowed side 49 % too
-// bright against the path tracer (BENCHMARKS.md). Darkened at the base of raining clouds
-// (H16 §4.4.1); plus the sky's ambient light, E_sky / pi from the ground-irradiance LUT as an
-// isotropic radiance on the horizontal slab's top (CloudSkyScattering), scaled by ambient_scale
-// (F16 §5.5.1).
+// bright against the path tracer (BENCHMARKS.md). A slab across a side lets its diffuse light
+// leak out of the cloud's top and base (CloudSlabLeakage), where an infinite one kept it for
+// the shadowed side and base, which came out 1.9-2x too bright. Darkened at the base of
+// raining clouds (H16 §4.4.1); plus the sky's ambient light, E_sky / pi from the
+// ground-irradiance LUT as an isotropic radiance on the horizontal slab's top
+// (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1).
 vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(TransmittanceTexture) transmittance_texture,
                        IN(IrradianceTexture) irradiance_texture,
