@@ -339,11 +339,17 @@ CloudSample SampleCloudDensity(IN(CloudLayerParameters) layer, IN(WeatherTexture
                                 CloudAltitude(layer, position));
 }
 
+// The density model's own vertical profile, H16 Eq. 5.1's parabola times the height gradient
+// b + (1 - b) x, 4 x (1 - x) (b + (1 - b) x) at cloud_fraction x, integrated from the base to x
+// in units of the cloud's height:
+//   4 (b (x^2 / 2 - x^3 / 3) + (1 - b)(x^3 / 3 - x^4 / 4)),  (1 + b) / 3 at the top.
+Number CloudProfileIntegral(Number b, Number x) {
+    Number x2 = x * x;
+    return 4.0 * (b * (x2 / 2.0 - x2 * x / 3.0) + (1.0 - b) * (x2 * x / 3.0 - x2 * x2 / 4.0));
+}
+
 // Optical depth from a cloud sample straight down to its cloud's base, without a march: the
-// density model's own vertical profile, H16 Eq. 5.1's parabola times the height gradient,
-// 4 x (1 - x) (b + (1 - b) x) at cloud_fraction x, integrated from the base,
-//   4 (b (x^2 / 2 - x^3 / 3) + (1 - b)(x^3 / 3 - x^4 / 4)),
-// and scaled by the sample's density over that profile, as if the column below had the sample's
+// profile's integral (CloudProfileIntegral) up to the sample, and scaled by the sample's density over that profile, as if the column below had the sample's
 // shape and coverage. Exact for a cloud whose density is the profile alone (a flat deck of
 // uniform noise); a march of four more density samples cost 25 % of the trace.
 Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number altitude,
@@ -357,11 +363,9 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
     }
     Number b = CloudHeightGradient(s.type, 0.0);
     Number profile = 4.0 * x * (1.0 - x) * mix(b, 1.0, x);
-    Number x2 = x * x;
-    Number integral =
-        4.0 * (b * (x2 / 2.0 - x2 * x / 3.0) + (1.0 - b) * (x2 * x / 3.0 - x2 * x2 / 4.0));
     Number cloud_height = (altitude - layer.base_altitude) / x;
-    return extinction * min(s.density / max(profile, 0.05), 1.0) * cloud_height * integral;
+    return extinction * min(s.density / max(profile, 0.05), 1.0) * cloud_height *
+           CloudProfileIntegral(b, x);
 }
 
 // The transverse buckling B (per unit optical depth) of the diffuse light in a slab across a
@@ -370,8 +374,8 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
 // (pi / width)^2 over the directions across the slab, each width its optical depth plus twice
 // the extrapolation length 0.7104 / (1 - g) (Case & Zweifel). The vertical is one of them by
 // 1 - (normal . up)^2 of its square; its width is the column of the sample's cloud at full
-// density, (1 + b) / 3 of its height times the layer's extinction (the profile of
-// CloudDepthBelow integrated base to top): the cloud's size, not the eroded sample's. The
+// density, its height times the layer's extinction times the profile integrated base to top
+// (CloudProfileIntegral): the cloud's size, not the eroded sample's. The
 // horizontal ones, which the weather map would have to show, are left out (infinite), as is
 // the whole of a deck, whose slab is level, and of fog and precipitation.
 Number CloudSlabLeakage(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number g,
@@ -380,7 +384,7 @@ Number CloudSlabLeakage(IN(CloudLayerParameters) layer, IN(CloudSample) s, Numbe
         return 0.0;
     }
     Number column = extinction * layer.extinction_scale * s.cloud_height *
-                    (1.0 + CloudHeightGradient(s.type, 0.0)) / 3.0;
+                    CloudProfileIntegral(CloudHeightGradient(s.type, 0.0), 1.0);
     Number width = column + 2.0 * 0.7104 / (1.0 - g);
     return kPi / width * sqrt(max(1.0 - normal_up * normal_up, 0.0));
 }
@@ -495,11 +499,11 @@ vec2 CloudDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
 // from the same boundary conditions. B -> 0 is CloudDiffuseRadiance.
 vec2 CloudLeakingDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
                                  Number ground_albedo, Number leakage) {
-    Number f = g * g;
-    Number lambda = leakage / (1.0 - f);
-    if (!(lambda * (1.0 - f) * tau_total > 1e-3)) {
+    if (!(leakage * tau_total > 1e-3)) {
         return CloudDiffuseRadiance(g, tau, tau_total, mu0, ground_albedo);
     }
+    Number f = g * g;
+    Number lambda = leakage / (1.0 - f);
     // Away from the particular solution's pole (lambda mu0 = 1), and within what an albedo in
     // [0, 1] can give (3 (1 - w)(1 - w g') <= 3): only a cloud under an optical depth or so
     // across, whose diffuse light is small anyway, leaks this fast.
