@@ -226,6 +226,31 @@ TEST(MetarExamples, WmoFormsConstructed) {
     EXPECT_EQ(m.sky.size(), 3u);
 }
 
+// A trend's time group (FM 15 reg. 15.14: FM, TL or AT and HHMM) without its change indicator
+// BECMG or TEMPO before it: the groups from it on are the forecast's, not the observation's, so
+// they end the body with a warning instead of being decoded into the observed sky. (Before, the
+// forecast's SCT030 was taken as an observed layer.)
+TEST(MetarExamples, TrendTimeGroupWithoutChangeIndicator) {
+    const Metar m =
+        DecodeMetar("LSZH 291950Z 24010KT 9999 FEW040 15/10 Q1015 FM2000 SCT030 RMK AO2");
+    ASSERT_EQ(m.warnings.size(), 1u) << Warnings(m);
+    EXPECT_TRUE(AnyWarningContains(m, "BECMG or TEMPO")) << Warnings(m);
+    EXPECT_EQ(m.warnings[0].group, "FM2000");
+    ASSERT_EQ(m.sky.size(), 1u);
+    EXPECT_EQ(m.sky[0].base_m(), 4000 * kMetresPerFoot);
+    EXPECT_EQ(m.qnh_hpa, 1015.0);
+    EXPECT_EQ(m.trend_kind, TrendKind::kNone);
+    EXPECT_EQ(m.trend, "FM2000 SCT030");
+    EXPECT_EQ(m.remarks, "AO2");
+    // TL and AT likewise; a group that only starts like one (FMS, AT12) is not a trend.
+    EXPECT_EQ(DecodeMetar("LSZH 291950Z 24010KT 9999 FEW040 15/10 Q1015 TL2100 BKN020").sky.size(),
+              1u);
+    EXPECT_EQ(DecodeMetar("LSZH 291950Z 24010KT 9999 FEW040 15/10 Q1015 AT2030 BKN020").sky.size(),
+              1u);
+    EXPECT_TRUE(
+        DecodeMetar("LSZH 291950Z 24010KT 9999 FEW040 15/10 Q1015 AT12 BKN020").trend.empty());
+}
+
 // Runway state groups (FM 15 reg. 15.13.6.1) come after QNH with the supplementary groups, in
 // winter on most European and Russian reports: they are in order there (no warning), kept as not
 // decoded, and not taken for RVR; elements not reported are '/'. (Before, they were read in

@@ -552,7 +552,13 @@ class Decoder {
                 Remarks(i + 1);
                 break;
             }
-            if (Find(kTrends, g.text)) {
+            const bool bare_time = IsTrendTime(g.text);
+            if (bare_time) {
+                Warning(g,
+                        "a trend's time group without BECMG or TEMPO before it: the groups "
+                        "from here on are taken as the trend (forecast), not the observation");
+            }
+            if (bare_time || Find(kTrends, g.text)) {
                 i = Trend(i);
                 if (i < groups_.size()) {
                     Remarks(i + 1);
@@ -856,9 +862,18 @@ class Decoder {
         if (m_.not_decoded.size() < 16) m_.not_decoded.emplace_back(Clip(s));
     }
 
-    // From the trend indicator at i to RMK (or the end); returns RMK's index or the end.
+    // A trend's time group (FM 15 reg. 15.14): FM, TL or AT and the time HHMM. No group of the
+    // body has this form.
+    static bool IsTrendTime(std::string_view s) {
+        return s.size() == 6 &&
+               (StartsWith(s, "FM") || StartsWith(s, "TL") || StartsWith(s, "AT")) &&
+               AllDigits(s.substr(2));
+    }
+
+    // From the trend indicator (or a trend's time group without one) at i to RMK (or the end);
+    // returns RMK's index or the end.
     std::size_t Trend(std::size_t i) {
-        m_.trend_kind = Find(kTrends, groups_[i].text)->value;
+        if (const auto* kind = Find(kTrends, groups_[i].text)) m_.trend_kind = kind->value;
         std::size_t j = i;
         while (j < groups_.size() && groups_[j].text != "RMK") ++j;
         m_.trend = Join(i, j);
