@@ -13,7 +13,9 @@
 // std::regex (its recursion overflows the stack on long input).
 //
 // What is decoded and what is only kept as text:
-//   - trend forecasts (NOSIG, BECMG, TEMPO and what follows) are kept as text in `trend`;
+//   - trend forecasts (NOSIG, BECMG, TEMPO and what follows) are kept as text in `trend`; a
+//     trend's time group without BECMG or TEMPO (FM2000 ...) starts one too, with a warning and
+//     trend_kind kNone, so that the forecast's groups are not taken for the observation's;
 //   - remarks (RMK ...) are kept as text in `remarks`; only the US T-group (T01830094: tenths of
 //     a degree) is decoded, and then replaces the whole-degree temperature and dew point;
 //   - wind shear (WS ...), sea state (W15/S4) and runway state (R24/010060) groups are known but
