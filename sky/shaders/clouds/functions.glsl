@@ -349,9 +349,10 @@ Number CloudProfileIntegral(Number b, Number x) {
 }
 
 // Optical depth from a cloud sample straight down to its cloud's base, without a march: the
-// profile's integral (CloudProfileIntegral) up to the sample, and scaled by the sample's density over that profile, as if the column below had the sample's
-// shape and coverage. Exact for a cloud whose density is the profile alone (a flat deck of
-// uniform noise); a march of four more density samples cost 25 % of the trace.
+// profile's integral (CloudProfileIntegral) up to the sample, scaled by the sample's density
+// over that profile, as if the column below had the sample's shape and coverage. Exact for a
+// cloud whose density is the profile alone (a flat deck of uniform noise); a march of four more
+// density samples cost 25 % of the trace.
 Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number altitude,
                        Number extinction) {
     Number x = CloudSaturate(s.cloud_fraction);
