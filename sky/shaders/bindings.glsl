@@ -68,7 +68,8 @@ const int kTextureUnitCount = 26;       // units 0 .. kTextureUnitCount - 1 are 
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
 const int kShadeDirectionsImageUnit = 0;  // clouds/sky_shade.comp reads
 const int kShadowMapImageUnit = 1;        // clouds/sky_shade.comp reads
-const int kScatteringOrderImageUnit = 1;  // atmosphere/multiple_scattering.comp writes
+const int kScatteringOrderImageUnit = 1;  // atmosphere/multiple_scattering.comp writes...
+const int kColumnCorrectionImageUnit = 2;  // ...and reads
 const int kEnvironmentImageUnit = 0;      // atmosphere/environment_sh.comp reads the atlas
 // The clouds' passes in the compute stage (clouds/*.comp) write their targets, the fragment
 // stage's outputs 0, 1, ..., to image units kCloudPassImageUnit + 0, 1, ... (the light shafts'

@@ -14,6 +14,7 @@
 #include "gl/draw.h"
 #include "gl/shader_library.h"
 #include "gl/textures.h"
+#include "multiple_scattering_column.h"
 #include "night_sky_map.h"
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
@@ -340,11 +341,13 @@ void AtmospherePasses::BuildStaticLuts() {
     Dispatch(kTransmittancePass, transmittance_, false,
              Groups(s.transmittance_size.x, kLutGroupSize),
              Groups(s.transmittance_size.y, kLutGroupSize), 1);
+    // The multiple scattering's column (multiple_scattering_column.h) reads the transmittance
+    // LUT on the CPU.
+    transmittance_cpu_ =
+        ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
     BuildMultipleScattering();
     Dispatch(kIrradiancePass, irradiance_, false, static_cast<GLuint>(s.irradiance_size.x),
              static_cast<GLuint>(s.irradiance_size.y), 1);
-    transmittance_cpu_ =
-        ref::FromImage(gl::ReadTexture(transmittance_, glm::ivec3(s.transmittance_size, 1)));
     night_ground_ = {};  // made over the old air
     multiple_scattering_cpu_ = ref::FromImage(
         gl::ReadTexture(multiple_scattering_, glm::ivec3(s.multiple_scattering_texture_size(), 1)));
@@ -354,10 +357,16 @@ void AtmospherePasses::BuildStaticLuts() {
 
 // Orders 2 .. K of the multiple scattering (atmosphere/multiple_scattering.comp), one dispatch
 // each, timed together as one pass: order k reads order k - 1 from one of two textures and
-// writes itself to the other, adding itself to the LUT.
+// writes itself to the other, adding itself to the LUT; order K adds the column's correction,
+// solved on the CPU first (not timed by the pass's query).
 void AtmospherePasses::BuildMultipleScattering() {
     const glm::ivec2 size = settings_.multiple_scattering_size;
     const glm::ivec2 texture_size = settings_.multiple_scattering_texture_size();
+    const LutImage correction =
+        MultipleScatteringColumnCorrection(atmosphere_, transmittance_cpu_, settings_);
+    const GLuint column = gl::CreateTexture2D(size);
+    glTextureSubImage2D(column, 0, 0, 0, size.x, size.y, GL_RGBA, GL_FLOAT,
+                        correction.texels.data());
     std::array<GLuint, 2> orders = {gl::CreateTexture2D(texture_size),
                                     gl::CreateTexture2D(texture_size)};
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -368,6 +377,8 @@ void AtmospherePasses::BuildMultipleScattering() {
     BindInputs();
     program.Use();
     glBindImageTexture(kOutputImageUnit, multiple_scattering_, 0, GL_FALSE, 0, GL_READ_WRITE,
+                       GL_RGBA32F);
+    glBindImageTexture(kColumnCorrectionImageUnit, column, 0, GL_FALSE, 0, GL_READ_ONLY,
                        GL_RGBA32F);
     glBeginQuery(GL_TIME_ELAPSED, queries_[kMultipleScatteringPass]);
     for (int k = 2; k <= settings_.multiple_scattering_orders; ++k) {
@@ -383,6 +394,7 @@ void AtmospherePasses::BuildMultipleScattering() {
     glEndQuery(GL_TIME_ELAPSED);
     query_used_[kMultipleScatteringPass] = true;
     glDeleteTextures(static_cast<GLsizei>(orders.size()), orders.data());
+    glDeleteTextures(1, &column);
 }
 
 // Whether what the night sky's light was made for still holds for this frame: the same settings

@@ -57,6 +57,10 @@ void LutSettings::Validate() const {
             "multiple_scattering_steps", std::to_string(multiple_scattering_steps), "1..10000");
     Require(multiple_scattering_orders >= 2 && multiple_scattering_orders <= 32,
             "multiple_scattering_orders", std::to_string(multiple_scattering_orders), "2..32");
+    Require(multiple_scattering_column_layers == 0 || (multiple_scattering_column_layers >= 16 &&
+                                                       multiple_scattering_column_layers <= 512),
+            "multiple_scattering_column_layers", std::to_string(multiple_scattering_column_layers),
+            "0 or 16..512");
     Require(irradiance_size.x >= 2 && irradiance_size.x <= 4096 && irradiance_size.y >= 1 &&
                 irradiance_size.y <= 4096,
             "irradiance_size", Str(irradiance_size), "2..4096 x 1..4096");

@@ -44,6 +44,20 @@ void BM_StaticLutRebuild(benchmark::State& state) {
 }
 BENCHMARK(BM_StaticLutRebuild)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The same without the multiple scattering's plane-parallel column (solved on the CPU), for its
+// share of the rebuild: LutSettings::multiple_scattering_column_layers = 0.
+void BM_StaticLutRebuildWithoutColumn(benchmark::State& state) {
+    Fixture& f = Shared();
+    LutSettings settings = f.renderer.settings();
+    settings.multiple_scattering_column_layers = 0;
+    static AtmosphereRenderer renderer(f.earth, settings);
+    for (auto _ : state) {
+        renderer.SetAtmosphere(f.earth);
+        glFinish();
+    }
+}
+BENCHMARK(BM_StaticLutRebuildWithoutColumn)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // Sky-View + aerial perspective: every frame.
 void BM_FrameLuts(benchmark::State& state) {
     Fixture& f = Shared();

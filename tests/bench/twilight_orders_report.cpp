@@ -6,7 +6,8 @@
 //   H20            order 2, then H20's series L_2 f_ms / (1 - f_ms) (Eq. 9-10), against
 //                  unbounded paths;
 //   iterated       orders 2 .. K, each integrated from the one before through the LUT, then the
-//                  series (LutSettings::multiple_scattering_orders = K), against unbounded paths.
+//                  series and the plane-parallel column's correction of it (the renderer's LUT,
+//                  LutSettings::multiple_scattering_orders = K), against unbounded paths.
 //
 // The three share one LUT resolution and sampling (kLutSize, kDirectionsSqrt, kSteps) and the
 // renderer's shared GLSL. Since 484c981 every order carries the second moments of its light and
@@ -75,7 +76,7 @@ SecondOrderLuts BuildSecondOrder(const ref::AtmosphereParameters& atmosphere,
                 ref::ComputeScatteringOrderTexel(atmosphere, transmittance, no_order, 2, uv,
                                                  kLutSize, kDirectionsSqrt, kSteps, 0, 1);
             const ref::MultipleScatteringSample h20 =
-                ref::AccumulateScatteringOrder(o.light, o, 2, 2);
+                ref::AccumulateScatteringOrder(o.light, o, 2, 2, ref::vec3(0.0));
             for (int tile = 0; tile < sky::kMultipleScatteringTiles; ++tile) {
                 luts.alone.at(x + tile * kLutSize.x, y) =
                     ref::MultipleScatteringTexel(o.light, tile);

@@ -8,8 +8,8 @@
 //     (the reference's pixels are independent): a sensitive detector of a gain or colour error;
 //   - the relative RMSE with the reference's noise removed in quadrature (accuracy.h), bounding
 //     per-pixel errors (a misplaced aureole, horizon or terminator).
-// Three scenarios have errors well beyond the paper's (BENCHMARKS.md has the analysis); their
-// bounds only guard against getting worse and say so.
+// Mars has errors well beyond the paper's (BENCHMARKS.md has the analysis); its bounds only
+// guard against getting worse and say so.
 #include "zenith/sky/reference/accuracy.h"
 
 #include <gtest/gtest.h>
@@ -149,26 +149,18 @@ TEST(Accuracy, MarsSpace) {
     ExpectWithin(Measure("mars_space"), "mars_space", kMarsBias, kMarsRmse);
 }
 
-// The paper's limit (Fig. 12, "the hue can be lost or even start to drift"), asserted as it is:
-// with 50x Rayleigh the slant optical depth to a 45 deg sun is 8 (R) to 47 (B), the directly lit
-// neighbourhood from which Psi_ms is built (Eq. 7-10) is dark, and the renderer loses the light
-// that diffuses down: it keeps ~10 % of the red and < 0.1 % of the green and blue luminance of
-// the path-traced sky (a whitish sky rendered dark red); measured -83, -99.9, -100 % (-90 % in
-// red with H20's Psi_ms; the iterated orders of issue 18 §2 keep a little more). If this starts
-// failing because the renderer got closer, update BENCHMARKS.md and tighten.
-constexpr double kThickRedBiasLow = -0.97;
-constexpr double kThickRedBiasHigh = -0.8;
-constexpr double kThickGreenBlueBiasHigh = -0.9;
-constexpr double kThickRmse = 1.5;
-TEST(Accuracy, ThickDaytimeLosesDiffusedLight) {
-    const AccuracyResult r = Measure("thick_daytime");
-    const glm::dvec3 bias = r.MeanBias();
-    EXPECT_GE(bias.r, kThickRedBiasLow);
-    EXPECT_LE(bias.r, kThickRedBiasHigh);
-    EXPECT_LE(bias.g, kThickGreenBlueBiasHigh);
-    EXPECT_LE(bias.b, kThickGreenBlueBiasHigh);
-    const glm::dvec3 rmse = r.RelativeRmseNoiseCorrected();
-    for (int c = 0; c < 3; ++c) EXPECT_LE(rmse[c], kThickRmse) << "channel " << c;
+// The paper's limit (Fig. 12, "the hue can be lost or even start to drift"): with 50x Rayleigh
+// the slant optical depth to a 45 deg sun is 8 (R) to 47 (B), the directly lit neighbourhood
+// from which H20 builds Psi_ms (Eq. 7-10) is dark, and its series lost the light that diffuses
+// down through hundreds of orders: the renderer kept 17 % of the red and < 0.1 % of the green
+// and blue (bias -83, -99.9, -100 %, a whitish sky rendered dark red). The plane-parallel
+// column's orders past the LUT's last (multiple_scattering_column.h) put it back: measured
+// -2.3, -1.9, -1.4 % (+- 1.5 .. 3.0 %), noise-corrected RMSE 0 (the reference's noise is 0.3 ..
+// 0.6 of the mean at 256 paths). Bounds: issue 18's 10 % for the thick preset.
+constexpr double kThickBias = 0.10;
+constexpr double kThickRmse = 0.25;
+TEST(Accuracy, ThickDaytime) {
+    ExpectWithin(Measure("thick_daytime"), "thick_daytime", kThickBias, kThickRmse);
 }
 
 // Twilight past sunset on single view rays (BENCHMARKS.md, "Twilight grid"; issue 18 §2): the

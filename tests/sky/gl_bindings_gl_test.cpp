@@ -407,6 +407,7 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"shadow_map_image", kShadowMapImageUnit},
         {"environment_atlas", kEnvironmentImageUnit},
         {"order_image", kScatteringOrderImageUnit},
+        {"column_image", kColumnCorrectionImageUnit},
         {"shade_image", kCloudPassImageUnit},
         {"history_image", kCloudPassImageUnit},
         {"ground_shadow_image", kCloudPassImageUnit},

@@ -560,21 +560,32 @@ ScatteringOrder ComputeScatteringOrderTexel(IN(AtmosphereParameters) atmosphere,
 }
 
 // Psi_ms and its moments once orders 2 .. K are known: `sum` theirs, `last` order K's, which
-// carries the orders beyond it as H20's geometric series, order K f_ms / (1 - f_ms). With K = 2
-// psi is H20's L_2 / (1 - f_ms) (Eq. 10).
+// carries the orders beyond it as H20's geometric series, order K f_ms / (1 - f_ms), and
+// `column`, what a plane-parallel column solved to all orders finds those orders to hold beyond
+// its own series (sky/src/multiple_scattering_column.h), added as isotropic light and never
+// below none. Where the air is optically thick the series loses the light that diffuses through
+// hundreds of orders (the `thick` preset kept 17 % of its red and < 0.1 % of its blue). With
+// K = 2 and no column psi is H20's L_2 / (1 - f_ms) (Eq. 10).
 MultipleScatteringSample ScatteringOrdersSum(IN(MultipleScatteringSample) sum,
-                                             IN(ScatteringOrder) last) {
+                                             IN(ScatteringOrder) last, vec3 column) {
     vec3 f_ms = min(last.transfer, vec3(0.999));
-    return AddMultipleScattering(sum, last.light, f_ms / (vec3(1.0) - f_ms));
+    MultipleScatteringSample m = AddMultipleScattering(sum, last.light, f_ms / (vec3(1.0) - f_ms));
+    vec3 isotropic = max(column, -m.psi);
+    m.psi += isotropic;
+    m.q_xx += isotropic / 3.0;
+    m.q_zz += isotropic / 3.0;
+    return m;
 }
 
 // The LUT once order k of K is in: order k's light added to `sum_before`, the LUT after order
-// k - 1 (not read when k = 2), and after order K the orders beyond it (ScatteringOrdersSum).
+// k - 1 (not read when k = 2), and after order K the orders beyond it (ScatteringOrdersSum, with
+// the column's correction at this texel).
 MultipleScatteringSample AccumulateScatteringOrder(IN(MultipleScatteringSample) sum_before,
-                                                   IN(ScatteringOrder) order, int k, int last) {
+                                                   IN(ScatteringOrder) order, int k, int last,
+                                                   vec3 column) {
     MultipleScatteringSample sum = order.light;
     if (k > 2) sum = AddMultipleScattering(sum_before, order.light, vec3(1.0));
-    if (k == last) sum = ScatteringOrdersSum(sum, order);
+    if (k == last) sum = ScatteringOrdersSum(sum, order, column);
     return sum;
 }
 

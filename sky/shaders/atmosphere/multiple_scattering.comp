@@ -1,12 +1,15 @@
 // One order of the multiple-scattering LUT (ComputeScatteringOrderTexel), dispatched for orders
 // 2 .. K in turn (AtmospherePasses::BuildMultipleScattering): reads order k - 1 from
 // multiple_scattering_texture, writes order k to order_image and adds it to the LUT, output_image,
-// which after order K holds Psi_ms and its moments. Both images are kMultipleScatteringTiles
-// tiles wide (MultipleScatteringTexel). One work group per texel: each invocation integrates
-// every kDirectionsGroupSize-th direction, and the group sums them in shared memory.
+// which after order K holds Psi_ms and its moments (order K adds column_image's correction). Both
+// are kMultipleScatteringTiles tiles wide (MultipleScatteringTexel), column_image one. One work
+// group per texel: each invocation integrates every kDirectionsGroupSize-th direction, and the
+// group sums them in shared memory.
 layout(local_size_x = kDirectionsGroupSize) in;
 layout(binding = kOutputImageUnit, rgba32f) uniform image2D output_image;
 layout(binding = kScatteringOrderImageUnit, rgba32f) uniform writeonly image2D order_image;
+// The column's correction of the orders past K (ScatteringOrdersSum), one tile's size.
+layout(binding = kColumnCorrectionImageUnit, rgba32f) uniform readonly image2D column_image;
 layout(location = 0) uniform int scattering_order;       // k
 layout(location = 1) uniform int last_scattering_order;  // K
 
@@ -51,7 +54,7 @@ void main() {
         MultipleScatteringFromTexels(imageLoad(output_image, texel),
                                      imageLoad(output_image, texel + tile),
                                      imageLoad(output_image, texel + 2 * tile)),
-        o, scattering_order, last_scattering_order);
+        o, scattering_order, last_scattering_order, imageLoad(column_image, texel).rgb);
     for (int t = 0; t < kMultipleScatteringTiles; ++t) {
         imageStore(order_image, texel + t * tile, MultipleScatteringTexel(o.light, t));
         imageStore(output_image, texel + t * tile, MultipleScatteringTexel(sum, t));

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "multiple_scattering_column.h"
 #include "reference/atmosphere_functions.h"
 #include "reference/lut_texture.h"
 #include "reference/monte_carlo.h"
@@ -63,6 +64,8 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
     const glm::ivec2 ms_size = settings.multiple_scattering_size;
     const glm::ivec2 wide = settings.multiple_scattering_texture_size();
     Texture2D ms(wide.x, wide.y), order(wide.x, wide.y), next(wide.x, wide.y);
+    const Texture2D column =
+        FromImage(MultipleScatteringColumnCorrection(atmosphere, d.transmittance, settings));
     for (int k = 2; k <= settings.multiple_scattering_orders; ++k) {
         // Rows on every core: this LUT is most of the reference's construction.
         monte_carlo::ParallelFor(ms_size.y, 0, [&](std::int64_t row) {
@@ -77,7 +80,7 @@ AtmosphereReference::AtmosphereReference(const Atmosphere& atmosphere, const Lut
                 };
                 const ref::MultipleScatteringSample sum = ref::AccumulateScatteringOrder(
                     ref::MultipleScatteringFromTexels(texel(ms, 0), texel(ms, 1), texel(ms, 2)), o,
-                    k, settings.multiple_scattering_orders);
+                    k, settings.multiple_scattering_orders, ref::vec3(column.at(x, y)));
                 for (int tile = 0; tile < kMultipleScatteringTiles; ++tile) {
                     texel(next, tile) = ref::MultipleScatteringTexel(o.light, tile);
                     texel(ms, tile) = ref::MultipleScatteringTexel(sum, tile);
