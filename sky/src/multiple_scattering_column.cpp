@@ -33,17 +33,19 @@ struct ExpIntegrals {
 };
 
 // The integrals of E_m(|t - tau|) against the two linear pieces of an interval [a, b] of optical
-// depth that does not contain t (t at or beyond either end): against (tau - a) / (b - a) (rising
-// to 1 at b) and (b - tau) / (b - a) (falling from 1 at a). With x = |t - tau| running from x1
-// (the near end) to x2 (the far end): int E_m = E_(m+1)(x1) - E_(m+1)(x2) and
-// int x E_m = [x E_(m+1) + E_(m+2)] from x2 to x1.
-glm::dvec2 LinearPieces(int m, double t, double a, double b) {
+// depth that does not contain t (t at or beyond either end), given E at |t - a| and |t - b|:
+// against (tau - a) / (b - a) (rising to 1 at b) and (b - tau) / (b - a) (falling from 1 at a).
+// With x = |t - tau| running from x1 (the near end) to x2 (the far end): int E_m = E_(m+1)(x1) -
+// E_(m+1)(x2) and int x E_m = [x E_(m+1) + E_(m+2)] from x2 to x1.
+glm::dvec2 LinearPieces(int m, double t, double a, double b, const ExpIntegrals& at_a,
+                        const ExpIntegrals& at_b) {
     const double length = b - a;
     if (!(length > 0.0)) return glm::dvec2(0.0);
     const bool above = t <= a;  // t before the interval: x grows with tau
     const double x1 = above ? a - t : t - b;
     const double x2 = above ? b - t : t - a;
-    const ExpIntegrals near(x1), far(x2);
+    const ExpIntegrals& near = above ? at_a : at_b;
+    const ExpIntegrals& far = above ? at_b : at_a;
     const double zeroth = near.e[m + 1] - far.e[m + 1];
     const double first = (x1 * near.e[m + 1] + near.e[m + 2]) - (x2 * far.e[m + 1] + far.e[m + 2]);
     // int (tau - t) E_m over the interval: +first when t is before it, -first when after.
@@ -83,10 +85,14 @@ ScatteringColumn::ScatteringColumn(const std::vector<double>& optical_depths,
     // node's hat is the rising piece of the layer below it and the falling piece of the one
     // above it (in optical depth from the top, the layer above comes first).
     const auto hats = [&](int m, double t) {
+        std::vector<ExpIntegrals> at_nodes;  // E at |t - tau| of each node, shared by two layers
+        at_nodes.reserve(un);
+        for (std::size_t k = 0; k < un; ++k) at_nodes.emplace_back(std::abs(t - tau_[k]));
         std::vector<double> weights(un, 0.0);
         for (std::size_t k = 0; k < layers; ++k) {
             // Layer k runs from tau_[k + 1] (its top, node k + 1) to tau_[k] (node k).
-            const glm::dvec2 pieces = LinearPieces(m, t, tau_[k + 1], tau_[k]);
+            const glm::dvec2 pieces =
+                LinearPieces(m, t, tau_[k + 1], tau_[k], at_nodes[k + 1], at_nodes[k]);
             weights[k] += pieces.x;      // rising to node k at the layer's bottom
             weights[k + 1] += pieces.y;  // falling from node k + 1 at its top
         }
