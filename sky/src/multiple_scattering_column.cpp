@@ -24,7 +24,7 @@ struct ExpIntegrals {
             e[1] = -std::expint(-x);
             for (int m = 1; m < 4; ++m) e[m + 1] = (decay - x * e[m]) / m;
         } else {
-            e[1] = 0.0;  // infinite, but only ever multiplied by a zero-length part
+            e[1] = 0.0;  // infinite; never read (E1 enters only through E2 .. E4)
             e[2] = 1.0;
             e[3] = 0.5;
             e[4] = 1.0 / 3.0;
@@ -71,8 +71,7 @@ std::vector<double> Multiply(const std::vector<double>& m, const std::vector<dou
 }  // namespace
 
 ScatteringColumn::ScatteringColumn(const std::vector<double>& optical_depths,
-                                   std::vector<double> albedos, double ground_albedo)
-    : albedo_(std::move(albedos)), ground_albedo_(ground_albedo) {
+                                   const std::vector<double>& albedos, double ground_albedo) {
     const std::size_t layers = optical_depths.size();
     const int n = static_cast<int>(layers) + 1;  // nodes
     const std::size_t un = layers + 1;
@@ -112,9 +111,9 @@ ScatteringColumn::ScatteringColumn(const std::vector<double>& optical_depths,
         const std::vector<double> air = hats(1, tau_[Index(i)]);
         for (int j = 0; j < n; ++j) {
             const std::size_t uj = Index(j);
-            transfer_[Index(i)] += 0.5 * air[uj] * albedo_[uj];
+            transfer_[Index(i)] += 0.5 * air[uj] * albedos[uj];
             kernel_[At(i, j, n)] =
-                0.5 * air[uj] + ground_albedo_ / kPi * ground_[Index(i)] * flux_to_ground_[uj];
+                0.5 * air[uj] + ground_albedo / kPi * ground_[Index(i)] * flux_to_ground_[uj];
         }
     }
     // NextOrder's operator, and I minus it factorised (Gaussian elimination, partial pivoting).
@@ -122,7 +121,7 @@ ScatteringColumn::ScatteringColumn(const std::vector<double>& optical_depths,
     lu_.resize(un * un);
     for (int i = 0; i < n; ++i) {
         for (int j = 0; j < n; ++j) {
-            next_[At(i, j, n)] = kernel_[At(i, j, n)] * albedo_[Index(j)];
+            next_[At(i, j, n)] = kernel_[At(i, j, n)] * albedos[Index(j)];
             lu_[At(i, j, n)] = (i == j ? 1.0 : 0.0) - next_[At(i, j, n)];
         }
     }

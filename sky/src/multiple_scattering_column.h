@@ -51,7 +51,7 @@ class ScatteringColumn {
   public:
     // optical_depths: each layer's, from the ground up; albedos: the single-scattering albedo at
     // each node (one more than the layers).
-    ScatteringColumn(const std::vector<double>& optical_depths, std::vector<double> albedos,
+    ScatteringColumn(const std::vector<double>& optical_depths, const std::vector<double>& albedos,
                      double ground_albedo);
 
     int nodes() const { return static_cast<int>(tau_.size()); }
@@ -69,8 +69,7 @@ class ScatteringColumn {
     glm::dvec2 EscapingFlux(const std::vector<double>& source) const;
 
   private:
-    std::vector<double> albedo_, tau_;  // tau_: optical depth from the top at each node
-    double ground_albedo_;
+    std::vector<double> tau_;  // optical depth from the top at each node
     std::vector<double> kernel_, next_, ground_, flux_to_ground_, flux_to_top_, transfer_;
     std::vector<double> lu_;
     std::vector<int> pivots_;

@@ -35,7 +35,7 @@ struct LutSettings {
     // the air is optically thick (sky/src/multiple_scattering_column.h); 0: the series alone.
     // With 128 the `thick` preset's correction is within 0.3 % (at the ground) to 2 % (50 km up)
     // of 512 layers'; the column is solved on the CPU when the atmosphere changes, 16-33 ms on
-    // one core (~n^3).
+    // one core (about 4x per doubling).
     int multiple_scattering_column_layers = 128;
     // 256 (the paper has no such LUT): between texels it stays within 4 % of the exact integral
     // through twilight, where the sky's illuminance falls ~3x per degree of sun depression.
