@@ -4,6 +4,7 @@
 //   cloud_reference_report --part energy   [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S] [--maps]
+//                                          [--single-scattering]
 //   cloud_reference_report --part formal
 //   cloud_reference_report --part decks    [--samples N] [--threads T] [--seed S]
 // (--no-lit-face: overcast, cumulus, formal and decks with CloudSettings::lit_face_source = false;
@@ -331,13 +332,16 @@ void PrintCumulusMaps(const ref::IsolatedCumulusCase& c) {
         100.0 * dim_reference / all_reference, dim_renderer / dim_reference);
 }
 
-void CumulusPart(const CloudSettings& settings, std::int64_t samples, int threads,
-                 std::uint64_t seed, bool maps) {
+// single: the renderer's first order alone (multiple_scattering 0) against the path tracer's
+// single scattering.
+void CumulusPart(CloudSettings settings, std::int64_t samples, int threads, std::uint64_t seed,
+                 bool maps, bool single) {
     const auto start = std::chrono::steady_clock::now();
+    if (single) settings.multiple_scattering = 0.0;
     const std::vector<ref::IsolatedCumulusCase> cases = ref::CompareIsolatedCumulus(
         settings, clouds::LoadOrGenerateCloudNoise(settings.noise).noise,
         std::filesystem::temp_directory_path() / ("zenith-cumulus-" + std::to_string(::getpid())),
-        samples, threads, seed);
+        samples, threads, seed, single ? 1 : 0);
     for (const ref::IsolatedCumulusCase& c : cases) {
         std::printf(
             "isolated cumulus, %-22s: mean L/E renderer %.5f, reference %.5f +- %.5f (ratio "
@@ -361,6 +365,7 @@ int main(int argc, char** argv) {
     int threads = 2;
     std::uint64_t seed = 1;
     bool maps = false;
+    bool single = false;
     CloudSettings settings;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
     app.add_option("--part", part, "energy, overcast, cumulus, formal or decks")
@@ -372,13 +377,18 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
     app.add_option("--seed", seed)->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
     app.add_flag("--maps", maps, "cumulus: print each case's images");
+    app.add_flag("--single-scattering", single,
+                 "cumulus: single scattering on both sides (the renderer's first order, the path "
+                 "tracer's paths of one scattering)");
     app.add_flag("!--no-lit-face", settings.lit_face_source,
                  "overcast, cumulus, formal, decks: the renderer without the lit face's source");
     app.add_flag("!--no-column-steps", settings.column_steps,
                  "decks, overcast, cumulus: each step's sample for a point (the midpoint rule)");
     CLI11_PARSE(app, argc, argv);
-    if (maps && part != "cumulus") {
-        std::fprintf(stderr, "cloud_reference_report: --maps applies to --part cumulus\n");
+    if ((maps || single) && part != "cumulus") {
+        std::fprintf(stderr,
+                     "cloud_reference_report: --maps and --single-scattering apply to --part "
+                     "cumulus\n");
         return 2;
     }
     if (part == "energy") {
@@ -390,7 +400,7 @@ int main(int argc, char** argv) {
     } else if (part == "decks") {
         DecksPart(settings, samples > 0 ? samples : 40000, threads, seed);
     } else {
-        CumulusPart(settings, samples > 0 ? samples : 256, threads, seed, maps);
+        CumulusPart(settings, samples > 0 ? samples : 256, threads, seed, maps, single);
     }
     return 0;
 }

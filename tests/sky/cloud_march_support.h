@@ -278,11 +278,14 @@ clouds::Weather IsolatedCumulusWeather(const std::filesystem::path& scratch) {
     return weather;
 }
 
+// `reference_orders` > 0 keeps that many scattering orders in the path tracer (1: single
+// scattering, to compare with a renderer whose multiple_scattering is 0).
 std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& settings,
                                                         const clouds::CloudNoise& noise,
                                                         const std::filesystem::path& scratch,
                                                         std::int64_t samples, int threads,
-                                                        std::uint64_t seed) {
+                                                        std::uint64_t seed,
+                                                        int reference_orders = 0) {
     const clouds::Weather weather = IsolatedCumulusWeather(scratch);
     const clouds::CloudLayer& layer = weather.layers[0];
     const double bottom_m = kR * 1000.0;
@@ -304,6 +307,7 @@ std::vector<IsolatedCumulusCase> CompareIsolatedCumulus(const CloudSettings& set
         reference::CloudPathTraceOptions options;
         options.samples = samples;
         options.threads = threads;
+        options.max_bounces = reference_orders;
         std::vector<double> renderer, traced, traced_error;
         for (int j = 0; j < height; ++j) {
             for (int i = 0; i < width; ++i) {
