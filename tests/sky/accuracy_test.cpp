@@ -31,8 +31,8 @@ namespace {
 // 256 paths per pixel in every build: the noise-corrected RMSE, sqrt(RMSE^2 - noise^2), is a
 // difference of two noisy estimates and meant nothing at 64 paths, where the reference's own
 // noise is most of the RMSE (a sanitizer run once read 0.26 against 0.10 at 256 paths). Only the
-// 50x atmosphere, whose path tracing is 20x dearer and whose assertions are on a bias of -90 %,
-// runs fewer paths in sanitizer builds (~10x slower).
+// 50x atmosphere, whose path tracing is 20x dearer, runs fewer paths in sanitizer builds (~10x
+// slower), with its RMSE bound widened to match (ThickDaytime).
 constexpr std::int64_t kSamples = 256;
 #if defined(__SANITIZE_ADDRESS__)
 constexpr std::int64_t kThickSamples = 64;
@@ -157,9 +157,15 @@ TEST(Accuracy, MarsSpace) {
 // column's orders past the LUT's last (multiple_scattering_column.h) put it back: measured
 // -3.5, -4.7, -7.6 % (+- 1.5 .. 2.8 %; at 96x64 -1.3, -6.6, -7.8 %), noise-corrected RMSE 0 (the
 // reference's noise is 0.3 .. 0.6 of the mean at 256 paths). Bounds: issue 18's 10 % for the
-// thick preset.
+// thick preset. The RMSE bound is the larger with the sanitizers' 64 paths, where the
+// reference's noise is 0.6 .. 1.2 of the mean and the noise-corrected RMSE of the same renderer
+// read 0.30 in green (0.0 at 256 paths): the difference of two noisy estimates, not an error.
 constexpr double kThickBias = 0.10;
+#if defined(__SANITIZE_ADDRESS__)
+constexpr double kThickRmse = 0.5;
+#else
 constexpr double kThickRmse = 0.25;
+#endif
 TEST(Accuracy, ThickDaytime) {
     ExpectWithin(Measure("thick_daytime"), "thick_daytime", kThickBias, kThickRmse);
 }
