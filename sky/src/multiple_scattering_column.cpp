@@ -204,10 +204,21 @@ LutImage MultipleScatteringColumnCorrection(const Atmosphere& air,
         sun_cosines[static_cast<std::size_t>(x)] = ref::SunCosineFromUnitRange(
             ref::GetUnitRangeFromTextureCoord((x + 0.5) / size.x, size.x));
     }
-    std::vector<double> row_altitudes(static_cast<std::size_t>(size.y));
+    // Each row's altitude lies between the nodes above - 1 and above, at weight w of the latter.
+    struct RowNodes {
+        std::size_t above;
+        double w;
+    };
+    std::vector<RowNodes> row_nodes(static_cast<std::size_t>(size.y));
     for (int y = 0; y < size.y; ++y) {
         const double x_h = ref::GetUnitRangeFromTextureCoord((y + 0.5) / size.y, size.y);
-        row_altitudes[static_cast<std::size_t>(y)] = std::clamp(x_h, 0.0, 1.0) * height;
+        const double altitude = std::clamp(x_h, 0.0, 1.0) * height;
+        const auto above = std::clamp<std::size_t>(
+            static_cast<std::size_t>(std::upper_bound(z.begin(), z.end(), altitude) - z.begin()), 1,
+            un - 1);
+        const double w =
+            std::clamp((altitude - z[above - 1]) / (z[above] - z[above - 1]), 0.0, 1.0);
+        row_nodes[static_cast<std::size_t>(y)] = {above, w};
     }
 
     // The direct sunlight at each node (as the LUT's order 2 has it, Earth's shadow included)
@@ -278,13 +289,7 @@ LutImage MultipleScatteringColumnCorrection(const Atmosphere& air,
             }
             // To the LUT's rows, linearly between nodes.
             for (int y = 0; y < size.y; ++y) {
-                const double altitude = row_altitudes[static_cast<std::size_t>(y)];
-                const auto above = std::clamp<std::size_t>(
-                    static_cast<std::size_t>(std::upper_bound(z.begin(), z.end(), altitude) -
-                                             z.begin()),
-                    1, un - 1);
-                const double w =
-                    std::clamp((altitude - z[above - 1]) / (z[above] - z[above - 1]), 0.0, 1.0);
+                const auto [above, w] = row_nodes[static_cast<std::size_t>(y)];
                 correction.at(static_cast<int>(u), y)[c] =
                     static_cast<float>((1.0 - w) * value[above - 1] + w * value[above]);
             }
