@@ -5,10 +5,12 @@
 //   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S] [--maps]
 //                                          [--single-scattering]
+//                                          [--max-steps N] [--min-step M]
 //   cloud_reference_report --part formal
 //   cloud_reference_report --part decks    [--samples N] [--threads T] [--seed S]
 // (--no-lit-face: overcast, cumulus, formal and decks with CloudSettings::lit_face_source = false;
-// --no-column-steps: overcast, cumulus and decks with CloudSettings::column_steps = false.)
+// --no-column-steps: overcast, cumulus and decks with CloudSettings::column_steps = false;
+// --max-steps, --min-step: overcast, cumulus and decks with those march steps.)
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -384,6 +386,14 @@ int main(int argc, char** argv) {
                  "overcast, cumulus, formal, decks: the renderer without the lit face's source");
     app.add_flag("!--no-column-steps", settings.column_steps,
                  "decks, overcast, cumulus: each step's sample for a point (the midpoint rule)");
+    app.add_option("--max-steps", settings.max_steps,
+                   "decks, overcast, cumulus: the march's primary steps per layer crossing at "
+                   "most (CloudSettings::max_steps, default 64): with --min-step, the march "
+                   "converged, apart from the default steps' own error")
+        ->check(CLI::Range(1, 4096));
+    app.add_option("--min-step", settings.min_step,
+                   "decks, overcast, cumulus: m, the step of a short crossing (default 120)")
+        ->check(CLI::Range(1.0, 10000.0));
     CLI11_PARSE(app, argc, argv);
     if ((maps || single) && part != "cumulus") {
         std::fprintf(stderr,
