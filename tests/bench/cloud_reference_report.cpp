@@ -8,9 +8,10 @@
 //                                          [--max-steps N] [--min-step M]
 //   cloud_reference_report --part formal
 //   cloud_reference_report --part decks    [--samples N] [--threads T] [--seed S]
-// (--no-lit-face: overcast, cumulus, formal and decks with CloudSettings::lit_face_source = false;
-// --no-column-steps: overcast, cumulus and decks with CloudSettings::column_steps = false;
-// --max-steps, --min-step: overcast, cumulus and decks with those march steps.)
+//   cloud_reference_report --part thin     [--samples N] [--threads T] [--seed S]
+// (--no-lit-face: overcast, cumulus, formal, decks and thin with CloudSettings::lit_face_source =
+// false; --no-column-steps: overcast, cumulus, decks and thin with CloudSettings::column_steps =
+// false; --max-steps, --min-step: overcast, cumulus, decks and thin with those march steps.)
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -31,6 +32,10 @@
 //   tracer's (DecksPart): R and T of the path tracer (photons), of the renderer's source by
 //   quadrature (formal), and of the march (the slab test's parabolic deck) at its default steps,
 //   with fine primary steps, and with fine primary and shadow steps.
+// thin: where the light scattered more than once goes in thin and moderate decks (ThinPart):
+//   a homogeneous slab of optical depth 0.06-4 seen from below and above at 55 deg with the sun
+//   40 deg up behind, beside and ahead of the camera, the renderer's march with and without its
+//   diffuse field against the path tracer's slab with all orders and with one scattering.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -145,6 +150,71 @@ std::pair<double, double> MarchedSlabFluxes(const CloudSettings& settings, doubl
     }
     const ref::Sunlight sun(mu0);
     return {slab.Flux(sun, mu0, true), slab.Flux(sun, mu0, false) + std::exp(-tau / mu0)};
+}
+
+void ThinPart(const CloudSettings& settings, std::int64_t samples, int threads,
+              std::uint64_t seed) {
+    constexpr double kSunElevation = 40.0 * kPi / 180.0;
+    constexpr double kViewElevation = 55.0 * kPi / 180.0;
+    const double mu0 = std::sin(kSunElevation);
+    CloudSettings first_order = settings;
+    first_order.multiple_scattering = 0.0;
+    std::printf(
+        "Homogeneous non-absorbing decks (default dual lobe) over a black ground, the sun %.0f "
+        "deg up, seen %.0f deg off the horizon from below (transmitted) and above (reflected) with "
+        "the sun behind the camera, beside it and ahead of it (85, 58 and 15 deg from the light's "
+        "way): L / E0 of the renderer's march (%d m steps at most %d, 16 sample offsets) against "
+        "the path tracer's slab (%lld paths; all orders, and paths of one scattering). Ratios "
+        "renderer / path tracer; 'more than once' is all minus one scattering on each side, ± "
+        "the path tracer's standard error of it.\n\n",
+        kSunElevation * 180.0 / kPi, kViewElevation * 180.0 / kPi,
+        static_cast<int>(settings.min_step), settings.max_steps, static_cast<long long>(samples));
+    std::printf(
+        "| tau | side | sun | path tracer L / E0 | all | one scattering | more than once |\n");
+    std::printf("|---:|---|---|---:|---:|---:|---:|\n");
+    SlabProblem problem;
+    problem.phase = CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
+    problem.mu0 = mu0;
+    CloudPathTraceOptions options;
+    options.threads = threads;
+    options.seed = seed;
+    options.samples = samples;
+    CloudPathTraceOptions single = options;
+    single.max_bounces = 1;
+    const ref::Sunlight sun(mu0);
+    for (const double tau : {0.06, 0.25, 1.0, 4.0}) {
+        const ref::Slab slab(tau, settings);
+        problem.optical_depth = tau;
+        for (const bool above : {false, true}) {
+            const char* names[] = {"behind the camera", "beside", "ahead"};
+            const double azimuths[] = {0.0, 0.5 * kPi, kPi};
+            for (int k = 0; k < 3; ++k) {
+                // The direction the light leaves in (azimuth from the sunlight's own); the
+                // camera looks against it.
+                const double mu = above ? std::sin(kViewElevation) : -std::sin(kViewElevation);
+                const double sine = std::cos(kViewElevation);
+                const ref::vec3 leaving(sine * std::cos(azimuths[k]), sine * std::sin(azimuths[k]),
+                                        mu);
+                const ref::vec3 camera(0.0, 0.0, ref::kR + (above ? 5.0 : 0.5));
+                const auto march = [&](const CloudSettings& s) {
+                    return ref::CloudLuminance(sun, slab.layer, slab.weather, slab.shape,
+                                               slab.detail, ref::DefaultScattering(0.0, s),
+                                               slab.march, camera, -leaving, 16);
+                };
+                const double all = march(settings), once = march(first_order);
+                const SlabRadianceResult traced = SlabRadiance(problem, mu, azimuths[k], options);
+                const SlabRadianceResult traced_once =
+                    SlabRadiance(problem, mu, azimuths[k], single);
+                const double more = traced.value - traced_once.value;
+                std::printf("| %g | %s | %s | %.5f | %.3f | %.3f | %.2f ± %.2f |\n", tau,
+                            above ? "reflected" : "transmitted", names[k], traced.value,
+                            all / traced.value, once / traced_once.value, (all - once) / more,
+                            std::hypot(traced.standard_error, traced_once.standard_error) *
+                                (all - once) / (more * more));
+                std::fflush(stdout);
+            }
+        }
+    }
 }
 
 void DecksPart(const CloudSettings& settings, std::int64_t samples, int threads,
@@ -370,11 +440,13 @@ int main(int argc, char** argv) {
     bool single = false;
     CloudSettings settings;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
-    app.add_option("--part", part, "energy, overcast, cumulus, formal or decks")
+    app.add_option("--part", part, "energy, overcast, cumulus, formal, decks or thin")
         ->required()
-        ->check(CLI::IsMember({"energy", "overcast", "cumulus", "formal", "decks"}));
-    app.add_option("--samples", samples,
-                   "paths (default: energy, overcast 20000; cumulus 256 per pixel; decks 40000)")
+        ->check(CLI::IsMember({"energy", "overcast", "cumulus", "formal", "decks", "thin"}));
+    app.add_option(
+           "--samples", samples,
+           "paths (default: energy, overcast 20000; cumulus 256 per pixel; decks 40000; thin "
+           "200000 per direction)")
         ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 32));
     app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
     app.add_option("--seed", seed)->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
@@ -382,17 +454,20 @@ int main(int argc, char** argv) {
     app.add_flag("--single-scattering", single,
                  "cumulus: single scattering on both sides (the renderer's first order, the path "
                  "tracer's paths of one scattering)");
-    app.add_flag("!--no-lit-face", settings.lit_face_source,
-                 "overcast, cumulus, formal, decks: the renderer without the lit face's source");
-    app.add_flag("!--no-column-steps", settings.column_steps,
-                 "decks, overcast, cumulus: each step's sample for a point (the midpoint rule)");
-    app.add_option("--max-steps", settings.max_steps,
-                   "decks, overcast, cumulus: the march's primary steps per layer crossing at "
-                   "most (CloudSettings::max_steps, default 64): with --min-step, the march "
-                   "converged, apart from the default steps' own error")
+    app.add_flag(
+        "!--no-lit-face", settings.lit_face_source,
+        "overcast, cumulus, formal, decks, thin: the renderer without the lit face's source");
+    app.add_flag(
+        "!--no-column-steps", settings.column_steps,
+        "decks, overcast, cumulus, thin: each step's sample for a point (the midpoint rule)");
+    app.add_option(
+           "--max-steps", settings.max_steps,
+           "decks, overcast, cumulus, thin: the march's primary steps per layer crossing at "
+           "most (CloudSettings::max_steps, default 64): with --min-step, the march "
+           "converged, apart from the default steps' own error")
         ->check(CLI::Range(1, 4096));
     app.add_option("--min-step", settings.min_step,
-                   "decks, overcast, cumulus: m, the step of a short crossing (default 120)")
+                   "decks, overcast, cumulus, thin: m, the step of a short crossing (default 120)")
         ->check(CLI::Range(1.0, 10000.0));
     CLI11_PARSE(app, argc, argv);
     if ((maps || single) && part != "cumulus") {
@@ -409,6 +484,8 @@ int main(int argc, char** argv) {
         FormalPart(settings);
     } else if (part == "decks") {
         DecksPart(settings, samples > 0 ? samples : 40000, threads, seed);
+    } else if (part == "thin") {
+        ThinPart(settings, samples > 0 ? samples : 200000, threads, seed);
     } else {
         CumulusPart(settings, samples > 0 ? samples : 256, threads, seed, maps, single);
     }
