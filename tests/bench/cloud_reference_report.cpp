@@ -108,6 +108,7 @@ void FormalPart(const CloudSettings& settings) {
     ref::CloudScatteringParameters single_only = p;
     single_only.multiple_scattering = 0.0;
     const double g = ref::CloudAsymmetry(p);
+    const double f = ref::CloudDeltaFraction(p);
     std::printf(
         "The renderer's source (CloudSunScattering, default CloudSettings, g = %.2f) through a "
         "homogeneous non-absorbing slab over a black ground, by quadrature: R and T (T with the "
@@ -125,7 +126,7 @@ void FormalPart(const CloudSettings& settings) {
             const double t = ref::FormalSlabFlux(p, tau, mu0, false, 4000, 48) + direct;
             const double first = ref::FormalSlabFlux(single_only, tau, mu0, true, 4000, 48) +
                                  ref::FormalSlabFlux(single_only, tau, mu0, false, 4000, 48);
-            const ref::vec2 closed = ref::CloudSlabReflectanceTransmittance(g, tau, mu0);
+            const ref::vec2 closed = ref::CloudSlabReflectanceTransmittance(g, f, tau, mu0);
             std::printf("| %g | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f |\n", tau, mu0, r,
                         closed.x, t, closed.y, r + t,
                         (r + t - direct - first) / (1.0 - direct - first));

@@ -70,49 +70,52 @@ CloudScatteringParameters Scattering(double multiple_scattering = 1.0, double g0
 // the fluxes that give R and T, a net flux that stays constant through a non-absorbing slab, and
 // R from the closed form worked out by hand for g = 0.85, tau = 10, mu0 = 1.
 TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConservesFlux) {
+    // f: one Henyey-Greenstein lobe's g^2, and the most CloudDeltaFraction gives, g.
     for (const double g : {0.0, 0.47, 0.85}) {
-        for (const double tau_total : {0.5, 5.0, 10.0, 50.0}) {
-            for (const double mu0 : {1.0, 0.5, 0.15}) {
-                const double f = g * g;
-                const auto direct = [&](double tau) {  // scaled beam, horizontal flux per E
-                    return mu0 * std::exp(-(1.0 - f) * tau / mu0);
-                };
-                const vec2 top = CloudDiffuseRadiance(g, 0.0, tau_total, mu0, 0.0);
-                const vec2 bottom = CloudDiffuseRadiance(g, tau_total, tau_total, mu0, 0.0);
-                EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
-                EXPECT_NEAR(bottom.x - 2.0 / 3.0 * bottom.y, 0.0, 1e-12);
-                const vec2 rt = CloudSlabReflectanceTransmittance(g, tau_total, mu0);
-                // Upward flux pi (I0 - 2/3 I1) at the top, downward pi (I0 + 2/3 I1) plus the
-                // beam at the base.
-                EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), rt.x * mu0, 1e-12);
-                EXPECT_NEAR(kPi * (bottom.x + 2.0 / 3.0 * bottom.y) + direct(tau_total), rt.y * mu0,
-                            1e-12);
-                for (const double x : {0.0, 0.3, 0.7, 1.0}) {
-                    const vec2 i = CloudDiffuseRadiance(g, x * tau_total, tau_total, mu0, 0.0);
-                    // Net downward flux 4 pi / 3 I1 plus the beam: constant, (1 - R) mu0.
-                    EXPECT_NEAR(4.0 * kPi / 3.0 * i.y + direct(x * tau_total), (1.0 - rt.x) * mu0,
-                                1e-12);
-                    EXPECT_GE(i.x, 0.0);
+        for (const double f : {g * g, g}) {
+            for (const double tau_total : {0.5, 5.0, 10.0, 50.0}) {
+                for (const double mu0 : {1.0, 0.5, 0.15}) {
+                    const auto direct = [&](double tau) {  // scaled beam, horizontal flux per E
+                        return mu0 * std::exp(-(1.0 - f) * tau / mu0);
+                    };
+                    const vec2 top = CloudDiffuseRadiance(g, f, 0.0, tau_total, mu0, 0.0);
+                    const vec2 bottom = CloudDiffuseRadiance(g, f, tau_total, tau_total, mu0, 0.0);
+                    EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
+                    EXPECT_NEAR(bottom.x - 2.0 / 3.0 * bottom.y, 0.0, 1e-12);
+                    const vec2 rt = CloudSlabReflectanceTransmittance(g, f, tau_total, mu0);
+                    // Upward flux pi (I0 - 2/3 I1) at the top, downward pi (I0 + 2/3 I1) plus the
+                    // beam at the base.
+                    EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), rt.x * mu0, 1e-12);
+                    EXPECT_NEAR(kPi * (bottom.x + 2.0 / 3.0 * bottom.y) + direct(tau_total),
+                                rt.y * mu0, 1e-12);
+                    for (const double x : {0.0, 0.3, 0.7, 1.0}) {
+                        const vec2 i =
+                            CloudDiffuseRadiance(g, f, x * tau_total, tau_total, mu0, 0.0);
+                        // Net downward flux 4 pi / 3 I1 plus the beam: constant, (1 - R) mu0.
+                        EXPECT_NEAR(4.0 * kPi / 3.0 * i.y + direct(x * tau_total),
+                                    (1.0 - rt.x) * mu0, 1e-12);
+                        EXPECT_GE(i.x, 0.0);
+                    }
+                    EXPECT_GT(rt.x, 0.0);
+                    EXPECT_LT(rt.x, 1.0);
                 }
-                EXPECT_GT(rt.x, 0.0);
-                EXPECT_LT(rt.x, 1.0);
             }
         }
     }
     // A white ground returns all the light: nothing flows down through the slab, R = 1.
     for (const double tau_total : {0.1, 3.0, 30.0}) {
-        const vec2 top = CloudDiffuseRadiance(0.47, 0.0, tau_total, 0.6, 1.0);
+        const vec2 top = CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 1.0);
         EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), 0.6, 1e-12);
         // A grey one returns less, and more than a black one.
-        const vec2 grey = CloudDiffuseRadiance(0.47, 0.0, tau_total, 0.6, 0.3);
-        EXPECT_GT(grey.x, CloudDiffuseRadiance(0.47, 0.0, tau_total, 0.6, 0.0).x);
+        const vec2 grey = CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 0.3);
+        EXPECT_GT(grey.x, CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 0.0).x);
         EXPECT_LT(grey.x, top.x);
     }
-    EXPECT_NEAR(CloudSlabReflectanceTransmittance(0.85, 10.0, 1.0).x,
+    EXPECT_NEAR(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 10.0, 1.0).x,
                 (1.5 - (1.0 / 3.0) * (1.0 - std::exp(-2.775))) / (4.0 / 3.0 + 1.5), 1e-12);
     // Thin clouds keep no diffuse light; thick ones reflect nearly all.
-    EXPECT_LT(CloudSlabReflectanceTransmittance(0.85, 1e-4, 1.0).x, 1e-4);
-    EXPECT_GT(CloudSlabReflectanceTransmittance(0.85, 1e5, 1.0).x, 0.9998);
+    EXPECT_LT(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 1e-4, 1.0).x, 1e-4);
+    EXPECT_GT(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 1e5, 1.0).x, 0.9998);
 }
 
 // The slab whose diffuse light leaks out sideways (a transverse buckling B): its own boundary
@@ -122,72 +125,81 @@ TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConserves
 // non-leaking slab as B -> 0.
 TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength) {
     for (const double g : {0.0, 0.47, 0.85}) {
-        for (const double mu0 : {1.0, 0.5, 0.15}) {
-            const double f = g * g;
-            for (const double a : {0.0, 0.3}) {
-                for (const double tau_total : {0.5, 5.0, 50.0}) {
-                    const vec2 top = CloudLeakingDiffuseRadiance(g, 0.0, tau_total, mu0, a, 0.1);
-                    const vec2 bottom =
-                        CloudLeakingDiffuseRadiance(g, tau_total, tau_total, mu0, a, 0.1);
-                    EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
-                    const double beam = mu0 * std::exp(-(1.0 - f) * tau_total / mu0);
-                    EXPECT_NEAR((1.0 - a) * bottom.x - 2.0 / 3.0 * (1.0 + a) * bottom.y,
-                                a * beam / kPi, 1e-12);
-                }
-            }
-            // Deep inside a slab of optical depth 400 the beam is gone and the mode growing toward
-            // the base is exp(-2 B 290) < 1e-5 of the other: I0 falls by exp(-B d) over d.
-            for (const double leakage : {0.02, 0.05, 0.1}) {
-                const double d = 10.0;
-                const vec2 near = CloudLeakingDiffuseRadiance(g, 100.0, 400.0, mu0, 0.0, leakage);
-                const vec2 far =
-                    CloudLeakingDiffuseRadiance(g, 100.0 + d, 400.0, mu0, 0.0, leakage);
-                EXPECT_NEAR(far.x / near.x, std::exp(-leakage * d), 1e-5)
-                    << "g " << g << " mu0 " << mu0 << " B " << leakage;
-            }
-            // Upward flux at the top and downward flux (with the beam) at the base: less light
-            // leaves through the faces the more leaks out; with none they sum to the light in.
-            for (const double tau_total : {2.0, 20.0}) {
-                double previous_r = 2.0, previous_t = 2.0;
-                for (const double leakage : {0.0, 0.01, 0.05, 0.2}) {
-                    const vec2 top =
-                        CloudLeakingDiffuseRadiance(g, 0.0, tau_total, mu0, 0.0, leakage);
-                    const vec2 bottom =
-                        CloudLeakingDiffuseRadiance(g, tau_total, tau_total, mu0, 0.0, leakage);
-                    const double r = kPi * (top.x - 2.0 / 3.0 * top.y) / mu0;
-                    const double t = (kPi * (bottom.x + 2.0 / 3.0 * bottom.y) +
-                                      mu0 * std::exp(-(1.0 - f) * tau_total / mu0)) /
-                                     mu0;
-                    if (leakage == 0.0) {
-                        EXPECT_NEAR(r + t, 1.0, 1e-12);
+        for (const double f : {g * g, g}) {
+            for (const double mu0 : {1.0, 0.5, 0.15}) {
+                for (const double a : {0.0, 0.3}) {
+                    for (const double tau_total : {0.5, 5.0, 50.0}) {
+                        const vec2 top =
+                            CloudLeakingDiffuseRadiance(g, f, 0.0, tau_total, mu0, a, 0.1);
+                        const vec2 bottom =
+                            CloudLeakingDiffuseRadiance(g, f, tau_total, tau_total, mu0, a, 0.1);
+                        EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
+                        const double beam = mu0 * std::exp(-(1.0 - f) * tau_total / mu0);
+                        EXPECT_NEAR((1.0 - a) * bottom.x - 2.0 / 3.0 * (1.0 + a) * bottom.y,
+                                    a * beam / kPi, 1e-12);
                     }
-                    EXPECT_LT(r, previous_r);
-                    EXPECT_LE(t, previous_t);
-                    previous_r = r;
-                    previous_t = t;
                 }
-            }
-            // Finite and non-negative over the whole range the renderer can ask for (a cloud
-            // of no height leaks at pi / (1.42 / (1 - g)), the light grazing at mu0 0.05).
-            for (const double mu : {0.05, 0.2, 0.7}) {
-                for (const double tau_total : {0.01, 1.0, 30.0, 3000.0}) {
-                    for (const double leakage : {1e-3, 0.3, 2.2, 1e3}) {
-                        for (const double x : {0.0, 0.01, 0.5, 1.0}) {
-                            const vec2 i = CloudLeakingDiffuseRadiance(g, x * tau_total, tau_total,
-                                                                       mu, 0.3, leakage);
-                            EXPECT_TRUE(std::isfinite(i.x) && std::isfinite(i.y));
-                            EXPECT_GE(i.x, -1e-12) << "g " << g << " mu0 " << mu << " tau "
-                                                   << tau_total << " B " << leakage << " x " << x;
+                // Deep inside a slab of scaled optical depth 400 (1 - f) tau the beam is gone
+                // and the mode growing toward the base is exp(-2 B 290) < 1e-5 of the other: I0
+                // falls by exp(-B d) over d. (Where B / (1 - f) passes the solution's bound, 0.5
+                // at mu0 = 1, the slab leaks at the bound instead.)
+                const double scale = 1.0 / (1.0 - f);
+                for (const double leakage : {0.02, 0.05, 0.1}) {
+                    if (leakage * scale > 0.5) continue;
+                    const double d = 10.0;
+                    const vec2 near = CloudLeakingDiffuseRadiance(g, f, 100.0 * scale,
+                                                                  400.0 * scale, mu0, 0.0, leakage);
+                    const vec2 far = CloudLeakingDiffuseRadiance(g, f, 100.0 * scale + d,
+                                                                 400.0 * scale, mu0, 0.0, leakage);
+                    EXPECT_NEAR(far.x / near.x, std::exp(-leakage * d), 1e-5)
+                        << "g " << g << " mu0 " << mu0 << " B " << leakage;
+                }
+                // Upward flux at the top and downward flux (with the beam) at the base: less light
+                // leaves through the faces the more leaks out; with none they sum to the light in.
+                for (const double tau_total : {2.0, 20.0}) {
+                    double previous_r = 2.0, previous_t = 2.0;
+                    for (const double leakage : {0.0, 0.01, 0.05, 0.2}) {
+                        const vec2 top =
+                            CloudLeakingDiffuseRadiance(g, f, 0.0, tau_total, mu0, 0.0, leakage);
+                        const vec2 bottom = CloudLeakingDiffuseRadiance(g, f, tau_total, tau_total,
+                                                                        mu0, 0.0, leakage);
+                        const double r = kPi * (top.x - 2.0 / 3.0 * top.y) / mu0;
+                        const double t = (kPi * (bottom.x + 2.0 / 3.0 * bottom.y) +
+                                          mu0 * std::exp(-(1.0 - f) * tau_total / mu0)) /
+                                         mu0;
+                        if (leakage == 0.0) {
+                            EXPECT_NEAR(r + t, 1.0, 1e-12);
+                        }
+                        EXPECT_LT(r, previous_r);
+                        EXPECT_LE(t, previous_t);
+                        previous_r = r;
+                        previous_t = t;
+                    }
+                }
+                // Finite and non-negative over the whole range the renderer can ask for (a cloud
+                // of no height leaks at pi / (1.42 / (1 - g)), the light grazing at mu0 0.05).
+                for (const double mu : {0.05, 0.2, 0.7}) {
+                    for (const double tau_total : {0.01, 1.0, 30.0, 3000.0}) {
+                        for (const double leakage : {1e-3, 0.3, 2.2, 1e3}) {
+                            for (const double x : {0.0, 0.01, 0.5, 1.0}) {
+                                const vec2 i = CloudLeakingDiffuseRadiance(
+                                    g, f, x * tau_total, tau_total, mu, 0.3, leakage);
+                                EXPECT_TRUE(std::isfinite(i.x) && std::isfinite(i.y));
+                                EXPECT_GE(i.x, -1e-12)
+                                    << "g " << g << " mu0 " << mu << " tau " << tau_total << " B "
+                                    << leakage << " x " << x;
+                            }
                         }
                     }
                 }
-            }
-            // B -> 0: the non-leaking slab, within O(B tau) on both sides of the switch at
-            // B tau = 1e-3.
-            for (const double x : {0.0, 0.5, 1.0}) {
-                const vec2 tight = CloudDiffuseRadiance(g, x * 10.0, 10.0, mu0, 0.3);
-                const vec2 leaking = CloudLeakingDiffuseRadiance(g, x * 10.0, 10.0, mu0, 0.3, 2e-4);
-                EXPECT_NEAR(leaking.x, tight.x, 5e-3 * tight.x);
+                // B -> 0: the non-leaking slab, within O(B tau) on both sides of the switch at
+                // B tau = 1e-3.
+                for (const double x : {0.0, 0.5, 1.0}) {
+                    const vec2 tight = CloudDiffuseRadiance(g, f, x * 10.0, 10.0, mu0, 0.3);
+                    const vec2 leaking =
+                        CloudLeakingDiffuseRadiance(g, f, x * 10.0, 10.0, mu0, 0.3, 2e-4);
+                    EXPECT_NEAR(leaking.x, tight.x, 5e-3 * tight.x);
+                }
             }
         }
     }

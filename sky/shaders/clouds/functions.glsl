@@ -422,6 +422,13 @@ Number CloudTwiceScatteredPhase(Number g0, Number g1, Number w, Number nu) {
            w * w * CloudHenyeyGreensteinPhase(g1 * g1, nu);
 }
 
+// The same for light the forward lobe alone scattered first (what delta-Eddington keeps in the
+// direct beam, CloudSunScattering): p_hg(g0) convolved with the dual lobe, the mix of
+// p_hg(g0^2) and p_hg(g0 g1) with weights 1 - w and w.
+Number CloudForwardThenScatteredPhase(Number g0, Number g1, Number w, Number nu) {
+    return mix(CloudHenyeyGreensteinPhase(g0 * g0, nu), CloudHenyeyGreensteinPhase(g0 * g1, nu), w);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Scattering: the cloud material (F16 §5.2, §5.4.1) and its multiple scattering
 //
@@ -437,8 +444,9 @@ Number CloudTwiceScatteredPhase(Number g0, Number g1, Number w, Number nu) {
 // JWW76  Joseph, Wiscombe & Weinman, "The delta-Eddington approximation for radiative flux
 //        transfer", J. Atmos. Sci. 33, 1976.
 // Glossary: tau vertical optical depth from the slab's top, tau_total the slab's, mu0 the
-// cosine of the light's zenith angle, g the asymmetry (mean cosine) of the phase function;
-// delta-scaled with f = g^2: tau' = (1 - f) tau, g' = g / (1 + g), so (1 - g') tau' = (1 - g) tau.
+// cosine of the light's zenith angle, g the asymmetry (mean cosine) of the phase function, f the
+// share of the scattering kept in the forward peak (CloudDeltaFraction); delta-scaled:
+// tau' = (1 - f) tau, g' = (g - f) / (1 - f), so (1 - g') tau' = (1 - g) tau.
 
 // The lit face's source (CloudLitFaceScale) is tabulated on this many slab optical depths by as
 // many cosines of the light.
@@ -464,21 +472,32 @@ Number CloudAsymmetry(IN(CloudScatteringParameters) p) {
     return clamp(mix(p.forward_g, p.backward_g, p.lobe_weight), 0.0, 0.99);
 }
 
+// The share f of the scattering that delta-Eddington puts in its forward peak: the phase
+// function's second Legendre moment (JWW76 Eq. 4-5, whose f = g^2 is that moment for one
+// Henyey-Greenstein lobe), (1 - w) g0^2 + w g1^2 for the dual lobe, bounded by g so that the
+// scaled phase keeps g' = (g - f) / (1 - f) >= 0 (the dual lobe's moment is at least g^2). The
+// default lobes give 0.475, so f = g = 0.47 and an isotropic scaled phase, where g^2 = 0.22 had
+// left most of the forward lobe's light to the nearly isotropic P1 field (BENCHMARKS.md,
+// cloud_reference_report --part thin).
+Number CloudDeltaFraction(IN(CloudScatteringParameters) p) {
+    Number moment = mix(p.forward_g * p.forward_g, p.backward_g * p.backward_g, p.lobe_weight);
+    return min(moment, CloudAsymmetry(p));
+}
+
 // JWW76 Eq. 2-5 for single-scattering albedo 1: the Eddington radiance I0 + mu I1 of the
 // diffuse light (mu along the downward vertical) at depth tau in a slab of depth tau_total,
 // per unit illuminance normal to the light, with no diffuse light entering at the top
 // (I0 + 2/3 I1 = 0) (Marshak) and a Lambertian ground of albedo a at the base, which returns
 // a times the diffuse and direct flux it gets: (1 - a) I0 - 2/3 (1 + a) I1 = a mu0 e / pi. The
-// conservative solution is linear in depth plus the direct beam's exponential; with
+// conservative solution is linear in depth plus the direct beam's exponential (for any f); with
 // k = 3 mu0 / (4 pi) and e(tau) = exp(-tau' / mu0):
 //   I1 = A - k e(tau),  I0 = B - (1 - g) A tau - k mu0 e(tau),
 //   A = (1 - a) k ((mu0 + 2/3) - e(tau_total) (mu0 - 2/3)) / (4/3 + (1 - a)(1 - g) tau_total),
 //   B = k (mu0 + 2/3) - 2/3 A.
 // Returns (I0, I1); both vanish as tau_total -> 0 over a black ground (thin clouds scatter
 // once).
-vec2 CloudDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
+vec2 CloudDiffuseRadiance(Number g, Number f, Number tau, Number tau_total, Number mu0,
                           Number ground_albedo) {
-    Number f = g * g;
     Number k = 3.0 * mu0 / (4.0 * kPi);
     Number e = exp(-(1.0 - f) * tau / mu0);
     Number e_total = exp(-(1.0 - f) * tau_total / mu0);
@@ -498,12 +517,11 @@ vec2 CloudDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
 //   I1 = -P (C1 exp(-lambda (tau_total - tau)) - C2 exp(-lambda tau)) + beta e(tau),
 // P = lambda / (1 - w g'), with the particular solution alpha, beta of the direct beam and C1, C2
 // from the same boundary conditions. B -> 0 is CloudDiffuseRadiance.
-vec2 CloudLeakingDiffuseRadiance(Number g, Number tau, Number tau_total, Number mu0,
+vec2 CloudLeakingDiffuseRadiance(Number g, Number f, Number tau, Number tau_total, Number mu0,
                                  Number ground_albedo, Number leakage) {
     if (!(leakage * tau_total > 1e-3)) {
-        return CloudDiffuseRadiance(g, tau, tau_total, mu0, ground_albedo);
+        return CloudDiffuseRadiance(g, f, tau, tau_total, mu0, ground_albedo);
     }
-    Number f = g * g;
     Number lambda = leakage / (1.0 - f);
     // Away from the particular solution's pole (lambda mu0 = 1), and within what an albedo in
     // [0, 1] can give (3 (1 - w)(1 - w g') <= 3): only a cloud under an optical depth or so
@@ -511,7 +529,7 @@ vec2 CloudLeakingDiffuseRadiance(Number g, Number tau, Number tau_total, Number 
     lambda = min(lambda, min(0.5 / mu0, 1.5));
     // w from 3 (1 - w)(1 - w g') = lambda^2: gs w^2 - (1 + gs) w + 1 - lambda^2 / 3 = 0, the
     // root at 1 for lambda = 0.
-    Number gs = g / (1.0 + g);
+    Number gs = (g - f) / (1.0 - f);
     Number qb = 1.0 + gs;
     Number qc = 1.0 - lambda * lambda / 3.0;
     Number w = gs > 1e-6 ? (qb - sqrt(max(qb * qb - 4.0 * gs * qc, 0.0))) / (2.0 * gs) : qc;
@@ -543,8 +561,7 @@ vec2 CloudLeakingDiffuseRadiance(Number g, Number tau, Number tau_total, Number 
 // (direct and diffuse) over a black ground from the same solution: the closed form the march is
 // tested against.
 //   R = ((1 - g) tau_total + (2/3 - mu0)(1 - e(tau_total))) / (4/3 + (1 - g) tau_total).
-vec2 CloudSlabReflectanceTransmittance(Number g, Number tau_total, Number mu0) {
-    Number f = g * g;
+vec2 CloudSlabReflectanceTransmittance(Number g, Number f, Number tau_total, Number mu0) {
     Number e_total = exp(-(1.0 - f) * tau_total / mu0);
     Number r = ((1.0 - g) * tau_total + (2.0 / 3.0 - mu0) * (1.0 - e_total)) /
                (4.0 / 3.0 + (1.0 - g) * tau_total);
@@ -606,8 +623,12 @@ Number CloudLitFaceScale(IN(CloudScatteringParameters) p, Number tau_total, Numb
 //   tau + depth_below. Its diffuse light, scattered with the true phase, adds I0 + g mu_view I1
 //   (the delta peak, f of the scattering, only passes the diffuse light on, which the view's
 //   unscaled extinction needs back: f I + (1 - f)(I0 + g' mu I1) = I0 + g mu I1 in P1). The
-//   light the delta peak kept in the scaled beam, exp(-tau' / mu0) - exp(-tau / mu0), scatters
-//   out of it with (1 - f) and the scaled lobe g'; and the lit face's source (CloudLitFaceScale).
+//   light the delta peak kept in the scaled beam, exp(-tau' / mu0) - exp(-tau / mu0), has been
+//   scattered by the forward lobe and lies spread about the light's direction by it, not on
+//   it: the view takes all of it with the true phase over that spread, p_hg(g0) convolved with
+//   the dual lobe (CloudForwardThenScatteredPhase; the scaled lobe (1 - f) p_hg(g') took only
+//   what leaves the peak). And the lit face's source (CloudLitFaceScale), with the
+//   twice-scattered phase p2.
 // nu = dot(view, light); mu_view = dot(view, normal), the cosine between the light's way to the
 // camera (-view) and the slab's inward normal (down, for a deck). mu0 is clamped to 0.05: a
 // light grazing the slab still enters it. `leakage` is the slab's transverse buckling
@@ -619,12 +640,12 @@ Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_de
     Number single = CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
                     exp(-sun_optical_depth);
     Number g = CloudAsymmetry(p);
-    Number f = g * g;
+    Number f = CloudDeltaFraction(p);
     Number mu = max(mu0, 0.05);
     Number tau = sun_optical_depth * mu;
     vec2 diffuse =
-        CloudLeakingDiffuseRadiance(g, tau, tau + depth_below, mu, p.ground_albedo, leakage);
-    Number peak = (1.0 - f) * CloudHenyeyGreensteinPhase(g / (1.0 + g), nu) *
+        CloudLeakingDiffuseRadiance(g, f, tau, tau + depth_below, mu, p.ground_albedo, leakage);
+    Number peak = CloudForwardThenScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
                   (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
     Number lit_face = CloudLitFaceScale(p, tau + depth_below, mu) *
                       CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *

@@ -36,8 +36,9 @@ static_assert(ref::kCloudLitFaceSize == kCloudLitFaceSize);
 // - Depths: kDepths intervals, denser at both faces (t = tau_total (1 - cos(pi k / n)) / 2), the
 //   source at each interval's middle and its attenuation integrated exactly over it.
 // The source is CloudSunScattering's own terms (the dual-lobe first order, the delta-Eddington
-// field, the delta peak's lobe), combined per cell as it combines them; tests/sky hold the
-// result to a separate quadrature of CloudSunScattering itself. The lit face's source
+// field, the delta peak's light seen through one more scattering), combined per cell as it
+// combines them; tests/sky hold the result to a separate quadrature of CloudSunScattering
+// itself. The lit face's source
 // (CloudTwiceScatteredPhase times the sunlight left, unit scale) goes through the same cells.
 constexpr int kLitFaceCosines = 64;
 constexpr int kLitFaceAzimuths = 32;
@@ -52,7 +53,7 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
     const auto p =
         MakeCloudScatteringParameters<ref::CloudScatteringParameters>(off, glm::dvec3(0.0));
     const double g = ref::CloudAsymmetry(p);
-    const double f = g * g;
+    const double f = ref::CloudDeltaFraction(p);
     const double d_mu = 2.0 / kLitFaceCosines;
     const double d_phi = kPi / kLitFaceAzimuths;
     const double cell_solid_angle = 2.0 * d_mu * d_phi;  // both sides of the light's plane
@@ -85,13 +86,16 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
             for (double& mean : means) mean /= sum;
             return means;
         };
-        // The dual lobe (first order), the delta peak's lobe, and the lit face's source summed
-        // over each cosine's row of cells (it is the same at every depth).
+        // The dual lobe (first order), the delta peak's light seen through one more
+        // scattering, and the lit face's source summed over each cosine's row of cells (it is
+        // the same at every depth).
         const std::vector<double> first = cell_means([&](double nu) {
             return ref::CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
         });
-        const std::vector<double> peak = cell_means(
-            [&](double nu) { return ref::CloudHenyeyGreensteinPhase(g / (1.0 + g), nu); });
+        const std::vector<double> peak = cell_means([&](double nu) {
+            return ref::CloudForwardThenScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight,
+                                                       nu);
+        });
         const std::vector<double> twice = cell_means([&](double nu) {
             return ref::CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
         });
@@ -109,8 +113,8 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
                     0.5 * tau_total * (1.0 - std::cos(kPi * (k + 1) / kLitFaceDepths));
                 const double t = 0.5 * (t0 + t1);
                 const double direct = std::exp(-t / mu0);
-                const ref::vec2 diffuse = ref::CloudDiffuseRadiance(g, t, tau_total, mu0, 0.0);
-                const double scaled = (1.0 - f) * (std::exp(-(1.0 - f) * t / mu0) - direct);
+                const ref::vec2 diffuse = ref::CloudDiffuseRadiance(g, f, t, tau_total, mu0, 0.0);
+                const double scaled = std::exp(-(1.0 - f) * t / mu0) - direct;
                 for (int a = 0; a < kLitFaceCosines; ++a) {
                     const double mu = -1.0 + (a + 0.5) * d_mu;  // travel, up > 0
                     const double m = std::abs(mu);
