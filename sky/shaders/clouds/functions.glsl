@@ -426,7 +426,8 @@ Number CloudTwiceScatteredPhase(Number g0, Number g1, Number w, Number nu) {
 // direct beam, CloudSunScattering): p_hg(g0) convolved with the dual lobe, the mix of
 // p_hg(g0^2) and p_hg(g0 g1) with weights 1 - w and w.
 Number CloudForwardThenScatteredPhase(Number g0, Number g1, Number w, Number nu) {
-    return mix(CloudHenyeyGreensteinPhase(g0 * g0, nu), CloudHenyeyGreensteinPhase(g0 * g1, nu), w);
+    return mix(CloudHenyeyGreensteinPhase(g0 * g0, nu), CloudHenyeyGreensteinPhase(g0 * g1, nu),
+               w);
 }
 
 // ---------------------------------------------------------------------------------------------

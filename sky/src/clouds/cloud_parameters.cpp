@@ -38,8 +38,8 @@ static_assert(ref::kCloudLitFaceSize == kCloudLitFaceSize);
 // The source is CloudSunScattering's own terms (the dual-lobe first order, the delta-Eddington
 // field, the delta peak's light seen through one more scattering), combined per cell as it
 // combines them; tests/sky hold the result to a separate quadrature of CloudSunScattering
-// itself. The lit face's source
-// (CloudTwiceScatteredPhase times the sunlight left, unit scale) goes through the same cells.
+// itself. The lit face's source (CloudTwiceScatteredPhase times the sunlight left, unit scale)
+// goes through the same cells.
 constexpr int kLitFaceCosines = 64;
 constexpr int kLitFaceAzimuths = 32;
 constexpr int kLitFaceSubsamples = 4;
