@@ -164,7 +164,8 @@ void ThinPart(const CloudSettings& settings, std::int64_t samples, int threads,
         "Homogeneous non-absorbing decks (default dual lobe) over a black ground, the sun %.0f "
         "deg up, seen %.0f deg off the horizon from below (transmitted) and above (reflected) with "
         "the sun behind the camera, beside it and ahead of it (85, 58 and 15 deg from the light's "
-        "way): L / E0 of the renderer's march (%d m steps at most %d, 16 sample offsets) against "
+        "way below, 164, 122 and 95 deg above): L / E0 of the renderer's march (%d m steps at most "
+        "%d, 16 sample offsets) against "
         "the path tracer's slab (%lld paths; all orders, and paths of one scattering). Ratios "
         "renderer / path tracer; 'more than once' is all minus one scattering on each side, ± "
         "the path tracer's standard error of it.\n\n",
@@ -183,12 +184,12 @@ void ThinPart(const CloudSettings& settings, std::int64_t samples, int threads,
     CloudPathTraceOptions single = options;
     single.max_bounces = 1;
     const ref::Sunlight sun(mu0);
+    const char* names[] = {"behind the camera", "beside", "ahead"};
+    const double azimuths[] = {0.0, 0.5 * kPi, kPi};
     for (const double tau : {0.06, 0.25, 1.0, 4.0}) {
         const ref::Slab slab(tau, settings);
         problem.optical_depth = tau;
         for (const bool above : {false, true}) {
-            const char* names[] = {"behind the camera", "beside", "ahead"};
-            const double azimuths[] = {0.0, 0.5 * kPi, kPi};
             for (int k = 0; k < 3; ++k) {
                 // The direction the light leaves in (azimuth from the sunlight's own); the
                 // camera looks against it.
