@@ -12,6 +12,8 @@ packages=(
     kstars-data
     # sky: headless OpenGL 4.5 (OSMesa, EGL surfaceless), glad2 loader generator
     libosmesa6-dev libegl-dev libegl-mesa0 libgl1-mesa-dri mesa-common-dev python3-glad
+    # sky: linear algebra (the multiple scattering's plane-parallel column)
+    libeigen3-dev
     # sky: frame output (HDR OpenEXR, tone-mapped PNG)
     libopenexr-dev libpng-dev
     # sim: flight logs (GPX/KML XML), EGM96 geoid grid for MSL -> WGS84 heights (egm96_15.gtx)

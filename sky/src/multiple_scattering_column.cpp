@@ -55,18 +55,12 @@ glm::dvec2 LinearPieces(int m, double t, double a, double b, const ExpIntegrals&
 }
 
 std::size_t Index(int i) { return static_cast<std::size_t>(i); }
-std::size_t At(int row, int column, int n) { return Index(row) * Index(n) + Index(column); }
 
-std::vector<double> Multiply(const std::vector<double>& m, const std::vector<double>& x) {
-    const int n = static_cast<int>(x.size());
-    std::vector<double> y(x.size(), 0.0);
-    for (int i = 0; i < n; ++i) {
-        double sum = 0.0;
-        for (int j = 0; j < n; ++j) sum += m[At(i, j, n)] * x[Index(j)];
-        y[Index(i)] = sum;
-    }
-    return y;
+Eigen::Map<const Eigen::VectorXd> AsVector(const std::vector<double>& v) {
+    return {v.data(), static_cast<Eigen::Index>(v.size())};
 }
+
+std::vector<double> ToStd(const Eigen::VectorXd& v) { return {v.begin(), v.end()}; }
 
 }  // namespace
 
@@ -105,67 +99,33 @@ ScatteringColumn::ScatteringColumn(const std::vector<double>& optical_depths,
     }
     ground_.resize(un);
     for (std::size_t i = 0; i < un; ++i) ground_[i] = 0.5 * ExpIntegrals(tau_ground - tau_[i]).e[2];
-    kernel_.resize(un * un);
+    kernel_.resize(n, n);
     transfer_.assign(un, 0.0);
     for (int i = 0; i < n; ++i) {
         const std::vector<double> air = hats(1, tau_[Index(i)]);
         for (int j = 0; j < n; ++j) {
             const std::size_t uj = Index(j);
             transfer_[Index(i)] += 0.5 * air[uj] * albedos[uj];
-            kernel_[At(i, j, n)] =
+            kernel_(i, j) =
                 0.5 * air[uj] + ground_albedo / kPi * ground_[Index(i)] * flux_to_ground_[uj];
         }
     }
-    // NextOrder's operator, and I minus it factorised (Gaussian elimination, partial pivoting).
-    next_.resize(un * un);
-    lu_.resize(un * un);
-    for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-            next_[At(i, j, n)] = kernel_[At(i, j, n)] * albedos[Index(j)];
-            lu_[At(i, j, n)] = (i == j ? 1.0 : 0.0) - next_[At(i, j, n)];
-        }
-    }
-    pivots_.resize(un);
-    for (int k = 0; k < n; ++k) {
-        int pivot = k;
-        for (int i = k + 1; i < n; ++i) {
-            if (std::abs(lu_[At(i, k, n)]) > std::abs(lu_[At(pivot, k, n)])) pivot = i;
-        }
-        pivots_[Index(k)] = pivot;
-        if (pivot != k) {
-            for (int j = 0; j < n; ++j) std::swap(lu_[At(k, j, n)], lu_[At(pivot, j, n)]);
-        }
-        for (int i = k + 1; i < n; ++i) {
-            const double factor = lu_[At(i, k, n)] / lu_[At(k, k, n)];
-            lu_[At(i, k, n)] = factor;
-            for (int j = k + 1; j < n; ++j) lu_[At(i, j, n)] -= factor * lu_[At(k, j, n)];
-        }
-    }
+    // NextOrder's operator (each node scatters its albedo), and I minus it factorised.
+    next_ = kernel_ * AsVector(albedos).asDiagonal();
+    all_orders_.compute(Eigen::MatrixXd::Identity(n, n) - next_);
 }
 
 std::vector<double> ScatteringColumn::FromSource(const std::vector<double>& source,
                                                  double ground_radiance) const {
-    std::vector<double> j = Multiply(kernel_, source);
-    for (std::size_t i = 0; i < j.size(); ++i) j[i] += ground_[i] * ground_radiance;
-    return j;
+    return ToStd(kernel_ * AsVector(source) + ground_radiance * AsVector(ground_));
 }
 
 std::vector<double> ScatteringColumn::NextOrder(const std::vector<double>& j) const {
-    return Multiply(next_, j);
+    return ToStd(next_ * AsVector(j));
 }
 
-std::vector<double> ScatteringColumn::AllOrders(std::vector<double> b) const {
-    const int n = nodes();
-    for (int k = 0; k < n; ++k) {
-        std::swap(b[Index(k)], b[Index(pivots_[Index(k)])]);
-        for (int i = k + 1; i < n; ++i) b[Index(i)] -= lu_[At(i, k, n)] * b[Index(k)];
-    }
-    for (int k = n - 1; k >= 0; --k) {
-        double sum = b[Index(k)];
-        for (int j = k + 1; j < n; ++j) sum -= lu_[At(k, j, n)] * b[Index(j)];
-        b[Index(k)] = sum / lu_[At(k, k, n)];
-    }
-    return b;
+std::vector<double> ScatteringColumn::AllOrders(std::vector<double> first) const {
+    return ToStd(all_orders_.solve(AsVector(first)));
 }
 
 glm::dvec2 ScatteringColumn::EscapingFlux(const std::vector<double>& source) const {

@@ -29,9 +29,10 @@
 // Numerics: isotropic scattering in optical depth, J(tau) = 1/2 int S(tau') E1(|tau - tau'|)
 // dtau' plus the ground's radiance attenuated by E2 (ScatteringColumn), on `layers` layers
 // denser near the ground (boundaries at z = H (e^(4x) - 1) / (e^4 - 1)). One LU factorisation
-// per channel serves every sun cosine.
+// per channel serves every sun cosine (Eigen's partial-pivoting LU).
 #pragma once
 
+#include <Eigen/Dense>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -70,9 +71,9 @@ class ScatteringColumn {
 
   private:
     std::vector<double> tau_;  // optical depth from the top at each node
-    std::vector<double> kernel_, next_, ground_, flux_to_ground_, flux_to_top_, transfer_;
-    std::vector<double> lu_;
-    std::vector<int> pivots_;
+    std::vector<double> ground_, flux_to_ground_, flux_to_top_, transfer_;
+    Eigen::MatrixXd kernel_, next_;
+    Eigen::PartialPivLU<Eigen::MatrixXd> all_orders_;  // I - next_, factorised
 };
 
 // The correction (RGB, per unit light illuminance, like Psi_ms) at each texel centre of one tile
