@@ -471,6 +471,10 @@ int main(int argc, char** argv) {
     app.add_option("--min-step", settings.min_step,
                    "decks, overcast, cumulus, thin: m, the step of a short crossing (default 120)")
         ->check(CLI::Range(1.0, 10000.0));
+    app.add_option("--shadow-steps", settings.shadow_steps,
+                   "decks, overcast, cumulus, thin: samples toward each light (default 4; "
+                   "each one twice as long as the one before)")
+        ->check(CLI::Range(1, 16));
     CLI11_PARSE(app, argc, argv);
     if ((maps || single) && part != "cumulus") {
         std::fprintf(stderr,
