@@ -9,9 +9,11 @@
 //   cloud_reference_report --part formal
 //   cloud_reference_report --part decks    [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part thin     [--samples N] [--threads T] [--seed S]
+//                                          [--view-elevation DEG]
 // (--no-lit-face: overcast, cumulus, formal, decks and thin with CloudSettings::lit_face_source =
 // false; --no-column-steps: overcast, cumulus, decks and thin with CloudSettings::column_steps =
-// false; --max-steps, --min-step: overcast, cumulus, decks and thin with those march steps.)
+// false; --max-steps, --min-step, --shadow-steps: overcast, cumulus, decks and thin with those
+// march steps and samples toward the light.)
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -33,9 +35,10 @@
 //   quadrature (formal), and of the march (the slab test's parabolic deck) at its default steps,
 //   with fine primary steps, and with fine primary and shadow steps.
 // thin: where the light scattered more than once goes in thin and moderate decks (ThinPart):
-//   a homogeneous slab of optical depth 0.06-4 seen from below and above at 55 deg with the sun
-//   40 deg up behind, beside and ahead of the camera, the renderer's march with and without its
-//   diffuse field against the path tracer's slab with all orders and with one scattering.
+//   a homogeneous slab of optical depth 0.06-4 seen from below and above at 55 deg (or
+//   --view-elevation) with the sun 40 deg up behind, beside and ahead of the camera, the
+//   renderer's march with and without its diffuse field against the path tracer's slab with all
+//   orders and with one scattering.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -153,23 +156,37 @@ std::pair<double, double> MarchedSlabFluxes(const CloudSettings& settings, doubl
     return {slab.Flux(sun, mu0, true), slab.Flux(sun, mu0, false) + std::exp(-tau / mu0)};
 }
 
-void ThinPart(const CloudSettings& settings, std::int64_t samples, int threads,
-              std::uint64_t seed) {
+void ThinPart(const CloudSettings& settings, std::int64_t samples, int threads, std::uint64_t seed,
+              double view_elevation_deg) {
     constexpr double kSunElevation = 40.0 * kPi / 180.0;
-    constexpr double kViewElevation = 55.0 * kPi / 180.0;
+    const double view_elevation = view_elevation_deg * kPi / 180.0;
     const double mu0 = std::sin(kSunElevation);
     CloudSettings first_order = settings;
     first_order.multiple_scattering = 0.0;
+    const char* names[] = {"behind the camera", "beside", "ahead"};
+    const double azimuths[] = {0.0, 0.5 * kPi, kPi};
+    // The direction the light leaves the slab in (azimuth from the sunlight's own; the camera
+    // looks against it), and its scattering angle from the sunlight's way, in degrees.
+    const auto leaving = [&](bool above, int k) {
+        const double sine = std::cos(view_elevation);
+        return ref::vec3(sine * std::cos(azimuths[k]), sine * std::sin(azimuths[k]),
+                         above ? std::sin(view_elevation) : -std::sin(view_elevation));
+    };
+    const auto angle = [&](bool above, int k) {
+        const ref::vec3 sunlight(-std::cos(kSunElevation), 0.0, -std::sin(kSunElevation));
+        return std::acos(std::clamp(dot(sunlight, leaving(above, k)), -1.0, 1.0)) * 180.0 / kPi;
+    };
     std::printf(
         "Homogeneous non-absorbing decks (default dual lobe) over a black ground, the sun %.0f "
         "deg up, seen %.0f deg off the horizon from below (transmitted) and above (reflected) with "
-        "the sun behind the camera, beside it and ahead of it (85, 58 and 15 deg from the light's "
-        "way below, 164, 122 and 95 deg above): L / E0 of the renderer's march (%d m steps at most "
-        "%d, 16 sample offsets) against "
+        "the sun behind the camera, beside it and ahead of it (%.0f, %.0f and %.0f deg from the "
+        "light's way below, %.0f, %.0f and %.0f deg above): L / E0 of the renderer's march (%d m "
+        "steps at most %d, 16 sample offsets) against "
         "the path tracer's slab (%lld paths; all orders, and paths of one scattering). Ratios "
         "renderer / path tracer; 'more than once' is all minus one scattering on each side, ± "
         "the path tracer's standard error of it.\n\n",
-        kSunElevation * 180.0 / kPi, kViewElevation * 180.0 / kPi,
+        kSunElevation * 180.0 / kPi, view_elevation_deg, angle(false, 0), angle(false, 1),
+        angle(false, 2), angle(true, 0), angle(true, 1), angle(true, 2),
         static_cast<int>(settings.min_step), settings.max_steps, static_cast<long long>(samples));
     std::printf(
         "| tau | side | sun | path tracer L / E0 | all | one scattering | more than once |\n");
@@ -184,29 +201,23 @@ void ThinPart(const CloudSettings& settings, std::int64_t samples, int threads,
     CloudPathTraceOptions single = options;
     single.max_bounces = 1;
     const ref::Sunlight sun(mu0);
-    const char* names[] = {"behind the camera", "beside", "ahead"};
-    const double azimuths[] = {0.0, 0.5 * kPi, kPi};
     for (const double tau : {0.06, 0.25, 1.0, 4.0}) {
         const ref::Slab slab(tau, settings);
         problem.optical_depth = tau;
         for (const bool above : {false, true}) {
             for (int k = 0; k < 3; ++k) {
-                // The direction the light leaves in (azimuth from the sunlight's own); the
-                // camera looks against it.
-                const double mu = above ? std::sin(kViewElevation) : -std::sin(kViewElevation);
-                const double sine = std::cos(kViewElevation);
-                const ref::vec3 leaving(sine * std::cos(azimuths[k]), sine * std::sin(azimuths[k]),
-                                        mu);
+                const ref::vec3 out = leaving(above, k);
                 const ref::vec3 camera(0.0, 0.0, ref::kR + (above ? 5.0 : 0.5));
                 const auto march = [&](const CloudSettings& s) {
                     return ref::CloudLuminance(sun, slab.layer, slab.weather, slab.shape,
                                                slab.detail, ref::DefaultScattering(0.0, s),
-                                               slab.march, camera, -leaving, 16);
+                                               slab.march, camera, -out, 16);
                 };
                 const double all = march(settings), once = march(first_order);
-                const SlabRadianceResult traced = SlabRadiance(problem, mu, azimuths[k], options);
+                const SlabRadianceResult traced =
+                    SlabRadiance(problem, out.z, azimuths[k], options);
                 const SlabRadianceResult traced_once =
-                    SlabRadiance(problem, mu, azimuths[k], single);
+                    SlabRadiance(problem, out.z, azimuths[k], single);
                 const double more = traced.value - traced_once.value;
                 std::printf("| %g | %s | %s | %.5f | %.3f | %.3f | %.2f ± %.2f |\n", tau,
                             above ? "reflected" : "transmitted", names[k], traced.value,
@@ -441,6 +452,7 @@ int main(int argc, char** argv) {
     bool maps = false;
     bool single = false;
     CloudSettings settings;
+    double view_elevation = 55.0;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
     app.add_option("--part", part, "energy, overcast, cumulus, formal, decks or thin")
         ->required()
@@ -475,11 +487,19 @@ int main(int argc, char** argv) {
                    "decks, overcast, cumulus, thin: samples toward each light (default 4; "
                    "each one twice as long as the one before)")
         ->check(CLI::Range(1, 16));
+    CLI::Option* view_elevation_option =
+        app.add_option("--view-elevation", view_elevation,
+                       "thin: deg, the views' elevation off the deck's plane (default 55)")
+            ->check(CLI::Range(5.0, 89.0));
     CLI11_PARSE(app, argc, argv);
     if ((maps || single) && part != "cumulus") {
         std::fprintf(stderr,
                      "cloud_reference_report: --maps and --single-scattering apply to --part "
                      "cumulus\n");
+        return 2;
+    }
+    if (view_elevation_option->count() > 0 && part != "thin") {
+        std::fprintf(stderr, "cloud_reference_report: --view-elevation applies to --part thin\n");
         return 2;
     }
     if (part == "energy") {
@@ -491,7 +511,7 @@ int main(int argc, char** argv) {
     } else if (part == "decks") {
         DecksPart(settings, samples > 0 ? samples : 40000, threads, seed);
     } else if (part == "thin") {
-        ThinPart(settings, samples > 0 ? samples : 200000, threads, seed);
+        ThinPart(settings, samples > 0 ? samples : 200000, threads, seed, view_elevation);
     } else {
         CumulusPart(settings, samples > 0 ? samples : 256, threads, seed, maps, single);
     }
