@@ -12,8 +12,9 @@
 //                                          [--view-elevation DEG]
 // (--no-lit-face: overcast, cumulus, formal, decks and thin with CloudSettings::lit_face_source =
 // false; --no-column-steps: overcast, cumulus, decks and thin with CloudSettings::column_steps =
-// false; --max-steps, --min-step, --shadow-steps: overcast, cumulus, decks and thin with those
-// march steps and samples toward the light.)
+// false; --max-steps, --min-step, --shadow-steps, --thick-step-refinement: overcast, cumulus,
+// decks and thin with those march steps, samples toward the light and thick steps' shadow
+// refinement.)
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
@@ -483,6 +484,10 @@ int main(int argc, char** argv) {
     app.add_option("--min-step", settings.min_step,
                    "decks, overcast, cumulus, thin: m, the step of a short crossing (default 120)")
         ->check(CLI::Range(1.0, 10000.0));
+    app.add_option("--thick-step-refinement", settings.thick_step_refinement,
+                   "decks, overcast, cumulus, thin: halvings of a thick step's first shadow step "
+                   "at most (default 3)")
+        ->check(CLI::Range(0, 3));
     app.add_option("--shadow-steps", settings.shadow_steps,
                    "decks, overcast, cumulus, thin: samples toward each light (default 4; "
                    "each one twice as long as the one before)")
