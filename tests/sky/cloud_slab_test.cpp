@@ -22,9 +22,11 @@ namespace {
 // Issue 15: R + T = 1 +- 2 % for the renderer's own non-absorbing slab. Its source alone (no
 // march: FormalSlabFlux, 1,500 depths by 8 x 24 directions, not the cells and depths
 // CloudLitFaceTable sizes the source with) over optical depths and sun angles between the
-// table's nodes: measured 0.994-1.001 (2026-11-29); without the lit face's source 0.90-0.98
-// (0.84-0.99 before the delta peak's light was seen with its spread, CloudSunScattering), short
-// most at low suns and optical depths 0.5-4 (BENCHMARKS.md).
+// table's nodes: measured 0.994-1.001 (2026-11-29). Without the lit face's source 0.95-1.00,
+// short 1.4-4.6 % from optical depth 1.4 on, which the check below keeps the lit face for
+// (0.90-0.98 before the light scattered once along the view was passed on by the delta peak,
+// 0.84-0.99 before the delta peak's own light was seen with its spread: CloudSunScattering,
+// BENCHMARKS.md).
 TEST(CloudSlab, SourceSendsOutAllThatANonAbsorbingSlabReceives) {
     const CloudScatteringParameters with = DefaultScattering();
     CloudSettings settings;
@@ -40,8 +42,8 @@ TEST(CloudSlab, SourceSendsOutAllThatANonAbsorbingSlabReceives) {
                                   FormalSlabFlux(without, tau, mu0, false, 1500, 24) + direct;
             std::printf("  %4.1f  %.2f   %.4f  %.4f\n", tau, mu0, sum, before);
             EXPECT_NEAR(sum, 1.0, 0.02) << "tau " << tau << " mu0 " << mu0;
-            if (mu0 < 0.5 && tau > 1.0) {
-                EXPECT_LT(before, 0.95) << "tau " << tau;
+            if (tau > 1.0) {
+                EXPECT_LT(before, 0.99) << "tau " << tau << " mu0 " << mu0;
             }
         }
     }
@@ -265,12 +267,14 @@ TEST(CloudSlab, RadianceMatchesThePathTracerOnTheIssueGrid) {
 
 // The isolated cumulus of cloud_march_support.h (a lone cloud 3.2 km wide, the sun 30 deg up
 // behind the camera, beside it and behind the cloud) against the path tracer: the mean
-// luminance within 10 % (measured with 1024 paths per pixel: 0.973, 1.037, 1.088, and with the
-// march converged 1.004, 1.043, 0.997; before the delta peak's light was seen with its spread
+// luminance within 10 % (measured with 1024 paths per pixel: 0.984, 1.042, 1.112, and with the
+// march converged 1.016, 1.050, 1.021; before the light scattered once along the view was
+// passed on 0.973, 1.037, 1.088, converged 1.004, 1.043, 0.997; before the delta peak's light
+// was seen with its spread
 // 0.963, 1.060, 0.983, converged 0.999, 1.059, 0.888; before the slab across a side leaked
 // light out of the cloud's top and base 1.037, 1.141, 1.076; the horizontal slab gave 0.630,
 // 1.014, 1.490). Issue 15's 5 % is met in two of the three (in all three converged), and its
-// median per-pixel 10 % in none (12-19 %; BENCHMARKS.md, cloud_reference_report).
+// median per-pixel 10 % in none (11-19 %; BENCHMARKS.md, cloud_reference_report).
 TEST(CloudSlab, IsolatedCumulusMeanLuminanceMatchesThePathTracer) {
     const std::vector<IsolatedCumulusCase> cases =
         CompareIsolatedCumulus(CloudSettings{}, clouds::test::CachedNoise(),

@@ -343,7 +343,8 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         direct += lights.light[l].illuminance * atmosphere_transmittance *
                   CloudSunScattering(scattering, optical_depth, depth_beyond,
                                      dot(facing, direction), dot(view, direction),
-                                     dot(view, facing), leakage);
+                                     dot(view, facing), leakage,
+                                     layer.precipitation_shaft > 0.5 ? 0.0 : 1.0);
         // The depth below the cloud's top as the sun's slab has it.
         Number depth_above = optical_depth * max(mu_l, 0.05);
         ambient += lights.light[l].illuminance *

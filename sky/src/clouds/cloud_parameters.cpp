@@ -36,10 +36,10 @@ static_assert(ref::kCloudLitFaceSize == kCloudLitFaceSize);
 // - Depths: kDepths intervals, denser at both faces (t = tau_total (1 - cos(pi k / n)) / 2), the
 //   source at each interval's middle and its attenuation integrated exactly over it.
 // The source is CloudSunScattering's own terms (the dual-lobe first order, the delta-Eddington
-// field, the delta peak's light seen through one more scattering), combined per cell as it
-// combines them; tests/sky hold the result to a separate quadrature of CloudSunScattering
-// itself. The lit face's source (CloudTwiceScatteredPhase times the sunlight left, unit scale)
-// goes through the same cells.
+// field, the delta peak's light seen through one more scattering, the light scattered once on
+// its way out that the peak passes on), combined per cell as it combines them; tests/sky hold
+// the result to a separate quadrature of CloudSunScattering itself. The lit face's source
+// (CloudTwiceScatteredPhase times the sunlight left, unit scale) goes through the same cells.
 constexpr int kLitFaceCosines = 64;
 constexpr int kLitFaceAzimuths = 32;
 constexpr int kLitFaceSubsamples = 4;
@@ -96,6 +96,9 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
             return ref::CloudForwardThenScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight,
                                                        nu);
         });
+        const std::vector<double> forward_twice = cell_means([&](double nu) {
+            return ref::CloudHenyeyGreensteinPhase(p.forward_g * p.forward_g, nu);
+        });
         const std::vector<double> twice = cell_means([&](double nu) {
             return ref::CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
         });
@@ -122,10 +125,15 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
                                                    : m * (std::exp(-(tau_total - t1) / m) -
                                                           std::exp(-(tau_total - t0) / m));
                     const double field = diffuse.x - g * mu * diffuse.y;  // mu_view = -mu
+                    const double along_view =
+                        f * direct * ref::CloudAlongViewPath(t, tau_total - t, mu0, -mu);
                     double source = 0.0;
                     for (int b = 0; b < kLitFaceAzimuths; ++b) {
                         const auto cell = static_cast<std::size_t>(a * kLitFaceAzimuths + b);
-                        source += first[cell] * direct + std::max(field + peak[cell] * scaled, 0.0);
+                        // CloudScatteredThenForwardPhase from the cells' means.
+                        const double passed = std::max(peak[cell] - f * forward_twice[cell], 0.0);
+                        source += first[cell] * direct +
+                                  std::max(field + peak[cell] * scaled, 0.0) + passed * along_view;
                     }
                     renderer += cell_solid_angle * source * escape;
                     lit_face += cell_solid_angle * twice_rows[static_cast<std::size_t>(a)] *
