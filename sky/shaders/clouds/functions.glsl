@@ -430,15 +430,6 @@ Number CloudForwardThenScatteredPhase(Number g0, Number g1, Number w, Number nu)
                w);
 }
 
-// Light scattered by the dual lobe and then by its forward lobe, less what the forward lobe
-// scattered twice (f of it p_hg(g0^2)), which CloudSunScattering's delta peak already holds:
-// p convolved with p_hg(g0) (= CloudForwardThenScatteredPhase) - f p_hg(g0^2), at least 0.
-Number CloudScatteredThenForwardPhase(Number g0, Number g1, Number w, Number f, Number nu) {
-    return max(CloudForwardThenScatteredPhase(g0, g1, w, nu) -
-                   f * CloudHenyeyGreensteinPhase(g0 * g0, nu),
-               0.0);
-}
-
 // ---------------------------------------------------------------------------------------------
 // Scattering: the cloud material (F16 §5.2, §5.4.1) and its multiple scattering
 //
@@ -654,13 +645,14 @@ Number CloudAlongViewPath(Number tau, Number depth_below, Number mu0, Number mu_
 //   it: the view takes all of it with the true phase over that spread, p_hg(g0) convolved with
 //   the dual lobe (CloudForwardThenScatteredPhase; the scaled lobe (1 - f) p_hg(g') took only
 //   what leaves the peak). The light scattered once on its way to the camera, which the
-//   delta peak passes on along the view: f of it, seen with its spread
-//   (CloudScatteredThenForwardPhase) and counted along the slab's extent behind the sample
-//   (CloudAlongViewPath). The P1 field's f I spreads that light evenly over the view's cosine;
-//   it runs longest near the slab's plane and comes out there (in decks of optical depth
-//   0.06-1 the light scattered more than once was 0.63-0.82x the path tracer's 15 deg off the
-//   plane and 1.24-1.52x near its normal, BENCHMARKS.md). And the lit face's source
-//   (CloudLitFaceScale), with the twice-scattered phase p2.
+//   delta peak passes on along the view: f of it, seen with its spread by the forward lobe
+//   (the same convolution, since it commutes, less the f p_hg(g0^2) of light scattered forward
+//   twice that the peak's term holds; at least 0) and counted along the slab's extent behind
+//   the sample (CloudAlongViewPath). The P1 field's f I spreads that light evenly over the
+//   view's cosine; it runs longest near the slab's plane and comes out there (in decks of
+//   optical depth 0.06-1 the light scattered more than once was 0.63-0.82x the path tracer's
+//   15 deg off the plane and 1.24-1.52x near its normal, BENCHMARKS.md). And the lit face's
+//   source (CloudLitFaceScale), with the twice-scattered phase p2.
 // nu = dot(view, light); mu_view = dot(view, normal), the cosine between the light's way to the
 // camera (-view) and the slab's inward normal (down, for a deck). mu0 is clamped to 0.05: a
 // light grazing the slab still enters it. `leakage` is the slab's transverse buckling
@@ -681,10 +673,10 @@ Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_de
     Number tau = sun_optical_depth * mu;
     vec2 diffuse =
         CloudLeakingDiffuseRadiance(g, f, tau, tau + depth_below, mu, p.ground_albedo, leakage);
-    Number peak = CloudForwardThenScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
-                  (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
+    Number spread = CloudForwardThenScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
+    Number peak = spread * (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
     Number passed =
-        CloudScatteredThenForwardPhase(p.forward_g, p.backward_g, p.lobe_weight, f, nu) * f *
+        max(spread - f * CloudHenyeyGreensteinPhase(p.forward_g * p.forward_g, nu), 0.0) * f *
         exp(-sun_optical_depth) * along_view * CloudAlongViewPath(tau, depth_below, mu, mu_view);
     Number lit_face = CloudLitFaceScale(p, tau + depth_below, mu) *
                       CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *

@@ -130,7 +130,8 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
                     double source = 0.0;
                     for (int b = 0; b < kLitFaceAzimuths; ++b) {
                         const auto cell = static_cast<std::size_t>(a * kLitFaceAzimuths + b);
-                        // CloudScatteredThenForwardPhase from the cells' means.
+                        // CloudSunScattering's phase of the light passed on along the view,
+                        // from the cells' means.
                         const double passed = std::max(peak[cell] - f * forward_twice[cell], 0.0);
                         source += first[cell] * direct +
                                   std::max(field + peak[cell] * scaled, 0.0) + passed * along_view;
