@@ -210,21 +210,21 @@ TEST(CloudSunScattering, FirstOrderAloneInThinCloudsAndTheDiffuseLightInThickOne
     const CloudScatteringParameters single = Scattering(0.0);
     for (const double nu : {-1.0, -0.3, 0.4, 0.99}) {
         // Single scattering: the dual lobe in the shadow.
-        EXPECT_NEAR(CloudSunScattering(single, 2.0, 3.0, 0.8, nu, 0.5, 0.0, 1.0),
+        EXPECT_NEAR(CloudSunScattering(single, 2.0, 3.0, 0.8, nu, 0.5, 0.0),
                     CloudDualLobePhase(0.8, -0.5, 0.2, nu) * std::exp(-2.0), 1e-15);
         // The thin limit: at the top of a slab of no depth the diffuse field is nothing.
-        EXPECT_NEAR(CloudSunScattering(full, 0.0, 0.0, 0.8, nu, -nu, 0.0, 1.0),
-                    CloudSunScattering(single, 0.0, 0.0, 0.8, nu, -nu, 0.0, 1.0), 1e-12);
+        EXPECT_NEAR(CloudSunScattering(full, 0.0, 0.0, 0.8, nu, -nu, 0.0),
+                    CloudSunScattering(single, 0.0, 0.0, 0.8, nu, -nu, 0.0), 1e-12);
         // Deep inside a thick cloud the first order is gone and the diffuse light remains.
-        EXPECT_GT(CloudSunScattering(full, 20.0, 20.0, 0.8, nu, -nu, 0.0, 1.0),
-                  1e3 * CloudSunScattering(single, 20.0, 20.0, 0.8, nu, -nu, 0.0, 1.0));
+        EXPECT_GT(CloudSunScattering(full, 20.0, 20.0, 0.8, nu, -nu, 0.0),
+                  1e3 * CloudSunScattering(single, 20.0, 20.0, 0.8, nu, -nu, 0.0));
     }
     // Silver lining kept: looking toward the sun at the sunlit edge, forward scattering wins.
-    EXPECT_GT(CloudSunScattering(full, 0.2, 10.0, 0.8, 0.99, 0.8, 0.0, 1.0),
-              3.0 * CloudSunScattering(full, 0.2, 10.0, 0.8, -0.3, 0.8, 0.0, 1.0));
+    EXPECT_GT(CloudSunScattering(full, 0.2, 10.0, 0.8, 0.99, 0.8, 0.0),
+              3.0 * CloudSunScattering(full, 0.2, 10.0, 0.8, -0.3, 0.8, 0.0));
     // The base of a thick cloud is darker than its top.
-    EXPECT_LT(CloudSunScattering(full, 40.0, 0.1, 1.0, 0.0, 1.0, 0.0, 1.0),
-              0.3 * CloudSunScattering(full, 0.1, 40.0, 1.0, 0.0, -1.0, 0.0, 1.0));
+    EXPECT_LT(CloudSunScattering(full, 40.0, 0.1, 1.0, 0.0, 1.0, 0.0),
+              0.3 * CloudSunScattering(full, 0.1, 40.0, 1.0, 0.0, -1.0, 0.0));
 }
 
 TEST(CloudSkyScattering, HalfTheSkyInThinCloudsAllOfItOverWhiteGroundDarkBasesInThickOnes) {
@@ -290,7 +290,7 @@ struct Scene {
             step *= 2.0;
         }
         // The cloud below p plays no part here: a fixed slab of depth 10 under it.
-        return CloudSunScattering(scattering, depth, 10.0, sun.y, nu, 0.0, 0.0, 1.0);
+        return CloudSunScattering(scattering, depth, 10.0, sun.y, nu, 0.0, 0.0);
     }
 
     // Scattered luminance along a ray through the layer (altitudes as flat y: the shell's

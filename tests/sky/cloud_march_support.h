@@ -63,7 +63,7 @@ inline double FormalSlabFlux(const CloudScatteringParameters& p, double tau, dou
                                 const double t1 = tau * std::pow(double(j + 1) / depths, 2.0);
                                 const double t = 0.5 * (t0 + t1);
                                 const double source = CloudSunScattering(
-                                    p, t / mu0, tau - t, mu0, dot(view, light), view.z, 0.0, 1.0);
+                                    p, t / mu0, tau - t, mu0, dot(view, light), view.z, 0.0);
                                 const double d0 = top ? t0 : tau - t1, d1 = top ? t1 : tau - t0;
                                 radiance += source * (std::exp(-d0 / mu) - std::exp(-d1 / mu));
                             }
@@ -130,8 +130,8 @@ double CloudLuminance(const Sunlight& sun, const CloudLayerParameters& layer,
     double sum = 0.0;
     for (int j = 0; j < jitters; ++j) {
         CloudMarchState state = CloudMarchStart();
-        MarchCloudLayer(sun.atmosphere, sun.transmittance, sun.irradiance, layer, weather, shape,
-                        detail, scattering, march, sun.lights, 1, camera, view, interval,
+        MarchCloudLayer(sun.atmosphere, sun.transmittance, sun.irradiance, layer, layer, weather,
+                        shape, detail, scattering, march, sun.lights, 1, camera, view, interval,
                         (j + 0.5) / jitters, state);
         sum += state.luminance.x;
     }

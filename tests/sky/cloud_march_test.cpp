@@ -132,7 +132,7 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
         CloudMarchParameters m = march;
         m.max_steps = steps;
         CloudMarchState state = CloudMarchStart();
-        MarchCloudLayer(atmosphere, transmittance, irradiance, layer, weather, shape, detail,
+        MarchCloudLayer(atmosphere, transmittance, irradiance, layer, layer, weather, shape, detail,
                         scattering, m, lights, 1, camera, view, interval, 0.5, state);
         return state.luminance.x;
     };
@@ -147,7 +147,7 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
     CloudMarchState state = CloudMarchStart();
     CloudMarchParameters m = march;
     m.max_steps = 7;
-    MarchCloudLayer(atmosphere, transmittance, irradiance, layer, weather, shape, detail,
+    MarchCloudLayer(atmosphere, transmittance, irradiance, layer, layer, weather, shape, detail,
                     scattering, m, lights, 1, camera, view, interval, 0.5, state);
     EXPECT_NEAR(state.luminance.x, (1.0 - state.transmittance) / (4.0 * kPi), 1e-12);
     EXPECT_GT(state.transmittance, 0.05);

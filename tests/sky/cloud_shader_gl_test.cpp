@@ -46,7 +46,7 @@ void main() {
     results[i] = vec4(s.density, CloudDualLobePhase(0.8, -0.4, 0.25, 2.0 * p.w - 1.0),
                       CloudSunScattering(scattering, 10.0 * p.w, 30.0 * (1.0 - p.w),
                                          0.1 + 0.9 * p.w, 2.0 * p.w - 1.0, 1.0 - 2.0 * p.w,
-                                         0.1 * p.w, 1.0),
+                                         0.1 * p.w),
                       luminance.x);
 }
 )";
@@ -185,7 +185,7 @@ TEST(CloudShaderGl, SharedFunctionsMatchTheCppReference) {
         const double phase = ref::CloudDualLobePhase(0.8, -0.4, 0.25, nu);
         EXPECT_NEAR(r.y, phase, kRelativeTolerance * phase) << "point " << i;
         const double sun = ref::CloudSunScattering(scattering, 10.0 * p.w, 30.0 * (1.0 - p.w),
-                                                   0.1 + 0.9 * p.w, nu, -nu, 0.1 * p.w, 1.0);
+                                                   0.1 + 0.9 * p.w, nu, -nu, 0.1 * p.w);
         EXPECT_NEAR(r.z, sun, kRelativeTolerance * sun + 1e-9) << "point " << i;
         glm::dvec3 luminance(0.0);
         double transmittance = 1.0;

@@ -658,13 +658,9 @@ Number CloudAlongViewPath(Number tau, Number depth_below, Number mu0, Number mu_
 // light grazing the slab still enters it. `leakage` is the slab's transverse buckling
 // (CloudSlabLeakage; 0: an infinite slab), through which its diffuse light leaks out sideways
 // (CloudLeakingDiffuseRadiance); the lit face's source is sized for the infinite slab.
-// `along_view` is 1 where the light scattered once on its way to the camera is counted, 0 where
-// it is not: in rain and snow shafts, whose own march does not see the raining deck above them,
-// passing their first order on along a long view took the drizzle under overcast_stratus from
-// -1.5 to +11.8 % against the path tracer (seen along the horizontal from 300 m).
 Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_depth,
                           Number depth_below, Number mu0, Number nu, Number mu_view,
-                          Number leakage, Number along_view) {
+                          Number leakage) {
     Number single = CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
                     exp(-sun_optical_depth);
     Number g = CloudAsymmetry(p);
@@ -677,7 +673,7 @@ Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_de
     Number peak = spread * (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
     Number passed =
         max(spread - f * CloudHenyeyGreensteinPhase(p.forward_g * p.forward_g, nu), 0.0) * f *
-        exp(-sun_optical_depth) * along_view * CloudAlongViewPath(tau, depth_below, mu, mu_view);
+        exp(-sun_optical_depth) * CloudAlongViewPath(tau, depth_below, mu, mu_view);
     Number lit_face = CloudLitFaceScale(p, tau + depth_below, mu) *
                       CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
                       exp(-sun_optical_depth);

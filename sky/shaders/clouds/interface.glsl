@@ -157,7 +157,8 @@ CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, fl
         vec2 interval = CloudLayerInterval(cloud_layers[i], r, mu, altitude, march.max_distance);
         interval.y = min(interval.y, distance);
         MarchCloudLayer(atmosphere, transmittance_texture, irradiance_texture, cloud_layers[i],
-                        CloudWeatherMap(i), shape_noise, detail_noise, cloud_scattering, march,
+                        cloud_layers[min(i + 1, cloud_layer_count - 1)], CloudWeatherMap(i),
+                        shape_noise, detail_noise, cloud_scattering, march,
                         cloud_lights, cloud_light_count, origin, direction, interval, jitter,
                         state);
     }

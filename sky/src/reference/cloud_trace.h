@@ -3,6 +3,7 @@
 // such as the sunlight reaching the aircraft through the clouds.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "clouds/cloud_parameters.h"
@@ -41,10 +42,11 @@ CloudMarchState MarchCloudLayers(const CloudScene& scene, vec3 origin, Number al
         const auto layer = static_cast<std::size_t>(i);
         const vec2 interval =
             CloudLayerInterval(scene.layers[layer], r, mu, altitude, scene.march.max_distance);
-        MarchCloudLayer(scene.atmosphere, scene.transmittance, scene.irradiance,
-                        scene.layers[layer], scene.weather_maps[layer], scene.shape, scene.detail,
-                        scene.scattering, scene.march, scene.cloud_lights, scene.cloud_lights.count,
-                        origin, direction, interval, jitter, state);
+        MarchCloudLayer(
+            scene.atmosphere, scene.transmittance, scene.irradiance, scene.layers[layer],
+            scene.layers[std::min(layer + 1, scene.layers.size() - 1)], scene.weather_maps[layer],
+            scene.shape, scene.detail, scene.scattering, scene.march, scene.cloud_lights,
+            scene.cloud_lights.count, origin, direction, interval, jitter, state);
     }
     return state;
 }
