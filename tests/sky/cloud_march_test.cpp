@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "clouds/cloud_parameters.h"
@@ -159,6 +160,57 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
 // as the march records it, gives 1 - exp(-sigma d) exactly in front of d, before its last
 // crossing and past it; a cloud 5-6 km away leaves nothing in front of geometry at 4 km and all of
 // its opacity in front of geometry at 8 km.
+// A precipitation shaft is lit through the cloud it falls from: from a point in a homogeneous
+// shaft (0-1 km, 0.4 /km) under a fog-like cloud layer (1-2 km, 2 /km, flat to 80 % of it, then
+// thinning linearly to its top), the optical depth toward the light is the shaft's own part to
+// its top plus the cloud's whole crossing, however low the light: against the densities
+// integrated along the light's way in 20,000 steps on the sphere (at 5 deg that way is 19 km
+// long; the growing shadow steps, 80 m doubling four times, reach 1.2 km).
+TEST(CloudShadowOpticalDepth, AShaftSeesTheWholeCloudItFallsFrom) {
+    CloudLayerParameters shaft = Layer(0.0, 1.0);
+    shaft.precipitation_shaft = 1.0;
+    shaft.extinction_scale = 0.4;
+    CloudLayerParameters cloud = Layer(1.0, 2.0);
+    cloud.ground_fog = 1.0;
+    cloud.extinction_scale = 2.0;
+    RepeatTexture2D weather(1, 1);
+    weather.at(0, 0) = vec4(1.0, 0.9, 0.0, 1.0);  // coverage 1, heavy precipitation (share 1)
+    Texture3D shape(1, 1, 1, true), detail(1, 1, 1, true);
+    CloudMarchParameters march{};
+    march.extinction = 1.0;
+    march.shadow_steps = 4;
+    march.shadow_first_step = 0.08;
+    march.shadow_growth = 2.0;
+    march.column_steps = 1.0;
+    march.max_distance = 1e9;
+    const auto density = [&](double altitude) {
+        if (altitude > 0.0 && altitude < 1.0) return 0.4;
+        const double x = altitude - 1.0;  // into the cloud, of its 1 km
+        if (x > 0.0 && x < 1.0) return 2.0 * std::min((1.0 - x) / 0.2, 1.0);
+        return 0.0;
+    };
+    const vec3 p(0.0, 0.0, kR + 0.3);
+    const CloudSample origin = SampleCloudDensity(shaft, weather, shape, detail, p);
+    ASSERT_NEAR(origin.density, 0.4, 1e-12);
+    for (const double elevation_deg : {90.0, 45.0, 17.0, 5.0}) {
+        const double e = elevation_deg * kPi / 180.0;
+        const vec3 light(0.0, std::cos(e), std::sin(e));
+        // Past the cloud's top sphere the densities are 0.
+        const double length = Chord(kR + 0.3, e, kR + 2.0, false);
+        constexpr int kSteps = 20000;
+        double reference = 0.0;
+        for (int i = 0; i < kSteps; ++i) {
+            const vec3 q = p + light * ((i + 0.5) * length / kSteps);
+            reference += density(std::sqrt(dot(q, q)) - kR) * length / kSteps;
+        }
+        const double shadow = CloudShadowOpticalDepth(shaft, cloud, weather, shape, detail, march,
+                                                      origin, p, light, 0);
+        std::printf("light %.0f deg up: shaft and cloud %.4f, integrated %.4f\n", elevation_deg,
+                    shadow, reference);
+        EXPECT_NEAR(shadow / reference, 1.0, 0.02) << elevation_deg << " deg";
+    }
+}
+
 TEST(CloudOpacityShareInFront, ClosedFormsForFogAndACloudAhead) {
     const double sigma = 3.0, dt = 0.01;
     CloudMarchState fog = CloudMarchStart();
