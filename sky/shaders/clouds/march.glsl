@@ -244,10 +244,10 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer,
     if (crossing) {
         Number r = length(p);
         Number mu = dot(p, light_direction) / r;
-        Number altitude = r - layer.bottom_radius;
-        vec2 own = CloudLayerInterval(layer, r, mu, altitude, march.max_distance);
+        Number height = r - layer.bottom_radius;
+        vec2 own = CloudLayerInterval(layer, r, mu, height, march.max_distance);
         optical_depth = origin.density * march.extinction * max(own.y - own.x, 0.0);
-        vec2 cloud = CloudLayerInterval(cloud_above, r, mu, altitude, march.max_distance);
+        vec2 cloud = CloudLayerInterval(cloud_above, r, mu, height, march.max_distance);
         marched = cloud_above;
         steps = int(march.shadow_steps);
         t = cloud.x;

@@ -175,11 +175,10 @@ double LayerTopFraction(const CloudLayer& layer, const WeatherMap& map);
 
 // The precipitation the weather's lowest raining layer (precipitation > 0, not fog) drops, as a
 // shaft layer (CloudLayer::precipitation_shaft) from the top of the layer below it, or the
-// ground, up to its base, put in the list right before the raining layer, which lights it (the
-// renderer lights a shaft through the next layer up): what the renderer draws
-// (AtmosphereRenderer::SetWeather). The weather
-// unchanged when nothing rains, when the shaft would be under 50 m deep, or when the weather
-// already holds the kMaxDrawnLayers layers the renderer draws.
+// ground, up to its base: what the renderer draws (AtmosphereRenderer::SetWeather). The shaft
+// goes in the list right before the raining layer, through which the renderer lights it (the
+// next layer up). The weather unchanged when nothing rains, when the shaft would be under 50 m
+// deep, or when the weather already holds the kMaxDrawnLayers layers the renderer draws.
 inline constexpr std::size_t kMaxDrawnLayers = 4;
 Weather WithPrecipitationShafts(const Weather& weather);
 
