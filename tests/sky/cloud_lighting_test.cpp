@@ -227,6 +227,30 @@ TEST(CloudSunScattering, FirstOrderAloneInThinCloudsAndTheDiffuseLightInThickOne
               0.3 * CloudSunScattering(full, 0.1, 40.0, 1.0, 0.0, -1.0, 0.0));
 }
 
+// However deep in a cloud, the light is a number: no exponential may overflow where the
+// sunlight's has gone to 0 (a rain shaft lit through a cumulonimbus' core, optical depth 2,500
+// toward a Sun 17 deg up, drew NaN: the light passed on along the view, its integral alone, is
+// exp(sun_optical_depth (1 - mu0 / |mu_view|)) seen more steeply than the Sun). Past about 700
+// a double overflows; a float past 88.
+TEST(CloudSunScattering, FiniteAndNotNegativeAtAnyDepth) {
+    const CloudScatteringParameters full = Scattering(1.0);
+    for (const double depth : {50.0, 100.0, 1e3, 1e4, 1e6}) {
+        for (const double below : {0.0, 0.5, 50.0}) {
+            for (const double mu0 : {0.05, 0.3, 1.0}) {
+                for (const double mu_view : {-1.0, -0.3, 0.02, 0.3, 1.0}) {
+                    for (const double leakage : {0.0, 0.05}) {
+                        const double light =
+                            CloudSunScattering(full, depth, below, mu0, 0.5, mu_view, leakage);
+                        EXPECT_TRUE(std::isfinite(light) && light >= 0.0)
+                            << "depth " << depth << ", below " << below << ", mu0 " << mu0
+                            << ", mu_view " << mu_view << ", leakage " << leakage << ": " << light;
+                    }
+                }
+            }
+        }
+    }
+}
+
 TEST(CloudSkyScattering, HalfTheSkyInThinCloudsAllOfItOverWhiteGroundDarkBasesInThickOnes) {
     CloudScatteringParameters p = Scattering();
     // A wisp sees the sky above and nothing below: the mean radiance is half the sky's.

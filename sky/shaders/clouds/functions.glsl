@@ -616,19 +616,27 @@ Number CloudLitFaceScale(IN(CloudScatteringParameters) p, Number tau_total, Numb
 }
 
 // The light scattered once that reaches a point of a homogeneous slab on its way to the camera,
-// per unit phase and unit sunlight at the point: scattered at each point behind it along the
-// view, up to the slab's face there, each with its own sunlight exp(-depth / mu0) and attenuated
-// on the way: int_0^l exp(-a s) ds = (1 - exp(-a l)) / a (optical depth s along the view), with
-// l the slab's depth behind the point / |mu_view| and a = 1 + |mu_view| / mu0 for light from
-// below (from deeper, dimmer points), 1 - |mu_view| / mu0 from above. tau: the point's depth
-// below the lit face; mu_view as CloudSunScattering's (< 0: the light travels up, toward the lit
-// face). It grows as the view nears the slab's plane, to the slab's whole width.
-Number CloudAlongViewPath(Number tau, Number depth_below, Number mu0, Number mu_view) {
+// per unit phase and unit sunlight at the slab's face, the point sun_optical_depth below it
+// toward the Sun: scattered at each point behind it along the view, up to the slab's face there,
+// each with its own sunlight exp(-depth / mu0), and attenuated on the way:
+// exp(-sun_optical_depth) int_0^l exp(-a s) ds (optical depth s along the view), with l the
+// slab's depth behind the point / |mu_view| and a = 1 + |mu_view| / mu0 for light from below
+// (from deeper, dimmer points), 1 - |mu_view| / mu0 from above. tau: the point's depth below the
+// lit face (sun_optical_depth mu0); mu_view as CloudSunScattering's (< 0: the light travels up,
+// toward the lit face). It grows as the view nears the slab's plane, to the slab's whole width.
+// Written as (exp(-sun_optical_depth) - exp(-sun_optical_depth - a l)) / a, whose exponents are
+// never positive (sun_optical_depth + a l = sun_optical_depth mu0 / |mu_view| with a < 0): the
+// integral alone overflows deep in a cloud seen more steeply than the Sun, and times the
+// sunlight's 0 there made a NaN (a rain shaft lit through a cumulonimbus' core, optical depth
+// 2,500 toward a Sun 17 deg up).
+Number CloudAlongViewLight(Number sun_optical_depth, Number tau, Number depth_below, Number mu0,
+                           Number mu_view) {
     Number m = max(abs(mu_view), 1e-3);
     bool from_below = mu_view < 0.0;
     Number l = (from_below ? depth_below : tau) / m;
     Number a = from_below ? 1.0 + m / mu0 : 1.0 - m / mu0;
-    return abs(a * l) < 1e-4 ? l : (1.0 - exp(-a * l)) / a;
+    Number sun = exp(-sun_optical_depth);
+    return abs(a * l) < 1e-4 ? sun * l : (sun - exp(-(sun_optical_depth + a * l))) / a;
 }
 
 // Light scattered toward the viewer per unit sigma_s and unit illuminance (normal to the light)
@@ -648,7 +656,7 @@ Number CloudAlongViewPath(Number tau, Number depth_below, Number mu0, Number mu_
 //   delta peak passes on along the view: f of it, seen with its spread by the forward lobe
 //   (the same convolution, since it commutes, less the f p_hg(g0^2) of light scattered forward
 //   twice that the peak's term holds; at least 0) and counted along the slab's extent behind
-//   the sample (CloudAlongViewPath). The P1 field's f I spreads that light evenly over the
+//   the sample (CloudAlongViewLight). The P1 field's f I spreads that light evenly over the
 //   view's cosine; it runs longest near the slab's plane and comes out there (in decks of
 //   optical depth 0.06-1 the light scattered more than once was 0.63-0.82x the path tracer's
 //   15 deg off the plane and 1.24-1.52x near its normal, BENCHMARKS.md). And the lit face's
@@ -673,7 +681,7 @@ Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_de
     Number peak = spread * (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
     Number passed =
         max(spread - f * CloudHenyeyGreensteinPhase(p.forward_g * p.forward_g, nu), 0.0) * f *
-        exp(-sun_optical_depth) * CloudAlongViewPath(tau, depth_below, mu, mu_view);
+        CloudAlongViewLight(sun_optical_depth, tau, depth_below, mu, mu_view);
     Number lit_face = CloudLitFaceScale(p, tau + depth_below, mu) *
                       CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
                       exp(-sun_optical_depth);

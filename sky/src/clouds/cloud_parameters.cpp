@@ -126,7 +126,7 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
                                                           std::exp(-(tau_total - t0) / m));
                     const double field = diffuse.x - g * mu * diffuse.y;  // mu_view = -mu
                     const double along_view =
-                        f * direct * ref::CloudAlongViewPath(t, tau_total - t, mu0, -mu);
+                        f * ref::CloudAlongViewLight(t / mu0, t, tau_total - t, mu0, -mu);
                     double source = 0.0;
                     for (int b = 0; b < kLitFaceAzimuths; ++b) {
                         const auto cell = static_cast<std::size_t>(a * kLitFaceAzimuths + b);
