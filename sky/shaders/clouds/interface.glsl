@@ -53,9 +53,9 @@ vec4 SampleRepeat2D(int map, vec2 uv) {
 #endif
 // cloud_trace: rgb luminance, a transmittance; cloud_trace_depth: r, mean depth (km), -1 for
 // none, g where the ray enters cloud (km); cloud_trace_profile: where its transmittance fell below
-// CloudProfileThreshold(0..3) (km, -1 for never); cloud_shadow_map: r, transmittance to the light; cloud_ground_shadow: rgb,
-// ground_shadow.frag's values, one per trace cell; cloud_air_shadow: light_shafts.frag's
-// CloudShaftProfile, one texture per part.
+// CloudProfileThreshold(0..3) (km, -1 for never); cloud_shadow_map: r, transmittance to the
+// light; cloud_ground_shadow: rgb, ground_shadow.frag's values, one per trace cell;
+// cloud_air_shadow: light_shafts.frag's CloudShaftProfile, one texture per part.
 layout(binding = kCloudTraceUnit) uniform sampler2D cloud_trace;
 layout(binding = kCloudTraceDepthUnit) uniform sampler2D cloud_trace_depth;
 layout(binding = kCloudTraceProfileUnit) uniform sampler2D cloud_trace_profile;
