@@ -270,11 +270,11 @@ TEST(CloudSlab, RadianceMatchesThePathTracerOnTheIssueGrid) {
 // luminance within 10 % (measured with 1024 paths per pixel: 0.984, 1.042, 1.112, and with the
 // march converged 1.016, 1.050, 1.021; before the light scattered once along the view was
 // passed on 0.973, 1.037, 1.088, converged 1.004, 1.043, 0.997; before the delta peak's light
-// was seen with its spread
-// 0.963, 1.060, 0.983, converged 0.999, 1.059, 0.888; before the slab across a side leaked
-// light out of the cloud's top and base 1.037, 1.141, 1.076; the horizontal slab gave 0.630,
-// 1.014, 1.490). Issue 15's 5 % is met in two of the three (in all three converged), and its
-// median per-pixel 10 % in none (11-19 %; BENCHMARKS.md, cloud_reference_report).
+// was seen with its spread 0.963, 1.060, 0.983, converged 0.999, 1.059, 0.888; before the slab
+// across a side leaked light out of the cloud's top and base 1.037, 1.141, 1.076; the
+// horizontal slab gave 0.630, 1.014, 1.490). Issue 15's 5 % is met in two of the three (in all
+// three converged), and its median per-pixel 10 % in none (11-19 %; BENCHMARKS.md,
+// cloud_reference_report).
 TEST(CloudSlab, IsolatedCumulusMeanLuminanceMatchesThePathTracer) {
     const std::vector<IsolatedCumulusCase> cases =
         CompareIsolatedCumulus(CloudSettings{}, clouds::test::CachedNoise(),
