@@ -366,23 +366,30 @@ TEST(CloudDensity, ShearLeansTheCloudsDownwind) {
     }
 }
 
-TEST(CloudDensity, PrecipitationDarkensTheBaseOnly) {
-    for (int i = 0; i <= 10; ++i) {
-        const double f = i / 10.0;
-        EXPECT_EQ(CloudPrecipitationLightScale(0.0, f), 1.0);
-        EXPECT_NEAR(CloudPrecipitationLightScale(1.0, 1.0), 1.0, 1e-15);
-        EXPECT_GE(CloudPrecipitationLightScale(1.0, f), 1.0 - kCloudMaxPrecipitationDarkening);
-        EXPECT_LE(CloudPrecipitationLightScale(0.8, f), CloudPrecipitationLightScale(0.4, f));
-        if (i > 0) {
-            EXPECT_GT(CloudPrecipitationLightScale(0.8, f),
-                      CloudPrecipitationLightScale(0.8, f - 0.1));
+// A rain or snow shaft is as dense at every height of its layer as the weather map's
+// precipitation says (the layer's extinction_scale times CloudPrecipitationShare: 1 for heavy,
+// 0.9, and 0 without), whatever the map's coverage and the noise, and 0 outside its layer.
+TEST(CloudDensity, AShaftIsAsDenseAsItsPrecipitationAtEveryHeight) {
+    CloudLayerParameters shaft = Layer();
+    shaft.precipitation_shaft = 1.0;
+    shaft.extinction_scale = 0.5;
+    EXPECT_EQ(CloudPrecipitationShare(0.0), 0.0);
+    EXPECT_NEAR(CloudPrecipitationShare(0.9), 1.0, 1e-12);
+    for (const double precipitation : {0.0, 0.2, 0.6, 0.9}) {
+        const RepeatTexture2D weather =
+            WeatherFor(0.3, WeatherMapSource::Kind::kUniform, 0.5, precipitation);
+        const double expected = 0.5 * CloudPrecipitationShare(precipitation);
+        for (const Point& p : RandomPoints(50, 1.5, 4.0, 7)) {
+            EXPECT_NEAR(Density(shaft, weather, p), expected, 1e-6 + 1e-5 * expected)
+                << precipitation << " at " << p.altitude << " km";
+        }
+        for (const Point& p : RandomPoints(20, 0.0, 1.5, 8)) {
+            EXPECT_EQ(Density(shaft, weather, p), 0.0) << p.altitude << " km";
+        }
+        for (const Point& p : RandomPoints(20, 4.0, 6.0, 9)) {
+            EXPECT_EQ(Density(shaft, weather, p), 0.0) << p.altitude << " km";
         }
     }
-    // The weather map's precipitation reaches the sample.
-    const RepeatTexture2D weather = WeatherFor(0.8, WeatherMapSource::Kind::kUniform, 1.0, 0.6);
-    const CloudSample s =
-        SampleCloudDensityAt(Layer(), weather, Shape(), Detail(), vec2(1.0, 2.0), 2.0);
-    EXPECT_NEAR(s.precipitation, 0.6, 1e-6);
 }
 
 }  // namespace

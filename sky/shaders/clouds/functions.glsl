@@ -57,9 +57,6 @@ const Number kCloudFogFlat = 0.8;
 
 // Erosion remaps density from [e, 1] to [0, 1]; e must stay below 1.
 const Number kCloudMaxErosion = 0.9;
-// The largest light reduction at the base of a raining cloud (H16 §4.4.1).
-const Number kCloudMaxPrecipitationDarkening = 0.8;
-
 Number CloudSaturate(Number x) { return clamp(x, 0.0, 1.0); }
 
 // The extinction of precipitation of intensity p (the map's G) over that of heavy
@@ -227,7 +224,6 @@ struct CloudSample {
     Number density;
     Number height_fraction;
     Number cloud_fraction;
-    Number precipitation;
     Number type;  // the weather's cloud type, which sets the height gradient
     Number coverage;
     Number cloud_height;  // km
@@ -279,7 +275,6 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     s.height_fraction =
         (altitude - layer.base_altitude) / (layer.top_altitude - layer.base_altitude);
     s.cloud_fraction = 0.0;
-    s.precipitation = 0.0;
     s.type = 0.0;
     s.coverage = 0.0;
     s.cloud_height = 0.0;
@@ -290,13 +285,11 @@ CloudSample SampleCloudDensityAt(IN(CloudLayerParameters) layer, IN(WeatherTextu
     CloudWeather weather =
         CloudWeatherAt(layer, weather_map, CloudLeanedGround(layer, ground, s.height_fraction));
     if (layer.precipitation_shaft > 0.5) {
-        // Rain or snow: as dense at every height as the intensity says (no darkening: that is
-        // the raining cloud's).
+        // Rain or snow: as dense at every height as the intensity says.
         s.cloud_fraction = s.height_fraction;
         s.density = CloudPrecipitationShare(weather.precipitation) * layer.extinction_scale;
         return s;
     }
-    s.precipitation = weather.precipitation;
     s.type = weather.type;
     s.coverage = weather.coverage;
     if (!(weather.coverage > 0.0)) return s;
@@ -388,13 +381,6 @@ Number CloudSlabLeakage(IN(CloudLayerParameters) layer, IN(CloudSample) s, Numbe
                     CloudProfileIntegral(CloudHeightGradient(s.type, 0.0), 1.0);
     Number width = column + 2.0 * 0.7104 / (1.0 - g);
     return kPi / width * sqrt(max(1.0 - normal_up * normal_up, 0.0));
-}
-
-// H16 §4.4.1: rain clouds are darkened by a gradient, strongest at their base, multiplied with
-// the light they scatter; all clouds keep one absorption coefficient. 1 without precipitation.
-Number CloudPrecipitationLightScale(Number precipitation, Number cloud_fraction) {
-    return 1.0 - kCloudMaxPrecipitationDarkening * CloudSaturate(precipitation) *
-                     (1.0 - CloudSaturate(cloud_fraction));
 }
 
 // ---------------------------------------------------------------------------------------------

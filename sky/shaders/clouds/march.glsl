@@ -325,10 +325,13 @@ vec3 CloudOutwardNormal(IN(CloudLayerParameters) layer, IN(WeatherTexture) weath
 // through a cumulus' side made its sunlit face 37 % too dark and its shadowed side 49 % too
 // bright against the path tracer (BENCHMARKS.md). A slab across a side lets its diffuse light
 // leak out of the cloud's top and base (CloudSlabLeakage), where an infinite one kept it for
-// the shadowed side and base, which came out 1.9-2x too bright. Darkened at the base of
-// raining clouds (H16 §4.4.1); plus the sky's ambient light, E_sky / pi from the
-// ground-irradiance LUT as an isotropic radiance on the horizontal slab's top
-// (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1).
+// the shadowed side and base, which came out 1.9-2x too bright. Plus the sky's ambient light,
+// E_sky / pi from the ground-irradiance LUT as an isotropic radiance on the horizontal slab's
+// top (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1). Raining clouds are not
+// darkened toward their base (H16 §4.4.1's factor of up to 0.2): water does not absorb visible
+// light, and a raining cloud is dark by its depth, which the transport carries. Under the
+// drizzling overcast_stratus that factor made the ground's light 10-12 % and the deck's base
+// 8-14 % darker than the path tracer's (BENCHMARKS.md).
 // A precipitation shaft is lit through the cloud it falls from (`cloud_above`, the next layer up,
 // CloudShadowOpticalDepth), its slab level: the cloud's column on top of the shaft's below p.
 // Lit by the Sun through the shaft alone, the drizzle under overcast_stratus seen level from
@@ -384,8 +387,7 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                    CloudSkyScattering(scattering, depth_above, depth_above + depth_below, mu_view);
     }
     Number sigma_s = scattering.albedo * s.density * march.extinction;
-    return sigma_s * (direct * CloudPrecipitationLightScale(s.precipitation, s.cloud_fraction) +
-                      ambient * march.ambient_scale);
+    return sigma_s * (direct + ambient * march.ambient_scale);
 }
 
 // Marches [interval.x, interval.y] of the ray origin + t view through one layer with

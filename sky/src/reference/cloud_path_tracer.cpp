@@ -255,7 +255,7 @@ struct PlanetMedium {
             const double sigma_t = scene.clouds->Extinction(x);
             if (sigma_t > 0.0) {
                 collision.extinction += sigma_t;
-                collision.cloud = sigma_t * scene.clouds->Albedo(x);
+                collision.cloud = sigma_t * scene.clouds->Albedo();
             }
         }
         return collision;
@@ -455,7 +455,6 @@ struct CloudField::Impl {
     ref::Texture3D detail;
     double extinction = 0.0;  // 1/m at density 1
     double albedo = 1.0;
-    bool precipitation_darkening = false;
     CloudPhase phase;
     std::vector<Shell> shells;
     double bottom_radius = 0.0;
@@ -469,7 +468,7 @@ struct CloudField::Impl {
                 return ref::SampleCloudDensity(layers[i], weather_maps[i], shape, detail, km);
             }
         }
-        return ref::CloudSample{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, -1.0};
+        return ref::CloudSample{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, -1.0};
     }
 };
 
@@ -482,7 +481,6 @@ CloudField::CloudField(const clouds::Weather& weather, const CloudSettings& sett
     Impl& m = *impl_;
     m.extinction = settings.extinction;
     m.albedo = settings.albedo;
-    m.precipitation_darkening = options.precipitation_darkening;
     m.phase = CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
     m.bottom_radius = bottom_radius;
     m.shape = ref::ToTexture(noise.shape);
@@ -517,11 +515,7 @@ double CloudField::Extinction(const glm::dvec3& position) const {
     return impl_->extinction * Density(position);
 }
 
-double CloudField::Albedo(const glm::dvec3& position) const {
-    if (!impl_->precipitation_darkening) return impl_->albedo;
-    const ref::CloudSample s = impl_->Sample(position, nullptr);
-    return impl_->albedo * ref::CloudPrecipitationLightScale(s.precipitation, s.cloud_fraction);
-}
+double CloudField::Albedo() const { return impl_->albedo; }
 
 const CloudPhase& CloudField::phase() const { return impl_->phase; }
 const std::vector<CloudField::Shell>& CloudField::shells() const { return impl_->shells; }

@@ -4,7 +4,8 @@
 //
 // Weather map texels (RGBA, each in [0, 1]; H16 Table 4.2 / F16 §5.3.1):
 //   R coverage       0 = clear (exactly: no density anywhere above that texel), 1 = full
-//   G precipitation  0 = none; darkens the cloud's base (H16 §4.4.1)
+//   G precipitation  0 = none; the rain or snow falling from the cloud's base
+//                    (WithPrecipitationShafts)
 //   B cloud type     0 stratus, 0.25 stratocumulus, 0.5 cumulus, 0.75 congestus, 1 cumulonimbus
 //   A height         the local cloud's height as a share of what its type reaches in the layer
 //

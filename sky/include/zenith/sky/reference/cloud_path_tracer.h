@@ -17,10 +17,6 @@
 // bounce limit, unbiased). The renderer's march/lighting code (reference/cloud_march.h,
 // cloud_trace.h) is not used.
 //
-// Not in the medium: the renderer's precipitation darkening of cloud bases (H16 §4.4.1) is a
-// lighting factor, not a property of droplets; CloudFieldOptions::precipitation_darkening turns
-// it into a lower single-scattering albedo for comparisons that want it.
-//
 // Units and conventions: positions in metres, planet-centred, in the weather frame (z through
 // the weather map's origin, x east and y north there, which is the renderer's frame when the
 // weather origin is the observer: sky_state.h WeatherFrame). `direction` is the camera ray;
@@ -73,8 +69,6 @@ double SampleCloudPhaseCosine(const CloudPhase& phase, double u_lobe, double u);
 
 struct CloudFieldOptions {
     double time = 0.0;  // s of wind since the weather's epoch (CloudView::time)
-    // Multiply the single-scattering albedo by the renderer's precipitation light scale.
-    bool precipitation_darkening = false;
 };
 
 // The clouds of a Weather as the renderer defines them: density in [0, 1] from the weather maps
@@ -92,8 +86,8 @@ class CloudField {
     // Density in [0, 1] and extinction (1/m) at a planet-centred position (m, weather frame).
     double Density(const glm::dvec3& position) const;
     double Extinction(const glm::dvec3& position) const;
-    // Single-scattering albedo at a position with cloud (precipitation darkening if asked).
-    double Albedo(const glm::dvec3& position) const;
+    // Single-scattering albedo of the clouds (settings.albedo), the same everywhere.
+    double Albedo() const;
     const CloudPhase& phase() const;
 
     // Shells that hold all the density of each layer, bottom to top: radii (m) from the
