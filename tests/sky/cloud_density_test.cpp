@@ -376,8 +376,9 @@ TEST(CloudDensity, AShaftIsAsDenseAsItsPrecipitationAtEveryHeight) {
     EXPECT_EQ(CloudPrecipitationShare(0.0), 0.0);
     EXPECT_NEAR(CloudPrecipitationShare(0.9), 1.0, 1e-12);
     for (const double precipitation : {0.0, 0.2, 0.6, 0.9}) {
+        const double coverage = precipitation > 0.5 ? 1.0 : 0.3;
         const RepeatTexture2D weather =
-            WeatherFor(0.3, WeatherMapSource::Kind::kUniform, 0.5, precipitation);
+            WeatherFor(coverage, WeatherMapSource::Kind::kUniform, 0.5, precipitation);
         const double expected = 0.5 * CloudPrecipitationShare(precipitation);
         for (const Point& p : RandomPoints(50, 1.5, 4.0, 7)) {
             EXPECT_NEAR(Density(shaft, weather, p), expected, 1e-6 + 1e-5 * expected)

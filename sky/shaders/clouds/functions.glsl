@@ -57,6 +57,7 @@ const Number kCloudFogFlat = 0.8;
 
 // Erosion remaps density from [e, 1] to [0, 1]; e must stay below 1.
 const Number kCloudMaxErosion = 0.9;
+
 Number CloudSaturate(Number x) { return clamp(x, 0.0, 1.0); }
 
 // The extinction of precipitation of intensity p (the map's G) over that of heavy

@@ -328,10 +328,10 @@ vec3 CloudOutwardNormal(IN(CloudLayerParameters) layer, IN(WeatherTexture) weath
 // the shadowed side and base, which came out 1.9-2x too bright. Plus the sky's ambient light,
 // E_sky / pi from the ground-irradiance LUT as an isotropic radiance on the horizontal slab's
 // top (CloudSkyScattering), scaled by ambient_scale (F16 §5.5.1). Raining clouds are not
-// darkened toward their base (H16 §4.4.1's factor of up to 0.2): water does not absorb visible
-// light, and a raining cloud is dark by its depth, which the transport carries. Under the
-// drizzling overcast_stratus that factor made the ground's light 10-12 % and the deck's base
-// 8-14 % darker than the path tracer's (BENCHMARKS.md).
+// darkened toward their base (H16 §4.4.1's factor, down to 0.2 at the base of heavy rain):
+// water does not absorb visible light, and a raining cloud is dark by its depth, which the
+// transport carries. Under the drizzling overcast_stratus that factor made the ground's light
+// 10-12 % and the deck's base 8-14 % darker than the path tracer's (BENCHMARKS.md).
 // A precipitation shaft is lit through the cloud it falls from (`cloud_above`, the next layer up,
 // CloudShadowOpticalDepth), its slab level: the cloud's column on top of the shaft's below p.
 // Lit by the Sun through the shaft alone, the drizzle under overcast_stratus seen level from
