@@ -7,6 +7,7 @@
 //                                          [--single-scattering]
 //                                          [--max-steps N] [--min-step M]
 //   cloud_reference_report --part formal
+//   cloud_reference_report --part grazing  [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part decks    [--samples N] [--threads T] [--seed S]
 //   cloud_reference_report --part thin     [--samples N] [--threads T] [--seed S]
 //                                          [--view-elevation DEG]
@@ -31,6 +32,10 @@
 //   homogeneous non-absorbing slab over a black ground, integrated along every exit direction by
 //   a fine deterministic quadrature instead of the march (FormalPart): R and T against the
 //   delta-Eddington closed form, up to a semi-infinite slab.
+// grazing: the renderer's slab (its source by quadrature, as formal) against the path tracer's
+//   photons (the same dual lobe, black ground) as the sun goes down to 6 deg, optical depths
+//   2-20 (GrazingPart), and the share of the scaled beam's scattering the two-stream closed form
+//   would have to send up to give the path tracer's R.
 // decks: where the march's fluxes through decks of optical depth 8-128 part from the path
 //   tracer's (DecksPart): R and T of the path tracer (photons), of the renderer's source by
 //   quadrature (formal), and of the march (the slab test's parabolic deck) at its default steps,
@@ -136,6 +141,52 @@ void FormalPart(const CloudSettings& settings) {
                         (r + t - direct - first) / (1.0 - direct - first));
         }
     }
+}
+
+void GrazingPart(const CloudSettings& settings, std::int64_t samples, int threads,
+                 std::uint64_t seed) {
+    const ref::CloudScatteringParameters p = ref::DefaultScattering(0.0, settings);
+    const double g = ref::CloudAsymmetry(p);
+    const double f = ref::CloudDeltaFraction(p);
+    std::printf(
+        "A homogeneous non-absorbing slab over a black ground lit at cosine mu0: the path "
+        "tracer's photons (%lld, the renderer's dual lobe) against the renderer's source "
+        "through the slab by quadrature (formal); T with the direct beam. gamma3: the share of "
+        "the delta-scaled beam's scattering that the two-stream closed form R = (g1 t + (gamma3 "
+        "- g1 mu0)(1 - exp(-t / mu0))) / (1 + g1 t), g1 = 3/4, t = (1 - f) tau, would send up to "
+        "give the path tracer's R (delta-Eddington: 1/2 here, g' = %.2f).\n\n",
+        static_cast<long long>(samples), (g - f) / (1.0 - f));
+    std::printf(
+        "| tau | mu0 | path tracer R | path tracer T | renderer R | renderer T | renderer / "
+        "path tracer, T | gamma3 |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const double tau : {2.0, 5.0, 10.0, 20.0}) {
+        for (const double mu0 : {1.0, 0.5, 0.29, 0.17, 0.1}) {
+            SlabProblem problem;
+            problem.optical_depth = tau;
+            problem.phase =
+                CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
+            problem.mu0 = mu0;
+            CloudPathTraceOptions options;
+            options.threads = threads;
+            options.seed = seed;
+            options.samples = samples;
+            const SlabFluxes photons = SlabFluxesFromPhotons(problem, options);
+            const double direct = std::exp(-tau / mu0);
+            const double r = ref::FormalSlabFlux(p, tau, mu0, true, 4000, 48);
+            const double t = ref::FormalSlabFlux(p, tau, mu0, false, 4000, 48) + direct;
+            const double scaled = (1.0 - f) * tau;
+            const double gamma3 = (photons.reflectance * (1.0 + 0.75 * scaled) - 0.75 * scaled) /
+                                      (1.0 - std::exp(-scaled / mu0)) +
+                                  0.75 * mu0;
+            std::printf("| %g | %.2f | %.4f ± %.4f | %.4f ± %.4f | %.4f | %.4f | %.3f | %.3f |\n",
+                        tau, mu0, photons.reflectance, photons.reflectance_error,
+                        photons.transmittance, photons.transmittance_error, r, t,
+                        t / photons.transmittance, gamma3);
+            std::fflush(stdout);
+        }
+    }
+    std::printf("\n(± one standard error.)\n");
 }
 
 // The march's R and T (direct beam included) through the slab test's deck, with its primary
@@ -455,13 +506,14 @@ int main(int argc, char** argv) {
     CloudSettings settings;
     double view_elevation = 55.0;
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
-    app.add_option("--part", part, "energy, overcast, cumulus, formal, decks or thin")
+    app.add_option("--part", part, "energy, overcast, cumulus, formal, grazing, decks or thin")
         ->required()
-        ->check(CLI::IsMember({"energy", "overcast", "cumulus", "formal", "decks", "thin"}));
+        ->check(
+            CLI::IsMember({"energy", "overcast", "cumulus", "formal", "grazing", "decks", "thin"}));
     app.add_option(
            "--samples", samples,
            "paths (default: energy, overcast 20000; cumulus 256 per pixel; decks 40000; thin "
-           "200000 per direction)")
+           "200000 per direction; grazing 200000 photons)")
         ->check(CLI::Range(std::int64_t{2}, std::int64_t{1} << 32));
     app.add_option("--threads", threads)->check(CLI::Range(1, 1024));
     app.add_option("--seed", seed)->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62));
@@ -513,6 +565,8 @@ int main(int argc, char** argv) {
         OvercastPart(settings, samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "formal") {
         FormalPart(settings);
+    } else if (part == "grazing") {
+        GrazingPart(settings, samples > 0 ? samples : 200000, threads, seed);
     } else if (part == "decks") {
         DecksPart(settings, samples > 0 ? samples : 40000, threads, seed);
     } else if (part == "thin") {
