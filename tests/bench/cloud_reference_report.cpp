@@ -76,6 +76,23 @@ using namespace zenith::sky::reference;
 
 constexpr double kPi = std::numbers::pi;
 
+// The path tracer's homogeneous slab with the renderer's dual lobe (settings' phase).
+SlabProblem RendererPhaseSlab(const CloudSettings& settings, double tau, double mu0) {
+    SlabProblem problem;
+    problem.optical_depth = tau;
+    problem.phase = CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
+    problem.mu0 = mu0;
+    return problem;
+}
+
+CloudPathTraceOptions TraceOptions(std::int64_t samples, int threads, std::uint64_t seed) {
+    CloudPathTraceOptions options;
+    options.threads = threads;
+    options.seed = seed;
+    options.samples = samples;
+    return options;
+}
+
 void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
     std::printf(
         "Non-absorbing Henyey-Greenstein slab, g = 0.85, mu0 = 0.6, black ground; photons: %lld "
@@ -90,10 +107,7 @@ void EnergyPart(std::int64_t samples, int threads, std::uint64_t seed) {
         problem.optical_depth = tau;
         problem.phase = CloudPhase{0.85, 0.0, 0.0};
         problem.mu0 = 0.6;
-        CloudPathTraceOptions options;
-        options.threads = threads;
-        options.seed = seed;
-        options.samples = samples * 5;
+        CloudPathTraceOptions options = TraceOptions(samples * 5, threads, seed);
         const SlabFluxes photons = SlabFluxesFromPhotons(problem, options);
         options.samples = samples;
         const SlabFluxes camera = SlabFluxesFromRadiance(problem, options);
@@ -162,16 +176,8 @@ void GrazingPart(const CloudSettings& settings, std::int64_t samples, int thread
     std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const double tau : {2.0, 5.0, 10.0, 20.0}) {
         for (const double mu0 : {1.0, 0.5, 0.29, 0.17, 0.1}) {
-            SlabProblem problem;
-            problem.optical_depth = tau;
-            problem.phase =
-                CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
-            problem.mu0 = mu0;
-            CloudPathTraceOptions options;
-            options.threads = threads;
-            options.seed = seed;
-            options.samples = samples;
-            const SlabFluxes photons = SlabFluxesFromPhotons(problem, options);
+            const SlabFluxes photons = SlabFluxesFromPhotons(RendererPhaseSlab(settings, tau, mu0),
+                                                             TraceOptions(samples, threads, seed));
             const double direct = std::exp(-tau / mu0);
             const double r = ref::FormalSlabFlux(p, tau, mu0, true, 4000, 48);
             const double t = ref::FormalSlabFlux(p, tau, mu0, false, 4000, 48) + direct;
@@ -243,13 +249,8 @@ void ThinPart(const CloudSettings& settings, std::int64_t samples, int threads, 
     std::printf(
         "| tau | side | sun | path tracer L / E0 | all | one scattering | more than once |\n");
     std::printf("|---:|---|---|---:|---:|---:|---:|\n");
-    SlabProblem problem;
-    problem.phase = CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
-    problem.mu0 = mu0;
-    CloudPathTraceOptions options;
-    options.threads = threads;
-    options.seed = seed;
-    options.samples = samples;
+    SlabProblem problem = RendererPhaseSlab(settings, 0.0, mu0);
+    const CloudPathTraceOptions options = TraceOptions(samples, threads, seed);
     CloudPathTraceOptions single = options;
     single.max_bounces = 1;
     const ref::Sunlight sun(mu0);
@@ -299,16 +300,8 @@ void DecksPart(const CloudSettings& settings, std::int64_t samples, int threads,
     std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const double tau : {8.0, 32.0, 128.0}) {
         for (const double mu0 : {1.0, 0.5}) {
-            SlabProblem problem;
-            problem.optical_depth = tau;
-            problem.phase =
-                CloudPhase{settings.forward_g, settings.backward_g, settings.lobe_weight};
-            problem.mu0 = mu0;
-            CloudPathTraceOptions options;
-            options.threads = threads;
-            options.seed = seed;
-            options.samples = samples;
-            const SlabFluxes traced = SlabFluxesFromPhotons(problem, options);
+            const SlabFluxes traced = SlabFluxesFromPhotons(RendererPhaseSlab(settings, tau, mu0),
+                                                            TraceOptions(samples, threads, seed));
             const double direct = std::exp(-tau / mu0);
             const auto coarse = MarchedSlabFluxes(settings, tau, mu0, 0.0, false);
             const auto fine = MarchedSlabFluxes(settings, tau, mu0, 0.008, false);
@@ -360,10 +353,7 @@ void OvercastPart(const CloudSettings& settings, std::int64_t samples, int threa
         shell.inner_radius - r, shell.outer_radius - r, field.MeanVerticalOpticalDepth(32, 256),
         earth.ground_albedo.x, static_cast<long long>(samples), threads);
 
-    CloudPathTraceOptions options;
-    options.samples = samples;
-    options.threads = threads;
-    options.seed = seed;
+    const CloudPathTraceOptions options = TraceOptions(samples, threads, seed);
     const double pitch = 89.9 * kPi / 180.0;
     const glm::dvec3 down(0.0, std::cos(pitch), -std::sin(pitch));
     const glm::dvec3 up(0.0, std::cos(pitch), std::sin(pitch));
