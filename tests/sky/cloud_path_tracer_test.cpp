@@ -13,10 +13,13 @@
 #include <vector>
 
 #include "cloud_test_support.h"
+#include "h_function.h"
 #include "zenith/sky/reference/path_tracer.h"
 
 namespace zenith::sky::reference {
 namespace {
+
+using test::HFunction;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kSigmas = 4.0;
@@ -204,52 +207,6 @@ TEST(CloudPathTracerSlab, MatchesVanDeHulstTable37) {
         }
     }
 }
-
-// Chandrasekhar's H-function for isotropic scattering with albedo omega (Radiative Transfer,
-// 1950, Ch. V), by the iteration 1/H(mu) = sqrt(1 - omega) + (omega / 2) ∫0^1 mu' H(mu') /
-// (mu + mu') dmu' on Gauss-Legendre nodes, then evaluated at any mu by the same formula.
-class HFunction {
-  public:
-    explicit HFunction(double omega) : omega_(omega) {
-        // 48-point Gauss-Legendre on [0, 1] by Newton on P_n.
-        constexpr int n = 48;
-        for (int i = 0; i < n; ++i) {
-            double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-            double dp = 0.0;
-            for (int iteration = 0; iteration < 100; ++iteration) {
-                double p0 = 1.0, p1 = x;
-                for (int k = 2; k <= n; ++k) {
-                    const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = n * (x * p1 - p0) / (x * x - 1.0);
-                const double dx = p1 / dp;
-                x -= dx;
-                if (std::abs(dx) < 1e-15) break;
-            }
-            nodes_.push_back(0.5 * (x + 1.0));
-            weights_.push_back(1.0 / ((1.0 - x * x) * dp * dp));  // 2 / (...) halved for [0, 1]
-        }
-        h_.assign(nodes_.size(), 1.0);
-        for (int iteration = 0; iteration < 2000; ++iteration) {
-            std::vector<double> next(h_.size());
-            for (std::size_t i = 0; i < h_.size(); ++i) next[i] = (*this)(nodes_[i]);
-            h_ = next;
-        }
-    }
-    double operator()(double mu) const {
-        double integral = 0.0;
-        for (std::size_t j = 0; j < nodes_.size(); ++j) {
-            integral += weights_[j] * nodes_[j] * h_[j] / (mu + nodes_[j]);
-        }
-        return 1.0 / (std::sqrt(1.0 - omega_) + 0.5 * omega_ * integral);
-    }
-
-  private:
-    double omega_;
-    std::vector<double> nodes_, weights_, h_;
-};
 
 TEST(CloudPathTracerSlab, SemiInfiniteIsotropicAlbedoIsChandrasekhars) {
     // Plane albedo of a semi-infinite isotropic medium: A(mu0) = 1 - H(mu0) sqrt(1 - omega)
