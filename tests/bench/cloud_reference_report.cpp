@@ -2,7 +2,7 @@
 // Benchmark, a plain main built by tests/bench/CMakeLists.txt's glob.
 //
 //   cloud_reference_report --part energy   [--samples N] [--threads T] [--seed S]
-//   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S]
+//   cloud_reference_report --part overcast [--samples N] [--threads T] [--seed S] [--utc T]
 //   cloud_reference_report --part cumulus  [--samples N] [--threads T] [--seed S] [--maps]
 //                                          [--single-scattering]
 //                                          [--max-steps N] [--min-step M]
@@ -19,12 +19,12 @@
 //
 // energy: a non-absorbing HG slab (g = 0.85, mu0 = 0.6) over a black ground, R and T by photons
 //   and by camera paths, R + T, and the time per path, over optical depths 1-128.
-// overcast: the overcast_stratus preset at 2024-06-21T11:00:00Z, 47.45 N 8.56 E (sun from the
-//   ephemeris), camera at 8000 m looking straight down (pitch -89.9 deg) and on the ground looking
-//   up: reference luminance L, the horizontal illuminance E on the cloud top and at the ground, and
-//   the effective albedo / transmittance pi L / E; beside it the renderer's cloud pass for the
-//   same ray, evaluated on the CPU (reference/cloud_trace.h, the shared GLSL compiled as C++,
-//   over CPU-built LUTs from AtmosphereReference): its cloud luminance and transmittance.
+// overcast: the overcast_stratus preset at 2024-06-21T11:00:00Z (or --utc), 47.45 N 8.56 E (sun
+//   from the ephemeris), camera at 8000 m looking straight down (pitch -89.9 deg) and on the ground
+//   looking up: reference luminance L, the horizontal illuminance E on the cloud top and at the
+//   ground, and the effective albedo / transmittance pi L / E; beside it the renderer's cloud pass
+//   for the same ray, evaluated on the CPU (reference/cloud_trace.h, the shared GLSL compiled as
+//   C++, over CPU-built LUTs from AtmosphereReference): its cloud luminance and transmittance.
 // cumulus: an isolated cumulus on a small image, sun behind, beside and in front (CumulusPart),
 //   N paths per pixel; --maps prints each case's reference image (% of its peak) and the
 //   renderer / reference ratio over the pixels the median counts.
@@ -32,9 +32,10 @@
 //   homogeneous non-absorbing slab over a black ground, integrated along every exit direction by
 //   a fine deterministic quadrature instead of the march (FormalPart): R and T against the
 //   delta-Eddington closed form, up to a semi-infinite slab.
-// grazing: the renderer's slab (its source by quadrature, as formal) against the path tracer's
-//   photons (the same dual lobe, black ground) as the sun goes down to 6 deg, optical depths
-//   2-20 (GrazingPart), and the share of the scaled beam's scattering the two-stream closed form
+// grazing: the renderer's slab (its source by quadrature, as formal) and the adding-doubling
+//   solution it is fitted to (ConservativeSlabTransfer) against the path tracer's photons (the
+//   same dual lobe, black ground) as the sun goes down to 3 deg, optical depths 2-20
+//   (GrazingPart), and the share of the scaled beam's scattering the two-stream closed form
 //   would have to send up to give the path tracer's R.
 // decks: where the march's fluxes through decks of optical depth 8-128 part from the path
 //   tracer's (DecksPart): R and T of the path tracer (photons), of the renderer's source by
@@ -66,6 +67,7 @@
 #include "zenith/sky/sky_state.h"
 // The renderer's cloud pass on the CPU (private headers; this target sees sky/src).
 #include "cloud_march_support.h"
+#include "clouds/slab_transfer.h"
 #include "reference/cloud_trace.h"
 #include "zenith/sky/image_io.h"
 
@@ -149,7 +151,8 @@ void FormalPart(const CloudSettings& settings) {
             const double t = ref::FormalSlabFlux(p, tau, mu0, false, 4000, 48) + direct;
             const double first = ref::FormalSlabFlux(single_only, tau, mu0, true, 4000, 48) +
                                  ref::FormalSlabFlux(single_only, tau, mu0, false, 4000, 48);
-            const ref::vec2 closed = ref::CloudSlabReflectanceTransmittance(g, f, tau, mu0);
+            const ref::vec2 closed = ref::CloudSlabReflectanceTransmittance(
+                g, f, tau, mu0, ref::CloudBeamCosine(p, tau, mu0));
             std::printf("| %g | %.2f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f |\n", tau, mu0, r,
                         closed.x, t, closed.y, r + t,
                         (r + t - direct - first) / (1.0 - direct - first));
@@ -164,18 +167,24 @@ void GrazingPart(const CloudSettings& settings, std::int64_t samples, int thread
     const double f = ref::CloudDeltaFraction(p);
     std::printf(
         "A homogeneous non-absorbing slab over a black ground lit at cosine mu0: the path "
-        "tracer's photons (%lld, the renderer's dual lobe) against the renderer's source "
-        "through the slab by quadrature (formal); T with the direct beam. gamma3: the share of "
-        "the delta-scaled beam's scattering that the two-stream closed form R = (g1 t + (gamma3 "
-        "- g1 mu0)(1 - exp(-t / mu0))) / (1 + g1 t), g1 = 3/4, t = (1 - f) tau, would send up to "
-        "give the path tracer's R (delta-Eddington: 1/2 here, g' = %.2f).\n\n",
+        "tracer's photons (%lld, the renderer's dual lobe) against the adding-doubling "
+        "solution (ConservativeSlabTransfer) and the renderer's source through the slab by "
+        "quadrature (formal); T with the direct beam. m: the beam's cosine in the renderer's "
+        "diffuse field (CloudBeamCosine; delta-Eddington's is mu0). gamma3: the share of the "
+        "delta-scaled beam's scattering that the two-stream closed form R = (g1 t + (gamma3 - g1 "
+        "mu0)(1 - exp(-t / mu0))) / (1 + g1 t), g1 = 3/4, t = (1 - f) tau, would send up to give "
+        "the path tracer's R (delta-Eddington: 1/2 here, g' = %.2f).\n\n",
         static_cast<long long>(samples), (g - f) / (1.0 - f));
     std::printf(
-        "| tau | mu0 | path tracer R | path tracer T | renderer R | renderer T | renderer / "
-        "path tracer, T | gamma3 |\n");
-    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+        "| tau | mu0 | path tracer R | path tracer T | adding-doubling R | renderer R | renderer T "
+        "| renderer / path tracer, T | R + T | m | gamma3 |\n");
+    std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const double tau : {2.0, 5.0, 10.0, 20.0}) {
-        for (const double mu0 : {1.0, 0.5, 0.29, 0.17, 0.1}) {
+        const std::vector<double> cosines = {1.0, 0.5, 0.29, 0.17, 0.1, 0.05};
+        const std::vector<SlabTransfer> exact = ConservativeSlabTransfer(
+            settings.forward_g, settings.backward_g, settings.lobe_weight, tau, cosines);
+        for (std::size_t k = 0; k < cosines.size(); ++k) {
+            const double mu0 = cosines[k];
             const SlabFluxes photons = SlabFluxesFromPhotons(RendererPhaseSlab(settings, tau, mu0),
                                                              TraceOptions(samples, threads, seed));
             const double direct = std::exp(-tau / mu0);
@@ -185,10 +194,13 @@ void GrazingPart(const CloudSettings& settings, std::int64_t samples, int thread
             const double gamma3 = (photons.reflectance * (1.0 + 0.75 * scaled) - 0.75 * scaled) /
                                       (1.0 - std::exp(-scaled / mu0)) +
                                   0.75 * mu0;
-            std::printf("| %g | %.2f | %.4f ± %.4f | %.4f ± %.4f | %.4f | %.4f | %.3f | %.3f |\n",
-                        tau, mu0, photons.reflectance, photons.reflectance_error,
-                        photons.transmittance, photons.transmittance_error, r, t,
-                        t / photons.transmittance, gamma3);
+            std::printf(
+                "| %g | %.2f | %.4f ± %.4f | %.4f ± %.4f | %.4f | %.4f | %.4f | %.3f | %.4f | %.3f "
+                "| "
+                "%.3f |\n",
+                tau, mu0, photons.reflectance, photons.reflectance_error, photons.transmittance,
+                photons.transmittance_error, exact[k].reflectance, r, t, t / photons.transmittance,
+                r + t, ref::CloudBeamCosine(p, tau, mu0), gamma3);
             std::fflush(stdout);
         }
     }
@@ -319,9 +331,9 @@ void DecksPart(const CloudSettings& settings, std::int64_t samples, int threads,
 }
 
 void OvercastPart(const CloudSettings& settings, std::int64_t samples, int threads,
-                  std::uint64_t seed) {
+                  std::uint64_t seed, const std::string& utc) {
     const double lat = 47.45, lon = 8.56;
-    const zenith::geo::Time time = zenith::geo::TimeFromIso8601("2024-06-21T11:00:00Z");
+    const zenith::geo::Time time = zenith::geo::TimeFromIso8601(utc);
     const Atmosphere earth = LoadAtmosphere("earth");
     const clouds::Weather weather = clouds::LoadWeather("overcast_stratus");
     const clouds::CloudNoiseLoad noise = clouds::LoadOrGenerateCloudNoise(settings.noise);
@@ -343,10 +355,10 @@ void OvercastPart(const CloudSettings& settings, std::int64_t samples, int threa
     const CloudField::Shell& shell = field.shells().front();
     const double r = earth.bottom_radius;
     std::printf(
-        "overcast_stratus at 2024-06-21T11:00:00Z, %.2f N %.2f E: sun elevation %.2f deg, "
+        "overcast_stratus at %s, %.2f N %.2f E: sun elevation %.2f deg, "
         "E_sun(TOA) Y = %.0f lux; deck %.0f-%.0f m (clouds' top), mean vertical optical depth "
         "%.2f; ground albedo %.2f; %lld paths per number (threads %d).\n\n",
-        lat, lon, std::asin(scene.sun_direction.z) * 180.0 / kPi,
+        utc.c_str(), lat, lon, std::asin(scene.sun_direction.z) * 180.0 / kPi,
         0.2126 * scene.atmosphere.solar_illuminance.x +
             0.7152 * scene.atmosphere.solar_illuminance.y +
             0.0722 * scene.atmosphere.solar_illuminance.z,
@@ -495,6 +507,7 @@ int main(int argc, char** argv) {
     bool single = false;
     CloudSettings settings;
     double view_elevation = 55.0;
+    std::string utc = "2024-06-21T11:00:00Z";
     CLI::App app{"The cloud path tracer against closed forms and the renderer (BENCHMARKS.md)"};
     app.add_option("--part", part, "energy, overcast, cumulus, formal, grazing, decks or thin")
         ->required()
@@ -538,6 +551,8 @@ int main(int argc, char** argv) {
         app.add_option("--view-elevation", view_elevation,
                        "thin: deg, the views' elevation off the deck's plane (default 55)")
             ->check(CLI::Range(5.0, 89.0));
+    CLI::Option* utc_option =
+        app.add_option("--utc", utc, "overcast: the time, ISO 8601 (default 2024-06-21T11:00:00Z)");
     CLI11_PARSE(app, argc, argv);
     if ((maps || single) && part != "cumulus") {
         std::fprintf(stderr,
@@ -549,10 +564,14 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "cloud_reference_report: --view-elevation applies to --part thin\n");
         return 2;
     }
+    if (utc_option->count() > 0 && part != "overcast") {
+        std::fprintf(stderr, "cloud_reference_report: --utc applies to --part overcast\n");
+        return 2;
+    }
     if (part == "energy") {
         EnergyPart(samples > 0 ? samples : 20000, threads, seed);
     } else if (part == "overcast") {
-        OvercastPart(settings, samples > 0 ? samples : 20000, threads, seed);
+        OvercastPart(settings, samples > 0 ? samples : 20000, threads, seed, utc);
     } else if (part == "formal") {
         FormalPart(settings);
     } else if (part == "grazing") {

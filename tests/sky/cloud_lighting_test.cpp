@@ -68,21 +68,26 @@ CloudScatteringParameters Scattering(double multiple_scattering = 1.0, double g0
 
 // The delta-Eddington slab (JWW76) from its own radiance: the Marshak conditions at both faces,
 // the fluxes that give R and T, a net flux that stays constant through a non-absorbing slab, and
-// R from the closed form worked out by hand for g = 0.85, tau = 10, mu0 = 1.
+// R from the closed form worked out by hand for g = 0.85, tau = 10, mu0 = 1. All of it for
+// JWW76's beam (m = mu0) and for the exact slab's at a grazing Sun (CloudBeamCosine: m down to
+// -0.1 at mu0 = 0.05).
 TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConservesFlux) {
     // f: one Henyey-Greenstein lobe's g^2, and the most CloudDeltaFraction gives, g.
     for (const double g : {0.0, 0.47, 0.85}) {
         for (const double f : {g * g, g}) {
             for (const double tau_total : {0.5, 5.0, 10.0, 50.0}) {
-                for (const double mu0 : {1.0, 0.5, 0.15}) {
+                for (const auto& [mu0, m] :
+                     {std::pair{1.0, 1.0}, std::pair{0.5, 0.5}, std::pair{0.15, 0.15},
+                      std::pair{1.0, 1.04}, std::pair{0.15, 0.03}, std::pair{0.05, -0.1}}) {
                     const auto direct = [&](double tau) {  // scaled beam, horizontal flux per E
                         return mu0 * std::exp(-(1.0 - f) * tau / mu0);
                     };
-                    const vec2 top = CloudDiffuseRadiance(g, f, 0.0, tau_total, mu0, 0.0);
-                    const vec2 bottom = CloudDiffuseRadiance(g, f, tau_total, tau_total, mu0, 0.0);
+                    const vec2 top = CloudDiffuseRadiance(g, f, 0.0, tau_total, mu0, m, 0.0);
+                    const vec2 bottom =
+                        CloudDiffuseRadiance(g, f, tau_total, tau_total, mu0, m, 0.0);
                     EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
                     EXPECT_NEAR(bottom.x - 2.0 / 3.0 * bottom.y, 0.0, 1e-12);
-                    const vec2 rt = CloudSlabReflectanceTransmittance(g, f, tau_total, mu0);
+                    const vec2 rt = CloudSlabReflectanceTransmittance(g, f, tau_total, mu0, m);
                     // Upward flux pi (I0 - 2/3 I1) at the top, downward pi (I0 + 2/3 I1) plus the
                     // beam at the base.
                     EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), rt.x * mu0, 1e-12);
@@ -90,7 +95,7 @@ TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConserves
                                 rt.y * mu0, 1e-12);
                     for (const double x : {0.0, 0.3, 0.7, 1.0}) {
                         const vec2 i =
-                            CloudDiffuseRadiance(g, f, x * tau_total, tau_total, mu0, 0.0);
+                            CloudDiffuseRadiance(g, f, x * tau_total, tau_total, mu0, m, 0.0);
                         // Net downward flux 4 pi / 3 I1 plus the beam: constant, (1 - R) mu0.
                         EXPECT_NEAR(4.0 * kPi / 3.0 * i.y + direct(x * tau_total),
                                     (1.0 - rt.x) * mu0, 1e-12);
@@ -104,18 +109,18 @@ TEST(CloudDiffuseField, DeltaEddingtonSlabMeetsItsBoundaryConditionsAndConserves
     }
     // A white ground returns all the light: nothing flows down through the slab, R = 1.
     for (const double tau_total : {0.1, 3.0, 30.0}) {
-        const vec2 top = CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 1.0);
+        const vec2 top = CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 0.6, 1.0);
         EXPECT_NEAR(kPi * (top.x - 2.0 / 3.0 * top.y), 0.6, 1e-12);
         // A grey one returns less, and more than a black one.
-        const vec2 grey = CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 0.3);
-        EXPECT_GT(grey.x, CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 0.0).x);
+        const vec2 grey = CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 0.6, 0.3);
+        EXPECT_GT(grey.x, CloudDiffuseRadiance(0.47, 0.47 * 0.47, 0.0, tau_total, 0.6, 0.6, 0.0).x);
         EXPECT_LT(grey.x, top.x);
     }
-    EXPECT_NEAR(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 10.0, 1.0).x,
+    EXPECT_NEAR(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 10.0, 1.0, 1.0).x,
                 (1.5 - (1.0 / 3.0) * (1.0 - std::exp(-2.775))) / (4.0 / 3.0 + 1.5), 1e-12);
     // Thin clouds keep no diffuse light; thick ones reflect nearly all.
-    EXPECT_LT(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 1e-4, 1.0).x, 1e-4);
-    EXPECT_GT(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 1e5, 1.0).x, 0.9998);
+    EXPECT_LT(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 1e-4, 1.0, 1.0).x, 1e-4);
+    EXPECT_GT(CloudSlabReflectanceTransmittance(0.85, 0.85 * 0.85, 1e5, 1.0, 1.0).x, 0.9998);
 }
 
 // The slab whose diffuse light leaks out sideways (a transverse buckling B): its own boundary
@@ -130,9 +135,9 @@ TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength)
                 for (const double a : {0.0, 0.3}) {
                     for (const double tau_total : {0.5, 5.0, 50.0}) {
                         const vec2 top =
-                            CloudLeakingDiffuseRadiance(g, f, 0.0, tau_total, mu0, a, 0.1);
-                        const vec2 bottom =
-                            CloudLeakingDiffuseRadiance(g, f, tau_total, tau_total, mu0, a, 0.1);
+                            CloudLeakingDiffuseRadiance(g, f, 0.0, tau_total, mu0, mu0, a, 0.1);
+                        const vec2 bottom = CloudLeakingDiffuseRadiance(g, f, tau_total, tau_total,
+                                                                        mu0, mu0, a, 0.1);
                         EXPECT_NEAR(top.x + 2.0 / 3.0 * top.y, 0.0, 1e-12);
                         const double beam = mu0 * std::exp(-(1.0 - f) * tau_total / mu0);
                         EXPECT_NEAR((1.0 - a) * bottom.x - 2.0 / 3.0 * (1.0 + a) * bottom.y,
@@ -147,10 +152,10 @@ TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength)
                 for (const double leakage : {0.02, 0.05, 0.1}) {
                     if (leakage * scale > 0.5) continue;
                     const double d = 10.0;
-                    const vec2 near = CloudLeakingDiffuseRadiance(g, f, 100.0 * scale,
-                                                                  400.0 * scale, mu0, 0.0, leakage);
-                    const vec2 far = CloudLeakingDiffuseRadiance(g, f, 100.0 * scale + d,
-                                                                 400.0 * scale, mu0, 0.0, leakage);
+                    const vec2 near = CloudLeakingDiffuseRadiance(
+                        g, f, 100.0 * scale, 400.0 * scale, mu0, mu0, 0.0, leakage);
+                    const vec2 far = CloudLeakingDiffuseRadiance(
+                        g, f, 100.0 * scale + d, 400.0 * scale, mu0, mu0, 0.0, leakage);
                     EXPECT_NEAR(far.x / near.x, std::exp(-leakage * d), 1e-5)
                         << "g " << g << " mu0 " << mu0 << " B " << leakage;
                 }
@@ -159,10 +164,10 @@ TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength)
                 for (const double tau_total : {2.0, 20.0}) {
                     double previous_r = 2.0, previous_t = 2.0;
                     for (const double leakage : {0.0, 0.01, 0.05, 0.2}) {
-                        const vec2 top =
-                            CloudLeakingDiffuseRadiance(g, f, 0.0, tau_total, mu0, 0.0, leakage);
+                        const vec2 top = CloudLeakingDiffuseRadiance(g, f, 0.0, tau_total, mu0, mu0,
+                                                                     0.0, leakage);
                         const vec2 bottom = CloudLeakingDiffuseRadiance(g, f, tau_total, tau_total,
-                                                                        mu0, 0.0, leakage);
+                                                                        mu0, mu0, 0.0, leakage);
                         const double r = kPi * (top.x - 2.0 / 3.0 * top.y) / mu0;
                         const double t = (kPi * (bottom.x + 2.0 / 3.0 * bottom.y) +
                                           mu0 * std::exp(-(1.0 - f) * tau_total / mu0)) /
@@ -183,7 +188,7 @@ TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength)
                         for (const double leakage : {1e-3, 0.3, 2.2, 1e3}) {
                             for (const double x : {0.0, 0.01, 0.5, 1.0}) {
                                 const vec2 i = CloudLeakingDiffuseRadiance(
-                                    g, f, x * tau_total, tau_total, mu, 0.3, leakage);
+                                    g, f, x * tau_total, tau_total, mu, mu, 0.3, leakage);
                                 EXPECT_TRUE(std::isfinite(i.x) && std::isfinite(i.y));
                                 EXPECT_GE(i.x, -1e-12)
                                     << "g " << g << " mu0 " << mu << " tau " << tau_total << " B "
@@ -193,12 +198,16 @@ TEST(CloudDiffuseField, LeakingSlabMeetsItsBoundaryConditionsAndDiffusionLength)
                     }
                 }
                 // B -> 0: the non-leaking slab, within O(B tau) on both sides of the switch at
-                // B tau = 1e-3.
-                for (const double x : {0.0, 0.5, 1.0}) {
-                    const vec2 tight = CloudDiffuseRadiance(g, f, x * 10.0, 10.0, mu0, 0.3);
-                    const vec2 leaking =
-                        CloudLeakingDiffuseRadiance(g, f, x * 10.0, 10.0, mu0, 0.3, 2e-4);
-                    EXPECT_NEAR(leaking.x, tight.x, 5e-3 * tight.x);
+                // B tau = 1e-3, for JWW76's beam and one that sends more of its light up.
+                for (const double m : {mu0, 0.8 * mu0 - 0.1}) {
+                    for (const double x : {0.0, 0.5, 1.0}) {
+                        const vec2 tight = CloudDiffuseRadiance(g, f, x * 10.0, 10.0, mu0, m, 0.3);
+                        const vec2 leaking =
+                            CloudLeakingDiffuseRadiance(g, f, x * 10.0, 10.0, mu0, m, 0.3, 2e-4);
+                        EXPECT_NEAR(leaking.x, tight.x, 5e-3 * tight.x) << "m " << m;
+                        EXPECT_NEAR(leaking.y, tight.y, 5e-3 * std::abs(tight.y) + 1e-6)
+                            << "m " << m;
+                    }
                 }
             }
         }

@@ -239,7 +239,7 @@ void AddCloudScattering(Layout& layout, const std::string& prefix, std::size_t b
     ZENITH_SAME(S, ground_albedo);
     ZENITH_SAME(S, padding1);
     ZENITH_SAME(S, padding2);
-    ZENITH_SAME(S, lit_face);
+    ZENITH_SAME(S, slab_tables);
 }
 
 void AddCloudMarch(Layout& layout, const std::string& prefix, std::size_t base) {

@@ -436,9 +436,9 @@ Number CloudForwardThenScatteredPhase(Number g0, Number g1, Number w, Number nu)
 // share of the scattering kept in the forward peak (CloudDeltaFraction); delta-scaled:
 // tau' = (1 - f) tau, g' = (g - f) / (1 - f), so (1 - g') tau' = (1 - g) tau.
 
-// The lit face's source (CloudLitFaceScale) is tabulated on this many slab optical depths by as
-// many cosines of the light.
-const int kCloudLitFaceSize = 8;
+// The slab's two tables (CloudSlabTables) hold this many slab optical depths by as many cosines
+// of the light: the lit face's source scale and the beam's cosine in the diffuse field's source.
+const int kCloudSlabTableSize = 8;
 
 struct CloudScatteringParameters {
     Number forward_g;            // g0 of the dual lobe, (-1, 1)
@@ -449,9 +449,10 @@ struct CloudScatteringParameters {
     Number ground_albedo;        // [0, 1]: the Lambertian ground under the slab (luminance)
     Number padding1;
     Number padding2;
-    // CloudLitFaceScale's nodes, four to a vec4: node (depth i, cosine j) is number
-    // j kCloudLitFaceSize + i; all 0 turns the lit face's source off.
-    vec4 lit_face[kCloudLitFaceSize * kCloudLitFaceSize / 4];
+    // CloudSlabTables' nodes, four to a vec4: node (depth i, cosine j) of table t is number
+    // (t kCloudSlabTableSize + j) kCloudSlabTableSize + i. All 0 turns the lit face's source off
+    // and leaves JWW76's beam.
+    vec4 slab_tables[2 * kCloudSlabTableSize * kCloudSlabTableSize / 4];
 };
 
 // The dual lobe's mean cosine, (1 - w) g0 + w g1: all that the diffuse field keeps of the phase
@@ -479,21 +480,26 @@ Number CloudDeltaFraction(IN(CloudScatteringParameters) p) {
 // a times the diffuse and direct flux it gets: (1 - a) I0 - 2/3 (1 + a) I1 = a mu0 e / pi. The
 // conservative solution is linear in depth plus the direct beam's exponential (for any f); with
 // k = 3 mu0 / (4 pi) and e(tau) = exp(-tau' / mu0):
-//   I1 = A - k e(tau),  I0 = B - (1 - g) A tau - k mu0 e(tau),
-//   A = (1 - a) k ((mu0 + 2/3) - e(tau_total) (mu0 - 2/3)) / (4/3 + (1 - a)(1 - g) tau_total),
-//   B = k (mu0 + 2/3) - 2/3 A.
+//   I1 = A - k e(tau),  I0 = B - (1 - g) A tau - k m e(tau),
+//   A = (1 - a) k ((m + 2/3) - e(tau_total) (m - 2/3)) / (4/3 + (1 - a)(1 - g) tau_total),
+//   B = k (m + 2/3) - 2/3 A.
+// `beam` is m, the cosine the beam's source term carries: mu0 in JWW76, where the scaled
+// phase's first moment g' mu0 sends the beam's first scattering down; m = mu0 (1 - g' + g_b)
+// for a source of first moment g_b mu0 (two-stream: gamma3 = (2/3 + mu0 - m) 3/4). The slab's
+// R (CloudSlabReflectanceTransmittance) falls by (1 - e(tau_total)) / (4/3 + (1 - g) tau_total)
+// per unit m. CloudBeamCosine gives the m of the exact slab.
 // Returns (I0, I1); both vanish as tau_total -> 0 over a black ground (thin clouds scatter
 // once).
 vec2 CloudDiffuseRadiance(Number g, Number f, Number tau, Number tau_total, Number mu0,
-                          Number ground_albedo) {
+                          Number beam, Number ground_albedo) {
     Number k = 3.0 * mu0 / (4.0 * kPi);
     Number e = exp(-(1.0 - f) * tau / mu0);
     Number e_total = exp(-(1.0 - f) * tau_total / mu0);
     Number absorbed = 1.0 - CloudSaturate(ground_albedo);
-    Number a = absorbed * k * ((mu0 + 2.0 / 3.0) - e_total * (mu0 - 2.0 / 3.0)) /
+    Number a = absorbed * k * ((beam + 2.0 / 3.0) - e_total * (beam - 2.0 / 3.0)) /
                (4.0 / 3.0 + absorbed * (1.0 - g) * tau_total);
-    Number b = k * (mu0 + 2.0 / 3.0) - 2.0 / 3.0 * a;
-    return vec2(b - (1.0 - g) * a * tau - k * mu0 * e, a - k * e);
+    Number b = k * (beam + 2.0 / 3.0) - 2.0 / 3.0 * a;
+    return vec2(b - (1.0 - g) * a * tau - k * beam * e, a - k * e);
 }
 
 // The same in a slab of finite width, whose diffuse light also leaks out sideways: in the
@@ -503,12 +509,13 @@ vec2 CloudDiffuseRadiance(Number g, Number f, Number tau, Number tau_total, Numb
 // lambda^2 = 3 (1 - w)(1 - w g') = (B / (1 - f))^2 in the delta-scaled depth (JWW76 Eq. 2-3):
 //   I0 = C1 exp(-lambda (tau_total - tau)) + C2 exp(-lambda tau) + alpha e(tau),
 //   I1 = -P (C1 exp(-lambda (tau_total - tau)) - C2 exp(-lambda tau)) + beta e(tau),
-// P = lambda / (1 - w g'), with the particular solution alpha, beta of the direct beam and C1, C2
-// from the same boundary conditions. B -> 0 is CloudDiffuseRadiance.
+// P = lambda / (1 - w g'), with the particular solution alpha, beta of the direct beam (its
+// source's first moment (m / mu0 - 1 + g') mu0, as CloudDiffuseRadiance's) and C1, C2 from the
+// same boundary conditions. B -> 0 is CloudDiffuseRadiance.
 vec2 CloudLeakingDiffuseRadiance(Number g, Number f, Number tau, Number tau_total, Number mu0,
-                                 Number ground_albedo, Number leakage) {
+                                 Number beam, Number ground_albedo, Number leakage) {
     if (!(leakage * tau_total > 1e-3)) {
-        return CloudDiffuseRadiance(g, f, tau, tau_total, mu0, ground_albedo);
+        return CloudDiffuseRadiance(g, f, tau, tau_total, mu0, beam, ground_albedo);
     }
     Number lambda = leakage / (1.0 - f);
     // Away from the particular solution's pole (lambda mu0 = 1), and within what an albedo in
@@ -523,7 +530,7 @@ vec2 CloudLeakingDiffuseRadiance(Number g, Number f, Number tau, Number tau_tota
     Number w = gs > 1e-6 ? (qb - sqrt(max(qb * qb - 4.0 * gs * qc, 0.0))) / (2.0 * gs) : qc;
     Number p_ratio = lambda / (1.0 - w * gs);
     Number c = 3.0 * w / (4.0 * kPi);
-    Number alpha = c * mu0 * mu0 * (1.0 + gs * (1.0 - w)) / (lambda * lambda * mu0 * mu0 - 1.0);
+    Number alpha = c * mu0 * (beam + mu0 * gs * (1.0 - w)) / (lambda * lambda * mu0 * mu0 - 1.0);
     Number beta = mu0 * (3.0 * (1.0 - w) * alpha - c);
     Number ts = (1.0 - f) * tau;
     Number total = (1.0 - f) * tau_total;
@@ -548,10 +555,11 @@ vec2 CloudLeakingDiffuseRadiance(Number g, Number f, Number tau, Number tau_tota
 // The slab's reflectance R (upward flux at the top over mu0 E) and transmittance T = 1 - R
 // (direct and diffuse) over a black ground from the same solution: the closed form the march is
 // tested against.
-//   R = ((1 - g) tau_total + (2/3 - mu0)(1 - e(tau_total))) / (4/3 + (1 - g) tau_total).
-vec2 CloudSlabReflectanceTransmittance(Number g, Number f, Number tau_total, Number mu0) {
+//   R = ((1 - g) tau_total + (2/3 - m)(1 - e(tau_total))) / (4/3 + (1 - g) tau_total).
+vec2 CloudSlabReflectanceTransmittance(Number g, Number f, Number tau_total, Number mu0,
+                                       Number beam) {
     Number e_total = exp(-(1.0 - f) * tau_total / mu0);
-    Number r = ((1.0 - g) * tau_total + (2.0 / 3.0 - mu0) * (1.0 - e_total)) /
+    Number r = ((1.0 - g) * tau_total + (2.0 / 3.0 - beam) * (1.0 - e_total)) /
                (4.0 / 3.0 + (1.0 - g) * tau_total);
     return vec2(r, 1.0 - r);
 }
@@ -571,35 +579,60 @@ Number CloudSkyScattering(IN(CloudScatteringParameters) p, Number tau, Number ta
     return max(1.0 - 2.0 / 3.0 * a - (1.0 - g) * a * tau + g * mu_view * a, 0.0);
 }
 
-// The light the renderer's source below misses (the lit face's source). Through a homogeneous
-// non-absorbing slab, its formal solution sends out less than the slab receives: 1.3, 7.6 and
-// 10.5 % of the incident flux at mu0 = 1, 0.5 and 0.25 from tau_total = 10 on, all of it
-// missing from the reflected light (the transmitted light is the closed form's to four
-// digits), and up to 18 % on both sides of slabs of optical depth 0.5-4: a P1 radiance cannot
-// carry the first orders' forward-peaked light, and a finer march gives the same. The path
-// tracer finds the same shortfall (deck and thin-slab grids, BENCHMARKS.md). It is put back
-// where it is lost, near the lit face, with the light's own attenuation and the angular spread
-// of twice-scattered light: c(tau_total, mu0) p2(nu) exp(-tau / mu0) per unit sigma_s, with
-// c sized on the host (clouds/cloud_parameters.cpp, CloudLitFaceTable) so that this source's
-// escaping light equals the shortfall, for the current phase function. Read bilinearly on
-// u = log2(1 + 8 tau_total) (nodes tau_total = 0, 0.125, 0.375, ... 15.875; constant beyond,
-// where the shortfall no longer depends on depth) and v = (mu0 - 0.05) / 0.95 (nodes 1/7
-// apart).
-Number CloudLitFaceNode(IN(CloudScatteringParameters) p, int depth, int cosine) {
-    int k = cosine * kCloudLitFaceSize + depth;
-    return p.lit_face[k / 4][k % 4];
+// The slab's tables at (tau_total, mu0), both read from one cell of nodes: x the lit face's
+// source scale c, y the beam's cosine in the diffuse field less mu0 (CloudBeamCosine).
+// The lit face's source is the light the renderer's source misses (CloudSunScattering).
+// Through a homogeneous non-absorbing slab, its formal solution sends out less than the slab
+// receives: 1.3, 7.6 and 10.5 % of the incident flux at mu0 = 1, 0.5 and 0.25 from tau_total =
+// 10 on, all of it missing from the reflected light (the transmitted light is the closed form's
+// to four digits), and up to 18 % on both sides of slabs of optical depth 0.5-4: a P1 radiance
+// cannot carry the first orders' forward-peaked light, and a finer march gives the same. The
+// path tracer finds the same shortfall (deck and thin-slab grids, BENCHMARKS.md). It is put
+// back where it is lost, near the lit face, with the light's own attenuation and the angular
+// spread of twice-scattered light: c(tau_total, mu0) p2(nu) exp(-tau / mu0) per unit sigma_s,
+// with c sized so that this source's escaping light equals the shortfall. Where the Sun grazes
+// the slab (mu0 < 0.13 for the default lobes) the rest of the source sends out more than the
+// slab receives, and c < 0 takes the excess back.
+// The tables are sized on the host for the current phase function (clouds/cloud_parameters.cpp,
+// CloudSlabTables) and read bilinearly on u = log2(1 + 8 tau_total) (nodes tau_total = 0,
+// 0.125, 0.375, ... 15.875; constant beyond, where they no longer depend on depth) and
+// v = sqrt((mu0 - 0.05) / 0.95) (nodes 1/7 apart: closest where the Sun grazes the slab, mu0 =
+// 0.05, 0.069, 0.13, 0.22 ... 1).
+Number CloudSlabTableNode(IN(CloudScatteringParameters) p, int table, int depth, int cosine) {
+    int k = (table * kCloudSlabTableSize + cosine) * kCloudSlabTableSize + depth;
+    return p.slab_tables[k / 4][k % 4];
 }
 
-Number CloudLitFaceScale(IN(CloudScatteringParameters) p, Number tau_total, Number mu0) {
-    Number last = Number(kCloudLitFaceSize - 1);
+vec2 CloudSlabTables(IN(CloudScatteringParameters) p, Number tau_total, Number mu0) {
+    Number last = Number(kCloudSlabTableSize - 1);
     Number u = clamp(log2(1.0 + 8.0 * tau_total), 0.0, last);
-    Number v = clamp((mu0 - 0.05) / 0.95, 0.0, 1.0) * last;
-    int i = min(int(u), kCloudLitFaceSize - 2);
-    int j = min(int(v), kCloudLitFaceSize - 2);
+    Number v = sqrt(clamp((mu0 - 0.05) / 0.95, 0.0, 1.0)) * last;
+    int i = min(int(u), kCloudSlabTableSize - 2);
+    int j = min(int(v), kCloudSlabTableSize - 2);
     Number fu = u - Number(i);
     Number fv = v - Number(j);
-    return mix(mix(CloudLitFaceNode(p, i, j), CloudLitFaceNode(p, i + 1, j), fu),
-               mix(CloudLitFaceNode(p, i, j + 1), CloudLitFaceNode(p, i + 1, j + 1), fu), fv);
+    vec2 nodes[4];
+    for (int t = 0; t < 2; ++t) {
+        nodes[2 * t] = vec2(CloudSlabTableNode(p, t, i, j), CloudSlabTableNode(p, t, i + 1, j));
+        nodes[2 * t + 1] =
+            vec2(CloudSlabTableNode(p, t, i, j + 1), CloudSlabTableNode(p, t, i + 1, j + 1));
+    }
+    vec2 lower = vec2(mix(nodes[0].x, nodes[0].y, fu), mix(nodes[2].x, nodes[2].y, fu));
+    vec2 upper = vec2(mix(nodes[1].x, nodes[1].y, fu), mix(nodes[3].x, nodes[3].y, fu));
+    return mix(lower, upper, fv);
+}
+
+// The beam's cosine m in the diffuse field's source (CloudDiffuseRadiance) with which the
+// field's slab of optical depth tau_total transmits (so, R + T being 1, reflects) what the exact
+// plane-parallel solution for the current phase function does (adding-doubling on the host,
+// clouds/slab_transfer.h). JWW76's m = mu0 lets too much light through at a grazing Sun, 6, 11
+// and 17 % at mu0 = 0.29, 0.17 and 0.1 against the path tracer at every depth from 2 to 20
+// (BENCHMARKS.md): the light its forward peak scatters a little above the horizontal leaves
+// through the top, where the scaled beam carries it down. For the default lobes the exact
+// slab's m is 1.00-1.04 at mu0 = 1, 0.24-0.28 at 0.32 and -0.11 to -0.04 at 0.05, nearly the
+// same at every depth.
+Number CloudBeamCosine(IN(CloudScatteringParameters) p, Number tau_total, Number mu0) {
+    return mu0 + CloudSlabTables(p, tau_total, mu0).y;
 }
 
 // The light scattered once that reaches a point of a homogeneous slab on its way to the camera,
@@ -647,7 +680,7 @@ Number CloudAlongViewLight(Number sun_optical_depth, Number tau, Number depth_be
 //   view's cosine; it runs longest near the slab's plane and comes out there (in decks of
 //   optical depth 0.06-1 the light scattered more than once was 0.63-0.82x the path tracer's
 //   15 deg off the plane and 1.24-1.52x near its normal, BENCHMARKS.md). And the lit face's
-//   source (CloudLitFaceScale), with the twice-scattered phase p2.
+//   source (CloudSlabTables' x), with the twice-scattered phase p2.
 // nu = dot(view, light); mu_view = dot(view, normal), the cosine between the light's way to the
 // camera (-view) and the slab's inward normal (down, for a deck). mu0 is clamped to 0.05: a
 // light grazing the slab still enters it. `leakage` is the slab's transverse buckling
@@ -662,19 +695,21 @@ Number CloudSunScattering(IN(CloudScatteringParameters) p, Number sun_optical_de
     Number f = CloudDeltaFraction(p);
     Number mu = max(mu0, 0.05);
     Number tau = sun_optical_depth * mu;
-    vec2 diffuse =
-        CloudLeakingDiffuseRadiance(g, f, tau, tau + depth_below, mu, p.ground_albedo, leakage);
+    vec2 slab = CloudSlabTables(p, tau + depth_below, mu);
+    vec2 diffuse = CloudLeakingDiffuseRadiance(g, f, tau, tau + depth_below, mu, mu + slab.y,
+                                               p.ground_albedo, leakage);
     Number spread = CloudForwardThenScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu);
     Number peak = spread * (exp(-(1.0 - f) * sun_optical_depth) - exp(-sun_optical_depth));
     Number passed =
         max(spread - f * CloudHenyeyGreensteinPhase(p.forward_g * p.forward_g, nu), 0.0) * f *
         CloudAlongViewLight(sun_optical_depth, tau, depth_below, mu, mu_view);
-    Number lit_face = CloudLitFaceScale(p, tau + depth_below, mu) *
+    Number lit_face = slab.x *
                       CloudTwiceScatteredPhase(p.forward_g, p.backward_g, p.lobe_weight, nu) *
                       exp(-sun_optical_depth);
     return single + p.multiple_scattering *
-                        (max(diffuse.x + g * mu_view * diffuse.y + peak, 0.0) + passed +
-                         lit_face);
+                        max(max(diffuse.x + g * mu_view * diffuse.y + peak, 0.0) + passed +
+                                lit_face,
+                            0.0);
 }
 
 // ---------------------------------------------------------------------------------------------

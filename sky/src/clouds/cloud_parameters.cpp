@@ -1,5 +1,6 @@
 #include "clouds/cloud_parameters.h"
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 #include <numbers>
@@ -8,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "clouds/slab_transfer.h"
 #include "reference/cloud_functions.h"
 #include "zenith/base/error.h"
 
@@ -22,13 +24,52 @@ void Require(bool ok, const char* field, double value, const char* expected) {
     }
 }
 
-static_assert(ref::kCloudLitFaceSize == kCloudLitFaceSize);
+static_assert(ref::kCloudSlabTableSize == kCloudSlabTableSize);
 
-// The lit face's table (CloudLitFaceTable): the renderer's source (clouds/functions.glsl,
-// CloudSunScattering, first order and diffuse field, the lit face's source off) through a
-// homogeneous non-absorbing slab of optical depth tau_total over a black ground, the sun at
-// cosine mu0, by its formal solution: the flux leaving the slab is the source integrated over
-// depth and the sphere of directions, attenuated by exp(-depth to the face / |mu|).
+// The node (depth i, cosine j) of table t in CloudSlabTableNodes, and the nodes' optical depths
+// and cosines (clouds/functions.glsl, CloudSlabTables).
+std::size_t SlabNode(int table, int depth, int cosine) {
+    return static_cast<std::size_t>((table * kCloudSlabTableSize + cosine) * kCloudSlabTableSize +
+                                    depth);
+}
+double SlabNodeDepth(int depth) { return (std::exp2(depth) - 1.0) / 8.0; }
+double SlabNodeCosine(int cosine) {
+    const double v = double(cosine) / (kCloudSlabTableSize - 1);
+    return 0.05 + 0.95 * v * v;
+}
+
+// The beam's cosine m less mu0 (CloudBeamCosine) at each node: from the exact slab's R (and
+// T = 1 - R; ConservativeSlabTransfer) and CloudSlabReflectanceTransmittance's R, linear in m,
+//   m = 2/3 - (R (4/3 + (1 - g) tau_total) - (1 - g) tau_total) / (1 - e(tau_total)),
+// kept above -0.6 so that the field's flux A stays positive (m > -2/3 is enough). Node 0
+// (tau_total = 0, where m no longer matters) takes node 1's.
+void ComputeBeamOffsets(const CloudSettings& s, double g, double f, CloudSlabTableNodes& table) {
+    std::vector<double> cosines;
+    for (int j = 0; j < kCloudSlabTableSize; ++j) cosines.push_back(SlabNodeCosine(j));
+    for (int i = 1; i < kCloudSlabTableSize; ++i) {
+        const double tau = SlabNodeDepth(i);
+        const std::vector<SlabTransfer> exact =
+            ConservativeSlabTransfer(s.forward_g, s.backward_g, s.lobe_weight, tau, cosines);
+        for (int j = 0; j < kCloudSlabTableSize; ++j) {
+            const double mu0 = SlabNodeCosine(j);
+            const double r = exact[static_cast<std::size_t>(j)].reflectance;
+            const double e_total = std::exp(-(1.0 - f) * tau / mu0);
+            const double m =
+                2.0 / 3.0 - (r * (4.0 / 3.0 + (1.0 - g) * tau) - (1.0 - g) * tau) / (1.0 - e_total);
+            table[SlabNode(1, i, j)] = std::clamp(m, -0.6, 2.0) - mu0;
+        }
+    }
+    for (int j = 0; j < kCloudSlabTableSize; ++j) {
+        table[SlabNode(1, 0, j)] = table[SlabNode(1, 1, j)];
+    }
+}
+
+// The lit face's table: the renderer's source (clouds/functions.glsl, CloudSunScattering, first
+// order and diffuse field, the lit face's source off) through a homogeneous non-absorbing slab of
+// optical depth tau_total over a black ground, the sun at cosine mu0 (the diffuse field's beam
+// at the node's cosine from `table`'s other half), by its formal solution:
+// the flux leaving the slab is the source integrated over depth and the sphere of directions,
+// attenuated by exp(-depth to the face / |mu|).
 // - Directions: cells uniform in the vertical cosine mu (equal solid angles) and in the azimuth
 //   from the light's vertical plane over [0, pi] (the problem is symmetric about it); each
 //   cell's phase functions averaged over kLitFaceSubsamples^2 points, so the forward lobe (g up
@@ -39,28 +80,27 @@ static_assert(ref::kCloudLitFaceSize == kCloudLitFaceSize);
 // field, the delta peak's light seen through one more scattering, the light scattered once on
 // its way out that the peak passes on), combined per cell as it combines them; tests/sky hold
 // the result to a separate quadrature of CloudSunScattering itself. The lit face's source
-// (CloudTwiceScatteredPhase times the sunlight left, unit scale) goes through the same cells.
+// (CloudTwiceScatteredPhase times the sunlight left, unit scale) goes through the same cells,
+// and its scale is the loss over what it sends out: negative where the rest of the source sends
+// out more than the slab receives (a Sun grazing the slab, mu0 < 0.13 for the default lobes).
 constexpr int kLitFaceCosines = 64;
 constexpr int kLitFaceAzimuths = 32;
 constexpr int kLitFaceSubsamples = 4;
 constexpr int kLitFaceDepths = 200;
 
-CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
+void ComputeLitFaceScales(const CloudSettings& settings, double g, double f,
+                          CloudSlabTableNodes& table) {
     constexpr double kPi = std::numbers::pi;
-    CloudSettings off = settings;
-    off.lit_face_source = false;
-    off.multiple_scattering = 1.0;
-    const auto p =
-        MakeCloudScatteringParameters<ref::CloudScatteringParameters>(off, glm::dvec3(0.0));
-    const double g = ref::CloudAsymmetry(p);
-    const double f = ref::CloudDeltaFraction(p);
+    ref::CloudScatteringParameters p{};
+    p.forward_g = settings.forward_g;
+    p.backward_g = settings.backward_g;
+    p.lobe_weight = settings.lobe_weight;
     const double d_mu = 2.0 / kLitFaceCosines;
     const double d_phi = kPi / kLitFaceAzimuths;
     const double cell_solid_angle = 2.0 * d_mu * d_phi;  // both sides of the light's plane
 
-    CloudLitFaceNodes table{};
-    for (int j = 0; j < kCloudLitFaceSize; ++j) {
-        const double mu0 = 0.05 + 0.95 * j / (kCloudLitFaceSize - 1);
+    for (int j = 0; j < kCloudSlabTableSize; ++j) {
+        const double mu0 = SlabNodeCosine(j);
         const ref::vec3 light(std::sqrt(1.0 - mu0 * mu0), 0.0, mu0);
         // The mean of phase(nu) over each cell, along the light's way out of it (view =
         // -direction of travel), normalised to integrate to 1.
@@ -107,8 +147,9 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
             twice_rows[cell / kLitFaceAzimuths] += twice[cell];
         }
         // Node 0 (tau_total = 0) stays 0: the loss vanishes faster than the source's light.
-        for (int i = 1; i < kCloudLitFaceSize; ++i) {
-            const double tau_total = (std::exp2(i) - 1.0) / 8.0;
+        for (int i = 1; i < kCloudSlabTableSize; ++i) {
+            const double tau_total = SlabNodeDepth(i);
+            const double beam = mu0 + table[SlabNode(1, i, j)];
             double renderer = 0.0, lit_face = 0.0;
             for (int k = 0; k < kLitFaceDepths; ++k) {
                 const double t0 = 0.5 * tau_total * (1.0 - std::cos(kPi * k / kLitFaceDepths));
@@ -116,7 +157,8 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
                     0.5 * tau_total * (1.0 - std::cos(kPi * (k + 1) / kLitFaceDepths));
                 const double t = 0.5 * (t0 + t1);
                 const double direct = std::exp(-t / mu0);
-                const ref::vec2 diffuse = ref::CloudDiffuseRadiance(g, f, t, tau_total, mu0, 0.0);
+                const ref::vec2 diffuse =
+                    ref::CloudDiffuseRadiance(g, f, t, tau_total, mu0, beam, 0.0);
                 const double scaled = std::exp(-(1.0 - f) * t / mu0) - direct;
                 for (int a = 0; a < kLitFaceCosines; ++a) {
                     const double mu = -1.0 + (a + 0.5) * d_mu;  // travel, up > 0
@@ -142,30 +184,50 @@ CloudLitFaceNodes ComputeLitFaceTable(const CloudSettings& settings) {
                 }
             }
             const double loss = 1.0 - std::exp(-tau_total / mu0) - renderer / mu0;
-            table[static_cast<std::size_t>(j * kCloudLitFaceSize + i)] =
-                std::max(loss, 0.0) / (lit_face / mu0);
+            table[SlabNode(0, i, j)] = loss / (lit_face / mu0);
         }
     }
+}
+
+CloudSlabTableNodes ComputeSlabTables(const CloudSettings& s) {
+    ref::CloudScatteringParameters p{};
+    p.forward_g = s.forward_g;
+    p.backward_g = s.backward_g;
+    p.lobe_weight = s.lobe_weight;
+    const double g = ref::CloudAsymmetry(p);
+    const double f = ref::CloudDeltaFraction(p);
+    CloudSlabTableNodes table{};
+    ComputeBeamOffsets(s, g, f, table);
+    ComputeLitFaceScales(s, g, f, table);
     return table;
 }
 
 }  // namespace
 
-CloudLitFaceNodes CloudLitFaceTable(const CloudSettings& s) {
-    if (!s.lit_face_source) return {};
-    // Each table costs tens of milliseconds; the last few phase functions are kept (a host
-    // sweeping them costs that per change, and no more memory).
+CloudSlabTableNodes CloudSlabTables(const CloudSettings& s) {
+    // Each costs tens of milliseconds; the last few phase functions' are kept (a host sweeping
+    // them costs that per change, and no more memory).
     constexpr std::size_t kKept = 8;
     static std::mutex mutex;
-    static std::vector<std::pair<glm::dvec3, CloudLitFaceNodes>> cache;
+    static std::vector<std::pair<glm::dvec3, CloudSlabTableNodes>> cache;
     const glm::dvec3 key(s.forward_g, s.backward_g, s.lobe_weight);
-    const std::lock_guard<std::mutex> lock(mutex);
-    for (const auto& [phase, table] : cache) {
-        if (phase == key) return table;
+    CloudSlabTableNodes tables{};
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        const auto cached = std::find_if(cache.begin(), cache.end(),
+                                         [&](const auto& entry) { return entry.first == key; });
+        if (cached != cache.end()) {
+            tables = cached->second;
+        } else {
+            if (cache.size() == kKept) cache.erase(cache.begin());
+            cache.emplace_back(key, ComputeSlabTables(s));
+            tables = cache.back().second;
+        }
     }
-    if (cache.size() == kKept) cache.erase(cache.begin());
-    cache.emplace_back(key, ComputeLitFaceTable(s));
-    return cache.back().second;
+    if (!s.lit_face_source) {
+        std::fill_n(tables.begin(), kCloudSlabTableSize * kCloudSlabTableSize, 0.0);
+    }
+    return tables;
 }
 
 void CloudSettings::Validate() const {

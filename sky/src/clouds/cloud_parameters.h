@@ -50,18 +50,22 @@ Parameters MakeCloudLayerParameters(const clouds::CloudLayer& layer, double top_
     return p;
 }
 
-// Nodes per side of the lit face's table (clouds/functions.glsl: kCloudLitFaceSize, checked
-// in cloud_parameters.cpp).
-inline constexpr int kCloudLitFaceSize = 8;
+// Nodes per side of the slab's tables (clouds/functions.glsl: kCloudSlabTableSize, checked in
+// cloud_parameters.cpp).
+inline constexpr int kCloudSlabTableSize = 8;
 
-// The lit face's source scale c (clouds/functions.glsl, CloudLitFaceScale) at node (depth i,
-// cosine j), number j kCloudLitFaceSize + i: for the phase function of `s`, the loss of the
-// renderer's source through a homogeneous non-absorbing slab over a black ground (1 - the
-// light it sends out, by a deterministic quadrature of its formal solution) over what the unit
-// lit-face source sends out of the same slab. Zeros when s.lit_face_source is false. Computed
-// once per phase function (tens of ms; the last eight are kept), then looked up.
-using CloudLitFaceNodes = std::array<double, kCloudLitFaceSize * kCloudLitFaceSize>;
-CloudLitFaceNodes CloudLitFaceTable(const CloudSettings& s);
+// The slab's tables (clouds/functions.glsl, CloudSlabTables) for the phase function of `s`, node
+// (depth i, cosine j) of table t at number (t kCloudSlabTableSize + j) kCloudSlabTableSize + i:
+// - t = 0, the lit face's source scale c: the loss of the renderer's source through a
+//   homogeneous non-absorbing slab over a black ground (1 - the light it sends out, by a
+//   deterministic quadrature of its formal solution; < 0 where it sends out more) over what the
+//   unit lit-face source sends out of the same slab. Zeros when s.lit_face_source is false.
+// - t = 1, the beam's cosine in the diffuse field's source less mu0 (CloudBeamCosine): the one
+//   with which the field's closed form transmits what the exact slab does
+//   (ConservativeSlabTransfer).
+// Computed once per phase function (tens of ms; the last eight are kept), then looked up.
+using CloudSlabTableNodes = std::array<double, 2 * kCloudSlabTableSize * kCloudSlabTableSize>;
+CloudSlabTableNodes CloudSlabTables(const CloudSettings& s);
 
 // ground_albedo: the atmosphere's (per channel), which the clouds' diffuse light sees as its
 // luminance, Rec. 709 weights.
@@ -69,11 +73,11 @@ template <typename Parameters>
 Parameters MakeCloudScatteringParameters(const CloudSettings& s, const glm::dvec3& ground_albedo) {
     using Scalar = decltype(Parameters{}.albedo);
     Parameters p{};
-    static_assert(std::extent_v<decltype(Parameters::lit_face)> * 4 ==
-                  kCloudLitFaceSize * kCloudLitFaceSize);
-    const CloudLitFaceNodes lit_face = CloudLitFaceTable(s);
-    for (std::size_t k = 0; k < lit_face.size(); ++k) {
-        p.lit_face[k / 4][static_cast<int>(k % 4)] = Scalar(lit_face[k]);
+    static_assert(std::extent_v<decltype(Parameters::slab_tables)> * 4 ==
+                  std::tuple_size_v<CloudSlabTableNodes>);
+    const CloudSlabTableNodes tables = CloudSlabTables(s);
+    for (std::size_t k = 0; k < tables.size(); ++k) {
+        p.slab_tables[k / 4][static_cast<int>(k % 4)] = Scalar(tables[k]);
     }
     p.forward_g = Scalar(s.forward_g);
     p.backward_g = Scalar(s.backward_g);

@@ -227,9 +227,9 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
             " layers (the renderer draws at most " + std::to_string(kCloudMaxLayers) + ")");
     }
     for (const clouds::WeatherMap& map : maps) weather_maps_.push_back(UploadWeatherMap(map));
-    // The lit face's table for this phase function, here with the programs rather than in the
-    // first frame's uniforms (tens of milliseconds once; every frame then looks it up).
-    CloudLitFaceTable(settings_);
+    // The slab's tables for this phase function, here with the programs rather than in the
+    // first frame's uniforms (tens of milliseconds once; every frame then looks them up).
+    CloudSlabTables(settings_);
     shape_ = UploadNoise(noise.shape);
     detail_ = UploadNoise(noise.detail);
     glCreateBuffers(1, &uniforms_);

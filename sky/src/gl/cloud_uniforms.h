@@ -40,9 +40,9 @@ struct CloudScatteringUniforms {  // clouds/functions.glsl: struct CloudScatteri
     float ground_albedo;
     float padding1;
     float padding2;
-    glm::vec4 lit_face[16];
+    glm::vec4 slab_tables[32];
 };
-static_assert(sizeof(CloudScatteringUniforms) == 32 + 16 * 16);
+static_assert(sizeof(CloudScatteringUniforms) == 32 + 32 * 16);
 
 struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float extinction;
@@ -91,18 +91,18 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     glm::ivec4 ground_layer_order;
 };
 static_assert(offsetof(CloudUniforms, scattering) == 256);
-static_assert(offsetof(CloudUniforms, march) == 544);
-static_assert(offsetof(CloudUniforms, lights) == 608);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 928);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 976);
-static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 1024);
-static_assert(offsetof(CloudUniforms, trace_size) == 1040);
-static_assert(offsetof(CloudUniforms, block) == 1056);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 1072);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 1088);
-static_assert(offsetof(CloudUniforms, layer_order) == 1104);
-static_assert(offsetof(CloudUniforms, ground_layer_order) == 1120);
-static_assert(sizeof(CloudUniforms) == 1136);
+static_assert(offsetof(CloudUniforms, march) == 800);
+static_assert(offsetof(CloudUniforms, lights) == 864);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 1184);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 1232);
+static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 1280);
+static_assert(offsetof(CloudUniforms, trace_size) == 1296);
+static_assert(offsetof(CloudUniforms, block) == 1312);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 1328);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 1344);
+static_assert(offsetof(CloudUniforms, layer_order) == 1360);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 1376);
+static_assert(sizeof(CloudUniforms) == 1392);
 
 // clouds/geometry_list.glsl: CloudGeometryList, a storage block: a glDrawArraysIndirect command
 // (its vertex count, 6 per cell listed, written by the shader), the capacity in cells, then the

@@ -45,8 +45,9 @@ struct CloudSettings {
     double multiple_scattering = 1.0;
     // The light the diffuse field misses at the lit face (1-18 % of the incident light, most at
     // low suns and optical depths 0.5-4) put back as a source there, sized per phase function so
-    // that a non-absorbing slab sends out all it receives (clouds/functions.glsl,
-    // CloudLitFaceScale); false leaves it out (the renderer of 2026-11-27).
+    // that a non-absorbing slab sends out all it receives, and taking back the excess where a
+    // grazing Sun makes the rest send out more (clouds/functions.glsl, CloudSlabTables); false
+    // leaves it out (the diffuse field keeps the exact slab's transmission either way).
     bool lit_face_source = true;
     double ambient_scale = 1.0;  // F16 §5.5.1: scale of the sky's ambient light
     // Shape: world size of one tile of each noise (H16 §4.3: the shape volume is 4x wider than
