@@ -611,14 +611,13 @@ vec2 CloudSlabTables(IN(CloudScatteringParameters) p, Number tau_total, Number m
     int j = min(int(v), kCloudSlabTableSize - 2);
     Number fu = u - Number(i);
     Number fv = v - Number(j);
-    vec2 nodes[4];
+    vec2 lower = vec2(0.0);
+    vec2 upper = vec2(0.0);
     for (int t = 0; t < 2; ++t) {
-        nodes[2 * t] = vec2(CloudSlabTableNode(p, t, i, j), CloudSlabTableNode(p, t, i + 1, j));
-        nodes[2 * t + 1] =
-            vec2(CloudSlabTableNode(p, t, i, j + 1), CloudSlabTableNode(p, t, i + 1, j + 1));
+        lower[t] = mix(CloudSlabTableNode(p, t, i, j), CloudSlabTableNode(p, t, i + 1, j), fu);
+        upper[t] =
+            mix(CloudSlabTableNode(p, t, i, j + 1), CloudSlabTableNode(p, t, i + 1, j + 1), fu);
     }
-    vec2 lower = vec2(mix(nodes[0].x, nodes[0].y, fu), mix(nodes[2].x, nodes[2].y, fu));
-    vec2 upper = vec2(mix(nodes[1].x, nodes[1].y, fu), mix(nodes[3].x, nodes[3].y, fu));
     return mix(lower, upper, fv);
 }
 
