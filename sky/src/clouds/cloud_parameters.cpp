@@ -41,15 +41,16 @@ double SlabNodeCosine(int cosine) {
 // The beam's cosine m less mu0 (CloudBeamCosine) at each node: from the exact slab's R (and
 // T = 1 - R; ConservativeSlabTransfer) and CloudSlabReflectanceTransmittance's R, linear in m,
 //   m = 2/3 - (R (4/3 + (1 - g) tau_total) - (1 - g) tau_total) / (1 - e(tau_total)),
-// kept above -0.6 so that the field's flux A stays positive (m > -2/3 is enough). Node 0
-// (tau_total = 0, where m no longer matters) takes node 1's.
-void ComputeBeamOffsets(const CloudSettings& s, double g, double f, CloudSlabTableNodes& table) {
+// kept within [-0.6, 2] so that the field's flux A stays positive (m > -2/3 is enough) whatever
+// the phase. Node 0 (tau_total = 0, where m no longer matters) takes node 1's.
+void ComputeBeamOffsets(const ref::CloudScatteringParameters& p, double g, double f,
+                        CloudSlabTableNodes& table) {
     std::vector<double> cosines;
     for (int j = 0; j < kCloudSlabTableSize; ++j) cosines.push_back(SlabNodeCosine(j));
     for (int i = 1; i < kCloudSlabTableSize; ++i) {
         const double tau = SlabNodeDepth(i);
         const std::vector<SlabTransfer> exact =
-            ConservativeSlabTransfer(s.forward_g, s.backward_g, s.lobe_weight, tau, cosines);
+            ConservativeSlabTransfer(p.forward_g, p.backward_g, p.lobe_weight, tau, cosines);
         for (int j = 0; j < kCloudSlabTableSize; ++j) {
             const double mu0 = SlabNodeCosine(j);
             const double r = exact[static_cast<std::size_t>(j)].reflectance;
@@ -88,13 +89,9 @@ constexpr int kLitFaceAzimuths = 32;
 constexpr int kLitFaceSubsamples = 4;
 constexpr int kLitFaceDepths = 200;
 
-void ComputeLitFaceScales(const CloudSettings& settings, double g, double f,
+void ComputeLitFaceScales(const ref::CloudScatteringParameters& p, double g, double f,
                           CloudSlabTableNodes& table) {
     constexpr double kPi = std::numbers::pi;
-    ref::CloudScatteringParameters p{};
-    p.forward_g = settings.forward_g;
-    p.backward_g = settings.backward_g;
-    p.lobe_weight = settings.lobe_weight;
     const double d_mu = 2.0 / kLitFaceCosines;
     const double d_phi = kPi / kLitFaceAzimuths;
     const double cell_solid_angle = 2.0 * d_mu * d_phi;  // both sides of the light's plane
@@ -197,8 +194,8 @@ CloudSlabTableNodes ComputeSlabTables(const CloudSettings& s) {
     const double g = ref::CloudAsymmetry(p);
     const double f = ref::CloudDeltaFraction(p);
     CloudSlabTableNodes table{};
-    ComputeBeamOffsets(s, g, f, table);
-    ComputeLitFaceScales(s, g, f, table);
+    ComputeBeamOffsets(p, g, f, table);
+    ComputeLitFaceScales(p, g, f, table);
     return table;
 }
 
