@@ -195,9 +195,8 @@ void GrazingPart(const CloudSettings& settings, std::int64_t samples, int thread
                                       (1.0 - std::exp(-scaled / mu0)) +
                                   0.75 * mu0;
             std::printf(
-                "| %g | %.2f | %.4f ± %.4f | %.4f ± %.4f | %.4f | %.4f | %.4f | %.3f | %.4f | %.3f "
-                "| "
-                "%.3f |\n",
+                "| %g | %.2f | %.4f ± %.4f | %.4f ± %.4f "
+                "| %.4f | %.4f | %.4f | %.3f | %.4f | %.3f | %.3f |\n",
                 tau, mu0, photons.reflectance, photons.reflectance_error, photons.transmittance,
                 photons.transmittance_error, exact[k].reflectance, r, t, t / photons.transmittance,
                 r + t, ref::CloudBeamCosine(p, tau, mu0), gamma3);
@@ -552,7 +551,15 @@ int main(int argc, char** argv) {
                        "thin: deg, the views' elevation off the deck's plane (default 55)")
             ->check(CLI::Range(5.0, 89.0));
     CLI::Option* utc_option =
-        app.add_option("--utc", utc, "overcast: the time, ISO 8601 (default 2024-06-21T11:00:00Z)");
+        app.add_option("--utc", utc, "overcast: the time, ISO 8601 (default 2024-06-21T11:00:00Z)")
+            ->check([](const std::string& text) {
+                try {
+                    zenith::geo::TimeFromIso8601(text);
+                    return std::string();
+                } catch (const std::exception& error) {
+                    return std::string(error.what());
+                }
+            });
     CLI11_PARSE(app, argc, argv);
     if ((maps || single) && part != "cumulus") {
         std::fprintf(stderr,
