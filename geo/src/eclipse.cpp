@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "zenith/base/gauss_legendre.h"
 #include "zenith/base/units.h"
 #include "zenith/geo/moon.h"
 
@@ -14,44 +15,11 @@ double AngleBetween(const glm::dvec3& a, const glm::dvec3& b) {
     return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
 
-struct GaussLegendre {
-    std::vector<double> x, w;  // on [-1, 1]
-};
-
-// Nodes and weights by Newton's method on P_n (Numerical Recipes' gauleg scheme, written anew).
-GaussLegendre MakeGaussLegendre(int n) {
-    GaussLegendre g;
-    g.x.resize(static_cast<std::size_t>(n));
-    g.w.resize(static_cast<std::size_t>(n));
-    for (int i = 0; i < (n + 1) / 2; ++i) {
-        double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-        double dp = 0.0;
-        for (int iteration = 0; iteration < 100; ++iteration) {
-            double p0 = 1.0, p1 = 0.0;
-            for (int j = 1; j <= n; ++j) {
-                const double p2 = p1;
-                p1 = p0;
-                p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-            }
-            dp = n * (z * p0 - p1) / (z * z - 1.0);
-            const double dz = p0 / dp;
-            z -= dz;
-            if (std::abs(dz) < 1e-15) break;
-        }
-        const double w = 2.0 / ((1.0 - z * z) * dp * dp);
-        g.x[static_cast<std::size_t>(i)] = -z;
-        g.x[static_cast<std::size_t>(n - 1 - i)] = z;
-        g.w[static_cast<std::size_t>(i)] = w;
-        g.w[static_cast<std::size_t>(n - 1 - i)] = w;
-    }
-    return g;
-}
-
-const GaussLegendre& Nodes(int n) {
-    static const GaussLegendre standard = MakeGaussLegendre(48);
+const GaussLegendreRule& Nodes(int n) {
+    static const GaussLegendreRule standard = GaussLegendre(48);
     if (n == 48) return standard;
-    thread_local GaussLegendre other;
-    if (static_cast<int>(other.x.size()) != n) other = MakeGaussLegendre(n);
+    thread_local GaussLegendreRule other;
+    if (static_cast<int>(other.nodes.size()) != n) other = GaussLegendre(n);
     return other;
 }
 
@@ -96,18 +64,18 @@ double CoveredFluxFraction(const LimbDarkeningLaw& law, double radius, double oc
     std::array<double, 4> edges = {0.0, std::abs(d - occulter_radius), d + occulter_radius, radius};
     for (double& e : edges) e = std::clamp(e, 0.0, radius);
     std::sort(edges.begin(), edges.end());
-    const GaussLegendre& g = Nodes(nodes);
+    const GaussLegendreRule& g = Nodes(nodes);
     double covered = 0.0;
     for (std::size_t piece = 0; piece + 1 < edges.size(); ++piece) {
         const double a = edges[piece], b = edges[piece + 1];
         if (!(b > a)) continue;
-        for (std::size_t i = 0; i < g.x.size(); ++i) {
-            const double t = 0.5 * kPi * (g.x[i] + 1.0);  // [0, pi]
+        for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+            const double t = 0.5 * kPi * (g.nodes[i] + 1.0);  // [0, pi]
             const double r = a + (b - a) * 0.5 * (1.0 - std::cos(t));
             const double dr_dt = (b - a) * 0.5 * std::sin(t);
             const double x = r / radius;
             const double mu = std::sqrt(std::max(1.0 - x * x, 0.0));
-            covered += g.w[i] * 0.5 * kPi * dr_dt * Intensity(law, mu) *
+            covered += g.weights[i] * 0.5 * kPi * dr_dt * Intensity(law, mu) *
                        CoveredArc(r, occulter_radius, d) * r;
         }
     }

@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -10,6 +11,7 @@
 
 #include "zenith/base/atomic_file.h"
 #include "zenith/base/error.h"
+#include "zenith/base/gauss_legendre.h"
 #include "zenith/base/text_lines.h"
 #include "zenith/base/units.h"
 
@@ -109,6 +111,34 @@ TEST(CsvLine, QuotesCommasAndUnclosedFields) {
     EXPECT_TRUE(SplitCsvLine("", fields));
     EXPECT_EQ(fields, (std::vector<std::string>{""}));
     EXPECT_FALSE(SplitCsvLine("a,\"open", fields));
+}
+
+// The n-point rule integrates x^k over [-1, 1] exactly (2 / (k + 1) for even k, 0 for odd) up
+// to k = 2n - 1, and not beyond (where the miss is still large enough to see); the two-point
+// rule's nodes are -+1/sqrt(3).
+TEST(GaussLegendre, IsExactForPolynomialsUpToDegreeTwoNMinusOne) {
+    for (const int n : {1, 2, 5, 16, 48}) {
+        const GaussLegendreRule rule = GaussLegendre(n);
+        ASSERT_EQ(rule.nodes.size(), static_cast<std::size_t>(n));
+        for (int k = 0; k <= 2 * n; ++k) {
+            double sum = 0.0;
+            for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+                sum += rule.weights[i] * std::pow(rule.nodes[i], k);
+            }
+            const double exact = k % 2 == 0 ? 2.0 / (k + 1) : 0.0;
+            if (k < 2 * n) {
+                EXPECT_NEAR(sum, exact, 1e-13) << "n " << n << " k " << k;
+            } else if (n <= 5) {  // beyond, its error falls below 1e-9 by n = 16
+                EXPECT_GT(std::abs(sum - exact), 1e-6) << "n " << n << " k " << k;
+            }
+        }
+        for (std::size_t i = 1; i < rule.nodes.size(); ++i) {
+            EXPECT_LT(rule.nodes[i - 1], rule.nodes[i]);
+        }
+    }
+    const GaussLegendreRule two = GaussLegendre(2);
+    EXPECT_NEAR(two.nodes[1], 1.0 / std::sqrt(3.0), 1e-15);
+    EXPECT_THROW(GaussLegendre(0), ArgumentError);
 }
 
 }  // namespace

@@ -2,9 +2,9 @@
 // it (the cloud path tracer and the adding-doubling slab).
 #pragma once
 
-#include <cmath>
-#include <numbers>
 #include <vector>
+
+#include "zenith/base/gauss_legendre.h"
 
 namespace zenith::sky::test {
 
@@ -16,25 +16,11 @@ namespace zenith::sky::test {
 class HFunction {
   public:
     explicit HFunction(double omega, int iterations = 2000) : omega_(omega) {
-        // 48-point Gauss-Legendre on [0, 1] by Newton on P_n.
-        constexpr int n = 48;
-        for (int i = 0; i < n; ++i) {
-            double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
-            double dp = 0.0;
-            for (int iteration = 0; iteration < 100; ++iteration) {
-                double p0 = 1.0, p1 = x;
-                for (int k = 2; k <= n; ++k) {
-                    const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                dp = n * (x * p1 - p0) / (x * x - 1.0);
-                const double dx = p1 / dp;
-                x -= dx;
-                if (std::abs(dx) < 1e-15) break;
-            }
-            nodes_.push_back(0.5 * (x + 1.0));
-            weights_.push_back(1.0 / ((1.0 - x * x) * dp * dp));  // 2 / (...) halved for [0, 1]
+        // 48-point Gauss-Legendre on [0, 1].
+        const GaussLegendreRule rule = GaussLegendre(48);
+        for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+            nodes_.push_back(0.5 * (rule.nodes[i] + 1.0));
+            weights_.push_back(0.5 * rule.weights[i]);
         }
         h_.assign(nodes_.size(), 1.0);
         for (int iteration = 0; iteration < iterations; ++iteration) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "h_function.h"
+#include "reference/cloud_functions.h"
 #include "zenith/base/error.h"
 
 namespace zenith::sky {
@@ -22,11 +23,6 @@ constexpr double kPi = std::numbers::pi;
 struct Phase {
     double forward_g, backward_g, lobe_weight;
 };
-
-double HenyeyGreenstein(double g, double cosine) {
-    const double d = 1.0 + g * g - 2.0 * g * cosine;
-    return (1.0 - g * g) / (4.0 * kPi * d * std::sqrt(d));
-}
 
 TEST(SlabTransfer, ANonAbsorbingSlabReflectsOrTransmitsAllItReceives) {
     for (const Phase& p : {Phase{0.0, 0.0, 0.0}, Phase{0.85, 0.0, 0.0}, Phase{0.8, -0.3, 0.3},
@@ -44,8 +40,9 @@ TEST(SlabTransfer, ANonAbsorbingSlabReflectsOrTransmitsAllItReceives) {
     }
 }
 
-// tau = 1e-3: the light scattered once up out of the slab, the phase function averaged over
-// the azimuth by quadrature: R = 2 pi / mu0 ∫ mu L(mu) dmu with
+// tau = 1e-3: the light scattered once up out of the slab, the renderer's phase function
+// (which the slab reads only through its Legendre moments) averaged over the azimuth by
+// quadrature: R = 2 pi / mu0 ∫ mu L(mu) dmu with
 // L = E <p>(mu) mu0 / (mu + mu0) (1 - exp(-tau (1/mu + 1/mu0))). Twice-scattered light is
 // O(tau^2 ln tau) of it.
 TEST(SlabTransfer, AThinSlabReflectsWhatItScattersOnce) {
@@ -61,8 +58,8 @@ TEST(SlabTransfer, AThinSlabReflectsWhatItScattersOnce) {
                     const double phi = 2.0 * kPi * (j + 0.5) / kAzimuths;
                     const double cosine =
                         -mu * mu0 + std::sqrt((1.0 - mu * mu) * (1.0 - mu0 * mu0)) * std::cos(phi);
-                    phase += (1.0 - p.lobe_weight) * HenyeyGreenstein(p.forward_g, cosine) +
-                             p.lobe_weight * HenyeyGreenstein(p.backward_g, cosine);
+                    phase +=
+                        ref::CloudDualLobePhase(p.forward_g, p.backward_g, p.lobe_weight, cosine);
                 }
                 phase /= kAzimuths;
                 const double radiance =

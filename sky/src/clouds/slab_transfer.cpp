@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "zenith/base/error.h"
+#include "zenith/base/gauss_legendre.h"
 
 namespace zenith::sky {
 namespace {
@@ -15,31 +16,6 @@ using Eigen::VectorXd;
 
 constexpr int kMoments = 2 * kSlabStreams;  // Legendre moments kept by delta-M
 constexpr double kThinLayer = 0x1p-30;      // the first layer's scaled optical depth, at most
-
-// Gauss-Legendre nodes and weights on (0, 1), the weights summing to 1, by Newton's method on
-// P_n from the Chebyshev-like first guess.
-void GaussLegendre(int n, VectorXd& nodes, VectorXd& weights) {
-    nodes.resize(n);
-    weights.resize(n);
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
-        double derivative = 1.0;
-        for (int iteration = 0; iteration < 100; ++iteration) {
-            double p = 1.0, previous = 0.0;
-            for (int k = 1; k <= n; ++k) {
-                const double next = ((2.0 * k - 1.0) * x * p - (k - 1.0) * previous) / k;
-                previous = p;
-                p = next;
-            }
-            derivative = n * (x * p - previous) / (x * x - 1.0);
-            const double step = p / derivative;
-            x -= step;
-            if (std::abs(step) < 1e-15) break;
-        }
-        nodes[i] = 0.5 * (1.0 - x);
-        weights[i] = 1.0 / ((1.0 - x * x) * derivative * derivative);
-    }
-}
 
 // P_0(x) .. P_{kMoments - 1}(x).
 VectorXd Legendre(double x) {
@@ -102,8 +78,13 @@ std::vector<SlabTransfer> ConservativeSlabTransfer(double forward_g, double back
     constexpr int n = kSlabStreams;
     const auto m = static_cast<Eigen::Index>(mu0.size());
     const Eigen::Map<const VectorXd> beam_cosine(mu0.data(), m);
-    VectorXd mu, weight;
-    GaussLegendre(n, mu, weight);
+    // Gauss-Legendre on (0, 1), the weights summing to 1.
+    const GaussLegendreRule rule = GaussLegendre(n);
+    VectorXd mu(n), weight(n);
+    for (int i = 0; i < n; ++i) {
+        mu[i] = 0.5 * (rule.nodes[static_cast<std::size_t>(i)] + 1.0);
+        weight[i] = 0.5 * rule.weights[static_cast<std::size_t>(i)];
+    }
     const auto phase = [&](const VectorXd& pa, const VectorXd& pb, bool opposite) {
         double sum = 0.0;
         for (int l = 0; l < kMoments; ++l) {
