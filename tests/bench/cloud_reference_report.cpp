@@ -543,7 +543,7 @@ int main(int argc, char** argv) {
                    "at most (default 3)")
         ->check(CLI::Range(0, 3));
     app.add_option("--shadow-steps", settings.shadow_steps,
-                   "decks, overcast, cumulus, thin: samples toward each light (default 4; "
+                   "decks, overcast, cumulus, thin: samples toward each light (default 7; "
                    "each one twice as long as the one before)")
         ->check(CLI::Range(1, 16));
     CLI::Option* view_elevation_option =
