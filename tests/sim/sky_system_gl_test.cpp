@@ -149,21 +149,32 @@ struct ReferenceScene {
     }
 };
 
-// overcast_stratus over (47.45 N, 8.56 E), with the suite's noise cache.
-struct Overcast {
+// A weather preset over (47.45 N, 8.56 E), with the suite's noise cache.
+struct PresetWeather {
     sky::CloudSettings settings;
     sky::clouds::Weather weather;
 
-    static Overcast Set(SkySystem& sky) {
-        Overcast o;
+    static PresetWeather Set(SkySystem& sky, const char* preset) {
+        PresetWeather o;
         o.settings.noise_cache_directory =
             std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
-        o.weather = sky::clouds::LoadWeather("overcast_stratus");
+        o.weather = sky::clouds::LoadWeather(preset);
         sky.SetWeather(o.weather, o.settings);
         sky.SetWeatherOrigin(47.45, 8.56);
         return o;
     }
 };
+
+// The camera on the ground at (47.45 N, 8.56 E) at `utc`, looking up a little with a wide view
+// (the ground-light tests: SkyLighting does not depend on the view).
+geo::Time OnTheGroundAt(SkySystem& sky, const char* utc) {
+    const geo::Time time = geo::TimeFromIso8601(utc);
+    sky.SetTime(time);
+    sky.SetGeodetic(47.45, 8.56, 2.0);
+    sky.SetAttitude(0.0, 0.3, 0.0);
+    sky.SetProjection(1.0, 16.0 / 9.0);
+    return time;
+}
 
 // The light on a horizontal surface at the ground under overcast_stratus against the cloud path
 // tracer (zenith/sky/reference/cloud_path_tracer.h: its own transport, all orders, through the
@@ -179,12 +190,8 @@ struct Overcast {
 TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
     for (const char* utc : {"2024-06-21T11:00:00Z", "2024-06-21T17:30:00Z"}) {
         SkySystem* sky = sky_;
-        const geo::Time time = geo::TimeFromIso8601(utc);
-        sky->SetTime(time);
-        sky->SetGeodetic(47.45, 8.56, 2.0);
-        sky->SetAttitude(0.0, 0.3, 0.0);
-        sky->SetProjection(1.0, 16.0 / 9.0);
-        const Overcast overcast = Overcast::Set(*sky);
+        const geo::Time time = OnTheGroundAt(*sky, utc);
+        const PresetWeather overcast = PresetWeather::Set(*sky, "overcast_stratus");
         const sky::CloudSettings& settings = overcast.settings;
         const sky::clouds::Weather& weather = overcast.weather;
         sky::EnvironmentSettings environment;
@@ -229,17 +236,10 @@ TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
 TEST_F(SkySystemTest, GroundLightUnderThunderstormsAgainstThePathTracer) {
     for (const char* utc : {"2024-06-21T17:30:00Z", "2024-06-21T18:15:00Z"}) {
         SkySystem* sky = sky_;
-        const geo::Time time = geo::TimeFromIso8601(utc);
-        sky->SetTime(time);
-        sky->SetGeodetic(47.45, 8.56, 2.0);
-        sky->SetAttitude(0.0, 0.3, 0.0);
-        sky->SetProjection(1.0, 16.0 / 9.0);
-        sky::CloudSettings settings;
-        settings.noise_cache_directory =
-            std::filesystem::path(ZENITH_BINARY_DIR) / "cloud-noise-cache";
-        const sky::clouds::Weather weather = sky::clouds::LoadWeather("cumulonimbus");
-        sky->SetWeather(weather, settings);
-        sky->SetWeatherOrigin(47.45, 8.56);
+        const geo::Time time = OnTheGroundAt(*sky, utc);
+        const PresetWeather thunderstorms = PresetWeather::Set(*sky, "cumulonimbus");
+        const sky::CloudSettings& settings = thunderstorms.settings;
+        const sky::clouds::Weather& weather = thunderstorms.weather;
         sky->Prepare({32, 18});
         const SkyLighting l = sky->lighting();
         const double sun = Luminance(l.sun_illuminance) * std::max(l.sun_direction_enu.z, 0.0);
@@ -295,7 +295,7 @@ TEST_F(SkySystemTest, RainUnderTheOvercastAgainstThePathTracer) {
             (c.sun_ahead ? 1.0 : -1.0) * glm::normalize(glm::dvec3(sun.x, sun.y, 0.0));
         sky->SetAttitude(std::atan2(view.x, view.y), 0.0, 0.0);
         sky->SetProjection(0.02, 1.0);
-        const Overcast overcast = Overcast::Set(*sky);
+        const PresetWeather overcast = PresetWeather::Set(*sky, "overcast_stratus");
         const sky::CloudSettings& settings = overcast.settings;
         const sky::clouds::Weather& weather = overcast.weather;
         sky->Prepare({8, 8});
