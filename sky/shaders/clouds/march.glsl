@@ -213,8 +213,9 @@ CloudSample CloudStepColumn(IN(CloudLayerParameters) layer, IN(CloudSample) s,
 // A precipitation shaft's shadow march crosses the cloud it falls from in equal steps of at
 // most kCloudCrossingStep km, 4 to 16 of them (CloudShadowOpticalDepth). Four across a
 // thunderstorm's 11 km at a Sun 10 deg up (16 km steps) left the ground's light under
-// `cumulonimbus` +118 % against the path tracer, 7 and 16 +98 %; under overcast_stratus' 500 m
-// of drizzling stratus 4, 7 and 16 put the 27 views within 6.2, 6.8 and 6.4 % in the mean.
+// `cumulonimbus` +118 % against the path tracer, 7 and 16 +98 %. Under overcast_stratus' 500 m
+// of drizzling stratus (4-6 such steps) the 27 views are within 6.5 % in the mean; 4, 7 and 16
+// steps everywhere gave 6.2, 6.8 and 6.4 % (BENCHMARKS.md, "The shadow march's reach").
 const Number kCloudCrossingStep = 0.5;
 
 // Optical depth (extinction times distance, unitless) from p (its sample `origin`) toward a
