@@ -15,11 +15,12 @@ double AngleBetween(const glm::dvec3& a, const glm::dvec3& b) {
     return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
 
+// The n-point rule on [0, pi].
 const GaussLegendreRule& Nodes(int n) {
-    static const GaussLegendreRule standard = GaussLegendre(48);
+    static const GaussLegendreRule standard = GaussLegendre(48, 0.0, kPi);
     if (n == 48) return standard;
     thread_local GaussLegendreRule other;
-    if (static_cast<int>(other.nodes.size()) != n) other = GaussLegendre(n);
+    if (static_cast<int>(other.nodes.size()) != n) other = GaussLegendre(n, 0.0, kPi);
     return other;
 }
 
@@ -70,13 +71,13 @@ double CoveredFluxFraction(const LimbDarkeningLaw& law, double radius, double oc
         const double a = edges[piece], b = edges[piece + 1];
         if (!(b > a)) continue;
         for (std::size_t i = 0; i < g.nodes.size(); ++i) {
-            const double t = 0.5 * kPi * (g.nodes[i] + 1.0);  // [0, pi]
+            const double t = g.nodes[i];  // [0, pi]
             const double r = a + (b - a) * 0.5 * (1.0 - std::cos(t));
             const double dr_dt = (b - a) * 0.5 * std::sin(t);
             const double x = r / radius;
             const double mu = std::sqrt(std::max(1.0 - x * x, 0.0));
-            covered += g.weights[i] * 0.5 * kPi * dr_dt * Intensity(law, mu) *
-                       CoveredArc(r, occulter_radius, d) * r;
+            covered +=
+                g.weights[i] * dr_dt * Intensity(law, mu) * CoveredArc(r, occulter_radius, d) * r;
         }
     }
     return std::clamp(covered / total, 0.0, 1.0);

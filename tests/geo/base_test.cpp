@@ -2,11 +2,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "zenith/base/atomic_file.h"
@@ -139,6 +141,24 @@ TEST(GaussLegendre, IsExactForPolynomialsUpToDegreeTwoNMinusOne) {
     const GaussLegendreRule two = GaussLegendre(2);
     EXPECT_NEAR(two.nodes[1], 1.0 / std::sqrt(3.0), 1e-15);
     EXPECT_THROW(GaussLegendre(0), ArgumentError);
+}
+
+// On [a, b] the rule integrates x^k to (b^(k+1) - a^(k+1)) / (k + 1) up to k = 2n - 1, its
+// nodes inside the interval.
+TEST(GaussLegendre, MapsOntoAnyInterval) {
+    for (const auto& [a, b] : {std::pair{0.0, 1.0}, std::pair{-0.5, 3.0}}) {
+        const GaussLegendreRule rule = GaussLegendre(5, a, b);
+        EXPECT_GT(rule.nodes.front(), a);
+        EXPECT_LT(rule.nodes.back(), b);
+        for (int k = 0; k < 10; ++k) {
+            double sum = 0.0;
+            for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+                sum += rule.weights[i] * std::pow(rule.nodes[i], k);
+            }
+            const double exact = (std::pow(b, k + 1) - std::pow(a, k + 1)) / (k + 1);
+            EXPECT_NEAR(sum, exact, 1e-12 * std::max(1.0, std::abs(exact))) << a << " " << k;
+        }
+    }
 }
 
 }  // namespace

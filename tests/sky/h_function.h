@@ -2,6 +2,7 @@
 // it (the cloud path tracer and the adding-doubling slab).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "zenith/base/gauss_legendre.h"
@@ -17,11 +18,9 @@ class HFunction {
   public:
     explicit HFunction(double omega, int iterations = 2000) : omega_(omega) {
         // 48-point Gauss-Legendre on [0, 1].
-        const GaussLegendreRule rule = GaussLegendre(48);
-        for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
-            nodes_.push_back(0.5 * (rule.nodes[i] + 1.0));
-            weights_.push_back(0.5 * rule.weights[i]);
-        }
+        GaussLegendreRule rule = GaussLegendre(48, 0.0, 1.0);
+        nodes_ = std::move(rule.nodes);
+        weights_ = std::move(rule.weights);
         h_.assign(nodes_.size(), 1.0);
         for (int iteration = 0; iteration < iterations; ++iteration) {
             std::vector<double> next(h_.size());

@@ -8,7 +8,7 @@
 
 namespace zenith {
 
-GaussLegendreRule GaussLegendre(int n) {
+GaussLegendreRule GaussLegendre(int n, double a, double b) {
     if (n < 1) throw ArgumentError("GaussLegendre: n = " + std::to_string(n) + " (expected >= 1)");
     GaussLegendreRule rule;
     rule.nodes.resize(static_cast<std::size_t>(n));
@@ -34,6 +34,11 @@ GaussLegendreRule GaussLegendre(int n) {
         rule.nodes[static_cast<std::size_t>(n - 1 - i)] = z;
         rule.weights[static_cast<std::size_t>(i)] = w;
         rule.weights[static_cast<std::size_t>(n - 1 - i)] = w;
+    }
+    const double half = 0.5 * (b - a);
+    for (std::size_t i = 0; i < rule.nodes.size(); ++i) {
+        rule.nodes[i] = a + half * (rule.nodes[i] + 1.0);
+        rule.weights[i] *= half;
     }
     return rule;
 }

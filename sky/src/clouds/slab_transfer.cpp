@@ -79,12 +79,9 @@ std::vector<SlabTransfer> ConservativeSlabTransfer(double forward_g, double back
     const auto m = static_cast<Eigen::Index>(mu0.size());
     const Eigen::Map<const VectorXd> beam_cosine(mu0.data(), m);
     // Gauss-Legendre on (0, 1), the weights summing to 1.
-    const GaussLegendreRule rule = GaussLegendre(n);
-    VectorXd mu(n), weight(n);
-    for (int i = 0; i < n; ++i) {
-        mu[i] = 0.5 * (rule.nodes[static_cast<std::size_t>(i)] + 1.0);
-        weight[i] = 0.5 * rule.weights[static_cast<std::size_t>(i)];
-    }
+    const GaussLegendreRule rule = GaussLegendre(n, 0.0, 1.0);
+    const Eigen::Map<const VectorXd> mu(rule.nodes.data(), n);
+    const Eigen::Map<const VectorXd> weight(rule.weights.data(), n);
     const auto phase = [&](const VectorXd& pa, const VectorXd& pb, bool opposite) {
         double sum = 0.0;
         for (int l = 0; l < kMoments; ++l) {
