@@ -62,7 +62,8 @@ const int kNightSkyUnit = 19;  // atmosphere/render.frag: the night sky's light 
 const int kCloudAirShadowUnit = 20;  // clouds/light_shafts.frag's 4 outputs (20-23)
 const int kCloudTraceProfileUnit = 24;  // clouds/trace.frag's transmittance profile
 const int kCloudGeometryUnit = 25;      // clouds/geometry_march.frag's (L, T) at host geometry
-const int kTextureUnitCount = 26;       // units 0 .. kTextureUnitCount - 1 are zenith's
+const int kCloudSunDepthUnit = 26;      // clouds/sun_depth.comp's far sun-depth volume
+const int kTextureUnitCount = 27;       // units 0 .. kTextureUnitCount - 1 are zenith's
 
 // Image units.
 const int kOutputImageUnit = 0;          // what each LUT pass and clouds/shadow_map.comp write
@@ -84,7 +85,7 @@ const int kLutGroupSize = 8;          // 2-D LUTs and the aerial perspective: 8 
 // multiprocessors was mostly idle: 2.5 ms on an H200, 0.43 ms with 16 invocations, 0.29 ms with
 // 64; llvmpipe's pass 1.15x and 1.65x as long, its barriers being coroutine switches).
 const int kDirectionsGroupSize = 16;
-const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp: 8 x 8
+const int kShadowMapGroupSize = 8;    // clouds/shadow_map.comp and sun_depth.comp: 8 x 8
 const int kCloudPassGroupSize = 8;  // the clouds' passes in the compute stage: 8 x 8
 const int kEnvironmentShGroupSize = 64;  // atmosphere/environment_sh.comp: one group of 64
 

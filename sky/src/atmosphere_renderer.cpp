@@ -471,6 +471,14 @@ LutImage RendererInspection::ReadCloudShadowMap() const {
     const gl::StateGuard guard(renderer_.preserve_gl_state());
     return clouds->ReadShadowMap();
 }
+LutImage RendererInspection::ReadCloudSunDepth() const {
+    const CloudPasses* clouds = renderer_.impl_->clouds.get();
+    if (clouds == nullptr) {
+        throw std::logic_error("ReadCloudSunDepth: the renderer has no weather");
+    }
+    const gl::StateGuard guard(renderer_.preserve_gl_state());
+    return clouds->ReadSunDepth();
+}
 CloudShade RendererInspection::ReadCloudShade() const {
     gl::LightUniforms u{};
     glGetNamedBufferSubData(renderer_.impl_->atmosphere.light_buffer(), 0, sizeof(u), &u);

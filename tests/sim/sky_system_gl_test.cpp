@@ -231,8 +231,9 @@ TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
 // Their diffuse light comes from a slab as deep as the shadow march reaches toward the Sun,
 // and F16's four samples (1.2 km) cut the towers short: 2.13x and 2.77x the path tracer's
 // light (8,000 paths, +-6 and 8 %). Seven samples (10.2 km) and the rain's crossing of its
-// cloud in steps of at most 500 m: 1.60x and 1.84x. What is left is not found (BENCHMARKS.md,
-// "The shadow march's reach").
+// cloud in steps of at most 500 m: 1.60x and 1.84x (BENCHMARKS.md, "The shadow march's
+// reach"). The far sun-depth volume, which adds the cloud beyond the march's reach toward the
+// Sun: 1.18x and 1.28x ("The far sun-depth volume").
 TEST_F(SkySystemTest, GroundLightUnderThunderstormsAgainstThePathTracer) {
     for (const char* utc : {"2024-06-21T17:30:00Z", "2024-06-21T18:15:00Z"}) {
         SkySystem* sky = sky_;
@@ -257,7 +258,7 @@ TEST_F(SkySystemTest, GroundLightUnderThunderstormsAgainstThePathTracer) {
             "SkyLighting %.0f lux (%.2fx; of it the Sun %.0f)\n",
             glm::degrees(std::asin(reference_scene->scene.sun_direction.z)), reference.luminance,
             reference.luminance_error, shade, shade / reference.luminance, sun);
-        EXPECT_LT(shade / reference.luminance, 2.1) << utc;
+        EXPECT_LT(shade / reference.luminance, 1.45) << utc;
         EXPECT_GT(shade / reference.luminance, 0.8) << utc;
         sky->SetWeather({});
     }

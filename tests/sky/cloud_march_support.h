@@ -131,8 +131,8 @@ double CloudLuminance(const Sunlight& sun, const CloudLayerParameters& layer,
     for (int j = 0; j < jitters; ++j) {
         CloudMarchState state = CloudMarchStart();
         MarchCloudLayer(sun.atmosphere, sun.transmittance, sun.irradiance, layer, layer, weather,
-                        shape, detail, scattering, march, sun.lights, 1, camera, view, interval,
-                        (j + 0.5) / jitters, state);
+                        shape, detail, Texture3D(1, 1, 1), scattering, march, sun.lights, 1, camera,
+                        view, interval, (j + 0.5) / jitters, state);
         sum += state.luminance.x;
     }
     return sum / jitters;

@@ -134,7 +134,8 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
         m.max_steps = steps;
         CloudMarchState state = CloudMarchStart();
         MarchCloudLayer(atmosphere, transmittance, irradiance, layer, layer, weather, shape, detail,
-                        scattering, m, lights, 1, camera, view, interval, 0.5, state);
+                        Texture3D(1, 1, 1), scattering, m, lights, 1, camera, view, interval, 0.5,
+                        state);
         return state.luminance.x;
     };
     const double reference = luminance(1000);
@@ -149,7 +150,8 @@ TEST(MarchCloudLayer, ConvergesInItsStepCountAndConservesEnergy) {
     CloudMarchParameters m = march;
     m.max_steps = 7;
     MarchCloudLayer(atmosphere, transmittance, irradiance, layer, layer, weather, shape, detail,
-                    scattering, m, lights, 1, camera, view, interval, 0.5, state);
+                    Texture3D(1, 1, 1), scattering, m, lights, 1, camera, view, interval, 0.5,
+                    state);
     EXPECT_NEAR(state.luminance.x, (1.0 - state.transmittance) / (4.0 * kPi), 1e-12);
     EXPECT_GT(state.transmittance, 0.05);
     EXPECT_LT(state.transmittance, 0.5);
@@ -203,8 +205,10 @@ TEST(CloudShadowOpticalDepth, AShaftSeesTheWholeCloudItFallsFrom) {
             const vec3 q = p + light * ((i + 0.5) * length / kSteps);
             reference += density(std::sqrt(dot(q, q)) - kR) * length / kSteps;
         }
+        double reach = 0.0;
         const double shadow = CloudShadowOpticalDepth(shaft, cloud, weather, shape, detail, march,
-                                                      origin, p, light, 0);
+                                                      origin, p, light, 0, reach);
+        EXPECT_EQ(reach, -1.0) << "a shaft's crossing has nothing beyond it";
         std::printf("light %.0f deg up: shaft and cloud %.4f, integrated %.4f\n", elevation_deg,
                     shadow, reference);
         EXPECT_NEAR(shadow / reference, 1.0, 0.02) << elevation_deg << " deg";
@@ -287,6 +291,24 @@ TEST(CloudSettings, RejectsOutOfRangeValuesByName) {
         EXPECT_STREQ(e.what(),
                      "CloudSettings::pass_stage = 7 (expected 0 kAuto, 1 kFragment or 2 kCompute)");
     }
+    // The far sun-depth volume: none (0) or a bounded size, so no input sizes its memory.
+    s = CloudSettings{};
+    s.sun_depth_size = 0;
+    EXPECT_NO_THROW(s.Validate());
+    s.sun_depth_size = 4096;
+    try {
+        s.Validate();
+        FAIL();
+    } catch (const zenith::ArgumentError& e) {
+        EXPECT_STREQ(e.what(),
+                     "CloudSettings::sun_depth_size = 4096 (expected 0 (none) or 8..512)");
+    }
+    s = CloudSettings{};
+    s.sun_depth_levels = 1;
+    EXPECT_THROW(s.Validate(), zenith::ArgumentError);
+    s = CloudSettings{};
+    s.sun_depth_extent = std::nan("");
+    EXPECT_THROW(s.Validate(), zenith::ArgumentError);
 }
 
 TEST(CloudLightSet, DropsTheSunAtNightAndAFaintMoonByDay) {

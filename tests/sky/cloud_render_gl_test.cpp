@@ -366,6 +366,23 @@ struct View {
     double pitch;
 };
 
+// The clouds' image of `camera` at `altitude` m on the CPU, with the jitter of the GPU's first
+// frame.
+LutImage TraceOnTheCpu(const ref::CloudScene& scene, const Camera& camera, double altitude,
+                       glm::ivec2 size) {
+    LutImage traced(size.x, size.y, 1);
+    const glm::dvec3 camera_km = glm::dvec3(glm::vec3(camera.position / kKm));
+    for (int y = 0; y < size.y; ++y) {
+        for (int x = 0; x < size.x; ++x) {
+            const glm::dvec3 view =
+                camera.Direction(2.0 * (x + 0.5) / size.x - 1.0, 2.0 * (y + 0.5) / size.y - 1.0);
+            traced.at(x, y) = glm::vec4(ref::TraceClouds(scene, camera_km, altitude / kKm, view,
+                                                         ref::CloudJitter({x, y}, 0.0)));
+        }
+    }
+    return traced;
+}
+
 TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbit) {
     const Atmosphere earth;
     const Lights lights = Afternoon();
@@ -412,18 +429,7 @@ TEST_F(CloudRenderGlTest, TraceMatchesTheCpuReferenceFromBelowInsideAboveAndOrbi
                     << v.name;
             }
             if (cpu_images.size() == i) {
-                LutImage traced(size.x, size.y, 1);
-                const glm::dvec3 camera_km = glm::dvec3(glm::vec3(camera.position / kKm));
-                for (int y = 0; y < size.y; ++y) {
-                    for (int x = 0; x < size.x; ++x) {
-                        const glm::dvec3 view = camera.Direction(2.0 * (x + 0.5) / size.x - 1.0,
-                                                                 2.0 * (y + 0.5) / size.y - 1.0);
-                        traced.at(x, y) =
-                            glm::vec4(ref::TraceClouds(scene, camera_km, v.altitude / kKm, view,
-                                                       ref::CloudJitter({x, y}, 0.0)));
-                    }
-                }
-                cpu_images.push_back(std::move(traced));
+                cpu_images.push_back(TraceOnTheCpu(scene, camera, v.altitude, size));
             }
             const LutImage& cpu = cpu_images[i];
             double cover = 0.0;
@@ -786,6 +792,75 @@ TEST_F(CloudRenderGlTest, CloudTransmittanceIsTheShadowMapsMarchFromAnyHeight) {
     EXPECT_GT(inside, exact);
     EXPECT_LT(inside, 1.0);
     EXPECT_EQ(above, 1.0);
+}
+
+// The far sun-depth volume the GPU builds level by level, each level reading the one above it
+// through the sampler (clouds/sun_depth.comp), against the CPU's chain in double
+// (ref::CloudSunDepthVolume): tall clouds, 1.5-9 km, under a Sun 10 deg up, whose ways cross
+// several texels each; the frame that reads it against the CPU's trace; and without a volume,
+// one texel the march never reads.
+TEST_F(CloudRenderGlTest, SunDepthVolumeMatchesTheCpu) {
+    const Atmosphere earth;
+    clouds::Weather weather = Cumulus(0.6);
+    weather.layers[0].top_altitude = 9000.0;
+    weather.layers[0].cloud_type = 1.0;
+    CloudSettings settings = Settings();
+    settings.sun_depth_size = 32;
+    settings.sun_depth_levels = 10;
+    settings.sun_depth_extent = 60000.0;
+    const double e = 10.0 * ref::kPi / 180.0;
+    Lights lights;
+    lights.sun_direction = glm::dvec3(0.8 * std::cos(e), 0.6 * std::cos(e), std::sin(e));
+    const Camera camera = CameraAt(300.0, 0.4, 0.2);
+    AtmosphereRenderer renderer(earth);
+    renderer.SetWeather(weather, settings);
+    FrameOptions options = Options(glm::ivec2(32, 18));
+    options.clouds.reset_history = true;
+    const LutImage frame = RenderClouds(renderer, camera, lights, options);
+    const LutImage gpu = Inspect(renderer).ReadCloudSunDepth();
+    const ref::CloudScene scene = ref::MakeCloudScene(
+        earth, Inspect(renderer).ReadTransmittance(), Inspect(renderer).ReadMultipleScattering(),
+        Inspect(renderer).ReadGroundIrradiance(), weather, settings, clouds::test::CachedNoise(),
+        camera, lights, options.clouds);
+    ASSERT_EQ(gpu.size, glm::ivec3(32, 32, 10));
+    ASSERT_EQ(scene.sun_depth.size(), glm::ivec3(32, 32, 10));
+    double sum_gpu = 0.0, sum_cpu = 0.0, difference = 0.0, top = 0.0;
+    for (int z = 0; z < 10; ++z) {
+        for (int y = 0; y < 32; ++y) {
+            for (int x = 0; x < 32; ++x) {
+                const double g = gpu.at(x, y, z).r, c = scene.sun_depth.at(x, y, z).r;
+                sum_gpu += g;
+                sum_cpu += c;
+                difference += std::abs(g - c);
+                if (z == 9) top += g;
+            }
+        }
+    }
+    const double n = 32.0 * 32.0 * 10.0;
+    std::printf(
+        "sun-depth volume 32x32x10, Sun 10 deg up: mean optical depth GPU %.4f, CPU %.4f, mean "
+        "|difference| %.4f\n",
+        sum_gpu / n, sum_cpu / n, difference / n);
+    EXPECT_GT(sum_cpu / n, 1.0);  // the clouds are there
+    EXPECT_NEAR(sum_gpu / sum_cpu, 1.0, 0.005);
+    EXPECT_LT(difference / sum_cpu, 0.01);
+    EXPECT_EQ(top, 0.0);
+
+    const LutImage cpu = TraceOnTheCpu(scene, camera, 300.0, options.size);
+    const ImageDifference d = Difference(frame, cpu);
+    std::printf("its frame: GPU/CPU mean %.4f, per pixel %.2f %%\n",
+                MeanLuminance(frame) / MeanLuminance(cpu), 100.0 * d.luminance);
+    EXPECT_NEAR(MeanLuminance(frame) / MeanLuminance(cpu), 1.0, 0.005);
+    EXPECT_LT(d.luminance, 0.02);
+
+    settings.sun_depth_size = 0;
+    renderer.SetWeather(weather, settings);
+    const LutImage without = RenderClouds(renderer, camera, lights, options);
+    EXPECT_EQ(Inspect(renderer).ReadCloudSunDepth().size, glm::ivec3(1));
+    // What the volume adds darkens the clouds lit from beyond the march's reach.
+    std::printf("without the volume the frame is %.3f of the one with it\n",
+                MeanLuminance(without) / MeanLuminance(frame));
+    EXPECT_GT(MeanLuminance(without) / MeanLuminance(frame), 1.02);
 }
 
 // Under a uniformly raining deck the shaft is homogeneous: the host's precipitation query is

@@ -257,9 +257,13 @@ void AddCloudMarch(Layout& layout, const std::string& prefix, std::size_t base) 
     ZENITH_SAME(S, oriented_slabs);
     ZENITH_SAME(S, light_shaft_steps);
     ZENITH_SAME(S, column_steps);
+    ZENITH_SAME(S, sun_depth_center_x);
+    ZENITH_SAME(S, sun_depth_center_y);
+    ZENITH_SAME(S, sun_depth_extent);
+    ZENITH_SAME(S, sun_depth_base);
+    ZENITH_SAME(S, sun_depth_top);
     ZENITH_SAME(S, padding1);
     ZENITH_SAME(S, padding2);
-    ZENITH_SAME(S, padding3);
 }
 
 void AddCloud(Layout& layout, const std::string& prefix, std::size_t base) {
@@ -398,11 +402,13 @@ const std::map<std::string, int>& ExpectedUnits() {
         {"cloud_ground_shadow", kCloudGroundShadowUnit},
         {"cloud_air_shadow[0]", kCloudAirShadowUnit},  // and the next 3
         {"cloud_geometry", kCloudGeometryUnit},
+        {"cloud_sun_depth", kCloudSunDepthUnit},
         {"display_input", kDisplayInputUnit},
         {"display_scene_depth", kSceneDepthUnit},
         // Images.
         {"output_image", kOutputImageUnit},
         {"shadow_map", kOutputImageUnit},
+        {"sun_depth_volume", kOutputImageUnit},
         {"shade_directions", kShadeDirectionsImageUnit},
         {"shadow_map_image", kShadowMapImageUnit},
         {"environment_atlas", kEnvironmentImageUnit},
@@ -461,6 +467,7 @@ const std::map<std::string, ExpectedUniform>& ExpectedPlainUniforms() {
          {kScatteringOrderLocation, GL_INT}},
         {"atmosphere/multiple_scattering.comp:last_scattering_order",
          {kLastScatteringOrderLocation, GL_INT}},
+        {"clouds/sun_depth.comp:sun_depth_level", {kSunDepthLevelLocation, GL_INT}},
     };
     return uniforms;
 }
@@ -655,10 +662,11 @@ std::string Join(const std::vector<std::string>& lines) {
 
 TEST_F(GlBindingsTest, EveryBlockMatchesItsCppMirror) {
     // 5 LUT passes, 6 composites, the stars' points, the precipitation's streaks, the 6
-    // composites again with clouds, 14 cloud programs (the trace, the sky shade's trace, the
-    // reconstruction, the ground's shadow and the light shafts in both stages), 3 display
+    // composites again with clouds, 15 cloud programs (the trace, the sky shade's trace, the
+    // reconstruction, the ground's shadow and the light shafts in both stages; the shadow map,
+    // the sun-depth volume, the sky shade, the host geometry's list and march), 3 display
     // programs, 4 environment faces (with and without clouds, ray march) and its projection.
-    ASSERT_EQ(programs_.size(), 41u);
+    ASSERT_EQ(programs_.size(), 42u);
     const std::map<std::string, BlockMirror> mirrors = Mirrors();
     std::set<std::string> seen;
     std::vector<std::string> errors;

@@ -5,6 +5,7 @@
 // RepeatTexture2D). Noise is read with common/definitions.glsl's SampleTexture3D.
 #define CloudNoiseTexture sampler3D
 #define CloudShadowMapTexture sampler2D
+#define CloudSunDepthTexture sampler3D  // the far sun-depth volume (clouds/march.glsl)
 //
 // A layer's weather map as the march takes it: the sampler, or in compute programs
 // (CLOUD_COMPUTE_STAGE) its index into interface.glsl's weather_maps, read there with constant

@@ -64,6 +64,8 @@ layout(binding = kCloudTraceProfileUnit) uniform sampler2D cloud_trace_profile;
 layout(binding = kCloudGeometryUnit) uniform sampler2D cloud_geometry;
 layout(binding = kCloudHistoryUnit) uniform sampler2D cloud_history;
 layout(binding = kCloudShadowMapUnit) uniform sampler2D cloud_shadow_map;
+// r: the optical depth toward the main light beyond the shadow march (CloudFarSunDepth).
+layout(binding = kCloudSunDepthUnit) uniform sampler3D cloud_sun_depth;
 layout(binding = kCloudGroundShadowUnit) uniform sampler2D cloud_ground_shadow;
 layout(binding = kCloudAirShadowUnit) uniform sampler2D cloud_air_shadow[4];
 
@@ -158,7 +160,7 @@ CloudMarchState MarchCloudLayers(vec3 origin, float altitude, vec3 direction, fl
         interval.y = min(interval.y, distance);
         MarchCloudLayer(atmosphere, transmittance_texture, irradiance_texture, cloud_layers[i],
                         cloud_layers[min(i + 1, cloud_layer_count - 1)], CloudWeatherMap(i),
-                        shape_noise, detail_noise, cloud_scattering, march,
+                        shape_noise, detail_noise, cloud_sun_depth, cloud_scattering, march,
                         cloud_lights, cloud_light_count, origin, direction, interval, jitter,
                         state);
     }

@@ -26,9 +26,16 @@ struct CloudMarchParameters {
     Number oriented_slabs;  // 1: the diffuse slab follows the clouds' surface; 0: horizontal
     Number light_shaft_steps;  // samples of CloudAirShadowCorrection per ray, 0: no shafts
     Number column_steps;  // 1: a step's sample stands for its column across it; 0: for a point
+    // The far sun-depth volume (CloudFarSunDepth): its square's centre in ground coordinates
+    // (km, CloudGroundCoordinates), its side (km, 0: no volume) and the altitudes of its first
+    // and last levels (km).
+    Number sun_depth_center_x;
+    Number sun_depth_center_y;
+    Number sun_depth_extent;
+    Number sun_depth_base;
+    Number sun_depth_top;
     Number padding1;
     Number padding2;
-    Number padding3;
 };
 
 // A step of more optical depth than this is lit where its light comes from (MarchCloudLayer),
@@ -236,13 +243,14 @@ const Number kCloudCrossingStep = 0.5;
 // shaft into its cloud, reached 1.2 km from p (four of them) and stopped short of a deck at a
 // low Sun (overcast_stratus' 500 m of stratus are 1.7 km across at 17 deg): the ground's light
 // under it came out +29 % with the Sun 17 deg up and +110 % at 10 deg against the path tracer
-// (BENCHMARKS.md).
+// (BENCHMARKS.md). `reach` gets how far (km) the march went from p, or -1 where it crossed the
+// cloud above a shaft to its end (nothing lies beyond it).
 Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer,
                                IN(CloudLayerParameters) cloud_above, IN(WeatherTexture) weather_map,
                                IN(CloudNoiseTexture) shape_noise,
                                IN(CloudNoiseTexture) detail_noise, IN(CloudMarchParameters) march,
                                IN(CloudSample) origin, vec3 p, vec3 light_direction,
-                               int refinement) {
+                               int refinement, OUT(Number) reach) {
     Number optical_depth = 0.0;
     Number t = 0.0;
     Number step_length = march.shadow_first_step * exp2(-Number(refinement));
@@ -278,7 +286,113 @@ Number CloudShadowOpticalDepth(IN(CloudLayerParameters) layer,
         t += step_length;
         step_length *= growth;
     }
+    reach = crossing ? -1.0 : t;
     return optical_depth;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The far sun-depth volume: the optical depth toward the main light (MakeCloudLightSet's first)
+// through every cloud layer (not the precipitation shafts beneath them), from points of a square of
+// sun_depth_extent km around the camera's ground point at evenly spaced altitudes from
+// sun_depth_base to sun_depth_top (its levels). The shadow march stands for its reach (10.2 km at
+// F16's growth with seven samples); the volume adds what lies beyond it (CloudSampleSource). Under
+// `cumulonimbus` with the Sun 10-17 deg up, towers in the shadow of cloud more than 10.2 km away
+// toward the Sun were lit as if that cloud were not there: one view 4.7x the path tracer, the
+// ground's light 1.6-1.8x (BENCHMARKS.md). Level k's texel holds the depth from its point to where
+// the light's ray reaches level k + 1 (CloudSunDepthTexelWay: steps of at most kCloudSunDepthStep
+// km, up to kCloudSunDepthMaxSteps of them) plus level k + 1's value there, read from the volume:
+// built from the top level down, one level per dispatch, so each ray is marched once however long
+// it is (clouds/sun_depth.comp; on the CPU, cloud_trace.h). A way that leaves the square reads its
+// edge: beyond it the field is taken as the edge's.
+const Number kCloudSunDepthStep = 0.5;
+const int kCloudSunDepthMaxSteps = 32;
+
+// The point of the cloud frame above ground coordinates `ground` (km, CloudGroundCoordinates'
+// dome projection) at `altitude` km.
+vec3 CloudDomePoint(Number bottom_radius, vec2 ground, Number altitude) {
+    Number s = length(ground);
+    Number theta = s / bottom_radius;
+    vec2 along = s > 0.0 ? ground / s : vec2(1.0, 0.0);
+    return (bottom_radius + altitude) * vec3(along * sin(theta), cos(theta));
+}
+
+Number CloudSunDepthAltitude(IN(CloudMarchParameters) march, int level, int levels) {
+    return mix(march.sun_depth_base, march.sun_depth_top,
+               Number(level) / Number(max(levels - 1, 1)));
+}
+
+// The volume's texture coordinate at p (cloud frame, km): uv across the square, w at the level
+// texels' centres (a sampler's linear filter then interpolates between levels).
+vec3 CloudSunDepthUvw(IN(CloudMarchParameters) march, IN(CloudLayerParameters) layer, vec3 p,
+                      ivec3 size) {
+    vec2 center = vec2(march.sun_depth_center_x, march.sun_depth_center_y);
+    vec2 uv = (CloudGroundCoordinates(layer, p) - center) / march.sun_depth_extent + vec2(0.5);
+    Number level = (CloudAltitude(layer, p) - march.sun_depth_base) /
+                   (march.sun_depth_top - march.sun_depth_base) * Number(size.z - 1);
+    return vec3(uv, (level + 0.5) / Number(size.z));
+}
+
+// Texel `texel` of a volume of `size`: its point p (cloud frame, km), and the way from p toward
+// `light` to level texel.z + 1 (km) with where it ends in the volume. The top level's way is
+// empty (length 0); a way the ground stops ends there (`above` false: nothing to add).
+struct CloudSunDepthWay {
+    vec3 origin;
+    Number length_km;
+    int steps;
+    bool above;
+    vec3 end_uvw;
+};
+
+CloudSunDepthWay CloudSunDepthTexelWay(IN(CloudMarchParameters) march,
+                                       IN(CloudLayerParameters) layer, ivec3 texel, ivec3 size,
+                                       vec3 light) {
+    vec2 uv = (vec2(texel.x, texel.y) + vec2(0.5)) / vec2(size.x, size.y);
+    vec2 center = vec2(march.sun_depth_center_x, march.sun_depth_center_y);
+    Number altitude = CloudSunDepthAltitude(march, texel.z, size.z);
+    CloudSunDepthWay way;
+    way.origin = CloudDomePoint(layer.bottom_radius,
+                                center + (uv - vec2(0.5)) * march.sun_depth_extent, altitude);
+    way.length_km = 0.0;
+    way.steps = 0;
+    way.above = false;
+    way.end_uvw = vec3(0.0);
+    if (texel.z + 1 >= size.z) return way;
+    Number next = CloudSunDepthAltitude(march, texel.z + 1, size.z);
+    Number r = length(way.origin);
+    Number mu = dot(way.origin, light) / r;
+    Number ground = RaySphereDistance(r, mu, altitude, layer.bottom_radius);
+    way.above = !(ground >= 0.0);
+    way.length_km = way.above
+                        ? RaySphereDistance(r, mu, altitude - next, layer.bottom_radius + next)
+                        : ground;
+    way.length_km = max(way.length_km, 0.0);
+    way.steps = int(clamp(ceil(way.length_km / kCloudSunDepthStep), 1.0,
+                          Number(kCloudSunDepthMaxSteps)));
+    // At the next level's texel centre exactly, so a linear filter reads that level alone.
+    vec3 end = CloudSunDepthUvw(march, layer, way.origin + light * way.length_km, size);
+    way.end_uvw = vec3(end.x, end.y, (Number(texel.z + 1) + 0.5) / Number(size.z));
+    return way;
+}
+
+// How much of a shadow-map texel's own value to take at `uv` rather than the map's mean (or of
+// a sun-depth texel's rather than none): faded out over the square's outer 5 % on each side, so
+// its edge does not show.
+Number CloudShadowMapEdgeWeight(vec2 uv) {
+    return clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0);
+}
+
+// The optical depth toward the main light beyond q, the end of p's shadow march (km, cloud
+// frame), from the volume; 0 where there is none (sun_depth_extent 0), above its top level, and
+// faded to 0 over its square's outer 5 % (CloudShadowMapEdgeWeight): the march alone, as
+// before, where the square does not reach.
+Number CloudFarSunDepth(IN(CloudMarchParameters) march, IN(CloudLayerParameters) layer,
+                        IN(CloudSunDepthTexture) volume, vec3 q) {
+    if (!(march.sun_depth_extent > 0.0)) return 0.0;
+    if (CloudAltitude(layer, q) >= march.sun_depth_top) return 0.0;
+    vec3 uvw = CloudSunDepthUvw(march, layer, q, TextureSize(volume));
+    Number weight = CloudShadowMapEdgeWeight(vec2(uvw.x, uvw.y));
+    if (!(weight > 0.0)) return 0.0;
+    return weight * SampleTexture3D(volume, uvw).r;
 }
 
 // The large-scale cloud field at a ground position and altitude: the density's argument before
@@ -351,6 +465,7 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(CloudLayerParameters) layer, IN(CloudLayerParameters) cloud_above,
                        IN(WeatherTexture) weather_map,
                        IN(CloudNoiseTexture) shape_noise, IN(CloudNoiseTexture) detail_noise,
+                       IN(CloudSunDepthTexture) sun_depth,
                        IN(CloudScatteringParameters) scattering, IN(CloudMarchParameters) march,
                        IN(LightSet) lights, int light_count, IN(CloudSample) s, vec3 p, vec3 view,
                        int refinement) {
@@ -372,9 +487,14 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         Number mu_l = dot(p, direction) / r;
         vec3 atmosphere_transmittance =
             GetTransmittanceToSun(atmosphere, transmittance_texture, r, mu_l);
+        Number reach;
         Number optical_depth =
             CloudShadowOpticalDepth(layer, cloud_above, weather_map, shape_noise, detail_noise,
-                                    march, s, p, direction, refinement);
+                                    march, s, p, direction, refinement, reach);
+        // Beyond the march's reach, the main light's volume (CloudFarSunDepth).
+        if (l == 0 && reach >= 0.0) {
+            optical_depth += CloudFarSunDepth(march, layer, sun_depth, p + direction * reach);
+        }
         // The slab faces the light: the normal or its opposite, whichever the light enters.
         // Beyond p it reaches as deep as a coarser march away from the light's side shows (the
         // shadow march's reach in two samples fewer, from 320 m: five, to 10 km; with four
@@ -384,7 +504,8 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
         Number depth_beyond = depth_below;
         for (int side = 0; side < (dot(facing, up) < kCloudVerticalSlab ? 1 : 0); ++side) {
             depth_beyond = CloudShadowOpticalDepth(layer, cloud_above, weather_map, shape_noise,
-                                                   detail_noise, march, s, p, -facing, -2);
+                                                   detail_noise, march, s, p, -facing, -2,
+                                                   reach);
         }
         direct += lights.light[l].illuminance * atmosphere_transmittance *
                   CloudSunScattering(scattering, optical_depth, depth_beyond,
@@ -412,9 +533,10 @@ void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
                      IN(IrradianceTexture) irradiance_texture,
                      IN(CloudLayerParameters) layer, IN(CloudLayerParameters) cloud_above,
                      IN(WeatherTexture) weather_map, IN(CloudNoiseTexture) shape_noise,
-                     IN(CloudNoiseTexture) detail_noise, IN(CloudScatteringParameters) scattering,
-                     IN(CloudMarchParameters) march, IN(LightSet) lights, int light_count,
-                     vec3 origin, vec3 view, vec2 interval, Number jitter,
+                     IN(CloudNoiseTexture) detail_noise, IN(CloudSunDepthTexture) sun_depth,
+                     IN(CloudScatteringParameters) scattering, IN(CloudMarchParameters) march,
+                     IN(LightSet) lights, int light_count, vec3 origin, vec3 view,
+                     vec2 interval, Number jitter,
                      INOUT(CloudMarchState) state) {
     Number length_km = interval.y - interval.x;
     if (!(length_km > 0.0)) return;
@@ -538,8 +660,8 @@ void MarchCloudLayer(IN(AtmosphereParameters) atmosphere,
         for (int lit = 0; lit < (s.density > 0.0 ? 1 : 0); ++lit) {
             vec3 source = CloudSampleSource(atmosphere, transmittance_texture, irradiance_texture,
                                             layer, cloud_above, weather_map, shape_noise,
-                                            detail_noise, scattering, march, lights,
-                                            light_count, described,
+                                            detail_noise, sun_depth, scattering, march,
+                                            lights, light_count, described,
                                             origin + view * t, view, refinement) *
                           source_scale;
             state.depth_weight += state.transmittance;
@@ -615,12 +737,6 @@ vec2 CloudShadowMapUv(vec3 camera, Number bottom_radius, Number extent, vec3 gro
     Number arc = atan(s, dot(n, up)) * bottom_radius;
     vec2 offset = s > 0.0 ? tangent * (arc / s) : vec2(0.0);
     return offset / extent + vec2(0.5);
-}
-
-// How much of a shadow-map texel's own value to take at `uv` rather than the map's mean: faded
-// out over the map's outer 5 % on each side, so its edge does not show.
-Number CloudShadowMapEdgeWeight(vec2 uv) {
-    return clamp((0.5 - max(abs(uv.x - 0.5), abs(uv.y - 0.5))) / 0.05, 0.0, 1.0);
 }
 
 // The part [x, y] (km) of a ray from radius r (zenith cosine mu) below the clouds' base, the
@@ -749,6 +865,25 @@ CloudShaftProfile CloudAirShadowCorrection(IN(AtmosphereParameters) atmosphere,
     return profile;
 }
 
+// Optical depth of one layer along [interval.x, interval.y] km of the ray from `origin` along
+// `direction`, the density at the midpoints of `steps` equal steps (0 for an empty interval).
+Number CloudRayDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) weather_map,
+                     IN(CloudNoiseTexture) shape_noise, IN(CloudNoiseTexture) detail_noise,
+                     IN(CloudMarchParameters) march, vec3 origin, vec3 direction, vec2 interval,
+                     int steps) {
+    Number length_km = interval.y - interval.x;
+    if (!(length_km > 0.0)) return 0.0;
+    Number dt = length_km / Number(steps);
+    Number optical_depth = 0.0;
+    for (int j = 0; j < steps; ++j) {
+        vec3 p = origin + direction * (interval.x + (Number(j) + 0.5) * dt);
+        optical_depth +=
+            SampleCloudDensity(layer, weather_map, shape_noise, detail_noise, p).density *
+            march.extinction * dt;
+    }
+    return optical_depth;
+}
+
 // Optical depth of one layer from `origin` (cloud frame, `altitude` km above the ground, exact)
 // toward the light, with `steps` samples of the density in the layer: the shadow map's march
 // from the ground (no lighting), and the host's sunlight at the aircraft.
@@ -759,17 +894,8 @@ Number CloudLayerShadowDepth(IN(CloudLayerParameters) layer, IN(WeatherTexture) 
     Number r = length(origin);
     Number mu = dot(origin, light_direction) / r;
     vec2 interval = CloudLayerInterval(layer, r, mu, altitude, march.max_distance);
-    Number length_km = interval.y - interval.x;
-    if (!(length_km > 0.0)) return 0.0;
-    Number dt = length_km / Number(steps);
-    Number optical_depth = 0.0;
-    for (int j = 0; j < steps; ++j) {
-        vec3 p = origin + light_direction * (interval.x + (Number(j) + 0.5) * dt);
-        optical_depth +=
-            SampleCloudDensity(layer, weather_map, shape_noise, detail_noise, p).density *
-            march.extinction * dt;
-    }
-    return optical_depth;
+    return CloudRayDepth(layer, weather_map, shape_noise, detail_noise, march, origin,
+                         light_direction, interval, steps);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -270,6 +270,12 @@ void CloudSettings::Validate() const {
             "1..256");
     Require(shadow_map_interval >= 1 && shadow_map_interval <= 1000, "shadow_map_interval",
             shadow_map_interval, "1..1000");
+    Require(sun_depth_size == 0 || (sun_depth_size >= 8 && sun_depth_size <= 512), "sun_depth_size",
+            sun_depth_size, "0 (none) or 8..512");
+    Require(sun_depth_levels >= 2 && sun_depth_levels <= 64, "sun_depth_levels", sun_depth_levels,
+            "2..64");
+    Require(sun_depth_extent >= 1000.0 && sun_depth_extent <= 1e6, "sun_depth_extent",
+            sun_depth_extent, "1 km .. 1000 km");
     const int stage = static_cast<int>(pass_stage);
     Require(stage >= static_cast<int>(CloudPassStage::kAuto) &&
                 stage <= static_cast<int>(CloudPassStage::kCompute),

@@ -3,7 +3,10 @@
 // std140 GL mirror, like shader_parameters.h for the atmosphere.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <glm/glm.hpp>
 #include <type_traits>
 #include <vector>
 
@@ -107,6 +110,35 @@ Parameters MakeCloudMarchParameters(const CloudSettings& s) {
     p.max_distance = Scalar(s.max_distance / kKm);
     p.light_shaft_steps = Scalar(s.light_shaft_steps);
     return p;
+}
+
+// The far sun-depth volume's frame in `march` (clouds/march.glsl, CloudFarSunDepth): its square
+// centred below `camera` (cloud frame, km) in the dome's ground coordinates, its side, and its
+// levels from the lowest of the `layers`' bases to the highest of their clouds' tops, leaving
+// out precipitation shafts (below their clouds, which the light's way up from a cloud never
+// meets; a shaft's own light crosses its cloud whole). No volume (extent 0) where
+// settings.sun_depth_size is 0 or there are no clouds.
+template <typename Parameters, typename LayerParameters>
+void SetCloudSunDepthFrame(Parameters& march, const CloudSettings& settings,
+                           const std::vector<LayerParameters>& layers, glm::dvec3 camera) {
+    using Scalar = decltype(Parameters{}.extinction);
+    march.sun_depth_extent = Scalar(0.0);
+    double base = 1e9, top = -1e9;
+    for (const LayerParameters& layer : layers) {
+        if (layer.precipitation_shaft > 0.5) continue;
+        base = std::min(base, double(layer.base_altitude));
+        top = std::max(top, double(layer.cloud_top_altitude));
+    }
+    if (settings.sun_depth_size == 0 || !(top >= base)) return;
+    const double s = glm::length(glm::dvec2(camera));
+    const double radius = double(layers[0].bottom_radius);
+    const glm::dvec2 ground =
+        s > 0.0 ? glm::dvec2(camera) * (radius * std::atan2(s, camera.z) / s) : glm::dvec2(0.0);
+    march.sun_depth_center_x = Scalar(ground.x);
+    march.sun_depth_center_y = Scalar(ground.y);
+    march.sun_depth_extent = Scalar(settings.sun_depth_extent / 1000.0);
+    march.sun_depth_base = Scalar(base);
+    march.sun_depth_top = Scalar(std::max(top, base + 0.001));
 }
 
 // The order in which a ray from a camera at `camera_altitude` (m) meets the layers (indices

@@ -127,6 +127,7 @@ enum CloudProgram : std::size_t {
     kReconstructProgram,
     kComputeReconstructProgram,
     kShadowMapProgram,
+    kSunDepthProgram,
     kShadeTraceProgram,
     kComputeShadeTraceProgram,
     kShadeProgram,
@@ -155,6 +156,8 @@ gl::Program BuildCloudProgram(CloudProgram program) {
             return gl::ComputeProgram("clouds/reconstruct.comp", kCloudParts, kComputeStage);
         case kShadowMapProgram:
             return gl::ComputeProgram("clouds/shadow_map.comp", kCloudParts, kComputeStage);
+        case kSunDepthProgram:
+            return gl::ComputeProgram("clouds/sun_depth.comp", kCloudParts, kComputeStage);
         case kShadeTraceProgram:
             return gl::FullscreenProgram("clouds/sky_shade_trace.frag", {}, kCloudParts);
         case kComputeShadeTraceProgram:
@@ -212,6 +215,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
       reconstruct_(
           BuildCloudProgram(compute_passes_ ? kComputeReconstructProgram : kReconstructProgram)),
       shadow_pass_(BuildCloudProgram(kShadowMapProgram)),
+      sun_depth_pass_(BuildCloudProgram(kSunDepthProgram)),
       shade_trace_pass_(
           BuildCloudProgram(compute_passes_ ? kComputeShadeTraceProgram : kShadeTraceProgram)),
       shade_pass_(BuildCloudProgram(kShadeProgram)),
@@ -237,6 +241,13 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
     glCreateBuffers(1, &shade_);
     glNamedBufferStorage(shade_, sizeof(gl::LightUniforms), nullptr, 0);
     shadow_map_ = gl::CreateTexture2D(glm::ivec2(settings_.shadow_map_size));
+    // Without a volume, one texel that no sample reads (sun_depth_extent 0), so the sampler
+    // stays complete.
+    sun_depth_ = gl::CreateTexture3D(
+        settings_.sun_depth_size > 0
+            ? glm::ivec3(glm::ivec2(settings_.sun_depth_size), settings_.sun_depth_levels)
+            : glm::ivec3(1),
+        GL_R32F);
     shade_directions_ = gl::CreateTexture2D(glm::ivec2(kCloudSkyShadeSize));
     shade_framebuffer_ = CreateFramebuffer({shade_directions_});
     glCreateVertexArrays(1, &vertex_array_);
@@ -251,7 +262,7 @@ CloudPasses::~CloudPasses() {
                         &geometry_framebuffer_, &geometry_list_framebuffer_});
     DeleteTextures({&shape_, &detail_, &trace_color_, &trace_depth_, &trace_profile_,
                     &ground_shadow_color_, &history_color_[0], &history_color_[1], &shadow_map_,
-                    &shade_directions_, &geometry_color_});
+                    &sun_depth_, &shade_directions_, &geometry_color_});
     glDeleteBuffers(1, &geometry_list_buffer_);
     glDeleteTextures(static_cast<GLsizei>(air_shadow_color_.size()), air_shadow_color_.data());
     for (GLuint& t : weather_maps_) glDeleteTextures(1, &t);
@@ -289,15 +300,21 @@ void CloudPasses::Resize(glm::ivec2 size) {
 }
 
 void CloudPasses::UploadUniforms(const Atmosphere& atmosphere, const Camera& camera,
-                                 const Lights& lights, const CloudView& view, bool history_valid) {
+                                 const Lights& lights, const CloudView& view, bool history_valid,
+                                 bool update) {
     gl::CloudUniforms u{};
+    std::vector<gl::CloudLayerUniforms> layers;
     for (std::size_t i = 0; i < weather_.layers.size(); ++i) {
-        u.layers[i] = MakeCloudLayerParameters<gl::CloudLayerUniforms>(
-            weather_.layers[i], cloud_tops_[i], settings_, atmosphere.bottom_radius, view.time);
+        layers.push_back(MakeCloudLayerParameters<gl::CloudLayerUniforms>(
+            weather_.layers[i], cloud_tops_[i], settings_, atmosphere.bottom_radius, view.time));
+        u.layers[i] = layers.back();
     }
     u.scattering = MakeCloudScatteringParameters<gl::CloudScatteringUniforms>(
         settings_, atmosphere.ground_albedo);
     u.march = MakeCloudMarchParameters<gl::CloudMarchUniforms>(settings_);
+    // The volume stays where it was made until the next update.
+    if (update) sun_depth_camera_ = view.weather_from_world * camera.position / kKm;
+    SetCloudSunDepthFrame(u.march, settings_, layers, sun_depth_camera_);
     u.lights =
         MakeCloudLightSet<gl::LightUniforms>(lights, camera.position, view.weather_from_world);
     for (int i = 0; i < 3; ++i) {
@@ -347,6 +364,7 @@ void CloudPasses::BindTextures() const {
     glBindBufferBase(GL_UNIFORM_BUFFER, kCloudBlockBinding, uniforms_);
     glBindTextureUnit(kShapeNoiseUnit, shape_);
     glBindTextureUnit(kDetailNoiseUnit, detail_);
+    glBindTextureUnit(kCloudSunDepthUnit, sun_depth_);
     for (GLuint i = 0; i < static_cast<GLuint>(kCloudMaxLayers); ++i) {
         // Units of absent layers get the first map, so every sampler is complete.
         glBindTextureUnit(kWeatherMapsUnit + i,
@@ -360,13 +378,13 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
     // before it (replayed frames match whether rendered in order, resumed or sharded).
     if (view.reset_history) frame_index_ = 0;
     const bool history_valid = previous_.has_value() && !view.reset_history;
-    UploadUniforms(atmosphere, camera, lights, view, history_valid);
+    // The shadow map, the sun-depth volume and the shade follow the Sun, the wind and the ground
+    // below the camera, which move little in shadow_map_interval frames.
+    const bool update = !history_valid || frame_index_ % settings_.shadow_map_interval == 0;
+    UploadUniforms(atmosphere, camera, lights, view, history_valid, update);
     BindTextures();
     query_used_.fill(false);
 
-    // The shadow map and the shade follow the Sun, the wind and the ground below the camera,
-    // which move little in shadow_map_interval frames.
-    const bool update = !history_valid || frame_index_ % settings_.shadow_map_interval == 0;
     if (update) {
         shadow_pass_.Use();
         glBindImageTexture(kOutputImageUnit, shadow_map_, 0, GL_FALSE, 0, GL_WRITE_ONLY,
@@ -375,6 +393,7 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
         const GLuint groups = static_cast<GLuint>(
             (settings_.shadow_map_size + kShadowMapGroupSize - 1) / kShadowMapGroupSize);
         glDispatchCompute(groups, groups, 1);
+        UpdateSunDepth();
         glEndQuery(GL_TIME_ELAPSED);
         query_used_[kShadowQuery] = true;
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
@@ -405,6 +424,20 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
                              kCloudMembersEnd - kCloudMembers);
 }
 
+void CloudPasses::UpdateSunDepth() const {
+    if (settings_.sun_depth_size == 0) return;
+    sun_depth_pass_.Use();
+    glBindImageTexture(kOutputImageUnit, sun_depth_, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    const GLuint groups = static_cast<GLuint>((settings_.sun_depth_size + kShadowMapGroupSize - 1) /
+                                              kShadowMapGroupSize);
+    // From the top level down: each reads the one above it through the sampler.
+    for (int level = settings_.sun_depth_levels - 1; level >= 0; --level) {
+        glProgramUniform1i(sun_depth_pass_.name(), gl::kSunDepthLevelLocation, level);
+        glDispatchCompute(groups, groups, 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
+}
+
 void CloudPasses::RunCellPass(const gl::Program& program, GLuint framebuffer,
                               std::initializer_list<PassTarget> targets, glm::ivec2 size,
                               GLuint query) const {
@@ -431,7 +464,8 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
                          glm::ivec2 size, const CloudView& view) {
     if (size != size_) Resize(size);
     const bool history_valid = previous_.has_value() && !view.reset_history;
-    UploadUniforms(atmosphere, camera, lights, view, history_valid);
+    // The sun-depth volume stays around the camera Prepare made it for.
+    UploadUniforms(atmosphere, camera, lights, view, history_valid, /*update=*/false);
     BindTextures();
 
     RunCellPass(
@@ -535,6 +569,13 @@ void CloudPasses::BindForTrace() const {
 LutImage CloudPasses::ReadClouds() const {
     if (size_.x == 0) throw gl::GlError("ReadClouds before any Render with weather");
     return gl::ReadTexture(history_color_[current_], glm::ivec3(size_, 1));
+}
+
+LutImage CloudPasses::ReadSunDepth() const {
+    GLint width = 0, depth = 0;
+    glGetTextureLevelParameteriv(sun_depth_, 0, GL_TEXTURE_WIDTH, &width);
+    glGetTextureLevelParameteriv(sun_depth_, 0, GL_TEXTURE_DEPTH, &depth);
+    return gl::ReadTexture(sun_depth_, glm::ivec3(width, width, depth));
 }
 
 LutImage CloudPasses::ReadShadowMap() const {

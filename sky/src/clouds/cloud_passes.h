@@ -69,6 +69,7 @@ class CloudPasses {
 
     LutImage ReadClouds() const;
     LutImage ReadShadowMap() const;
+    LutImage ReadSunDepth() const;
     GLuint shadow_map_texture() const { return shadow_map_; }
 
     // GPU times (ms) of the last frame: shadow map, shade, trace, reconstruct, the ground's
@@ -79,7 +80,9 @@ class CloudPasses {
   private:
     void Resize(glm::ivec2 size);
     void UploadUniforms(const Atmosphere& atmosphere, const Camera& camera, const Lights& lights,
-                        const CloudView& view, bool history_valid);
+                        const CloudView& view, bool history_valid, bool update);
+    // clouds/sun_depth.comp over every level, top down (settings_.sun_depth_size > 0).
+    void UpdateSunDepth() const;
     void BindTextures() const;
     // A per-cell (or per-pixel, per-direction) pass over `size` in the stage chosen, into
     // `targets`: the fragment stage draws `framebuffer`, whose colour attachments they are in
@@ -96,8 +99,8 @@ class CloudPasses {
     clouds::Weather weather_;
     CloudSettings settings_;
     bool compute_passes_ = false;  // settings_.pass_stage, kAuto resolved for this context
-    gl::Program trace_, reconstruct_, shadow_pass_, shade_trace_pass_, shade_pass_, ground_shadow_,
-        light_shafts_;
+    gl::Program trace_, reconstruct_, shadow_pass_, sun_depth_pass_, shade_trace_pass_, shade_pass_,
+        ground_shadow_, light_shafts_;
     GLuint uniforms_ = 0;
     GLuint shape_ = 0, detail_ = 0;
     std::vector<GLuint> weather_maps_;
@@ -113,6 +116,10 @@ class CloudPasses {
     glm::ivec2 shaft_size_{0, 0};
     std::array<GLuint, 2> history_color_{}, history_framebuffer_{};
     GLuint shadow_map_ = 0;
+    // The far sun-depth volume (R32F, sun_depth_size^2 x sun_depth_levels; 1 texel without one)
+    // and the camera it was made around (the weather frame, km).
+    GLuint sun_depth_ = 0;
+    glm::dvec3 sun_depth_camera_{0.0};
     GLuint shade_directions_ = 0;  // (L, T) of the clouds along each sky-shade direction
     GLuint shade_ = 0;             // a LightSet whose cloud members sky_shade.comp writes
     GLuint shade_framebuffer_ = 0;

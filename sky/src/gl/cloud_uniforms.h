@@ -58,11 +58,18 @@ struct CloudMarchUniforms {  // clouds/march.glsl: struct CloudMarchParameters
     float oriented_slabs;
     float light_shaft_steps;
     float column_steps;
+    float sun_depth_center_x;
+    float sun_depth_center_y;
+    float sun_depth_extent;
+    float sun_depth_base;
+    float sun_depth_top;
     float padding1;
     float padding2;
-    float padding3;
 };
-static_assert(sizeof(CloudMarchUniforms) == 64);
+static_assert(sizeof(CloudMarchUniforms) == 80);
+
+// clouds/sun_depth.comp's plain uniform: the level it makes.
+constexpr int kSunDepthLevelLocation = 0;  // int sun_depth_level
 
 struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
     CloudLayerUniforms layers[kCloudMaxLayers];
@@ -92,17 +99,17 @@ struct CloudUniforms {  // clouds/interface.glsl: CloudBlock
 };
 static_assert(offsetof(CloudUniforms, scattering) == 256);
 static_assert(offsetof(CloudUniforms, march) == 800);
-static_assert(offsetof(CloudUniforms, lights) == 864);
-static_assert(offsetof(CloudUniforms, weather_from_frame) == 1184);
-static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 1232);
-static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 1280);
-static_assert(offsetof(CloudUniforms, trace_size) == 1296);
-static_assert(offsetof(CloudUniforms, block) == 1312);
-static_assert(offsetof(CloudUniforms, frame_jitter) == 1328);
-static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 1344);
-static_assert(offsetof(CloudUniforms, layer_order) == 1360);
-static_assert(offsetof(CloudUniforms, ground_layer_order) == 1376);
-static_assert(sizeof(CloudUniforms) == 1392);
+static_assert(offsetof(CloudUniforms, lights) == 880);
+static_assert(offsetof(CloudUniforms, weather_from_frame) == 1200);
+static_assert(offsetof(CloudUniforms, previous_view_from_frame) == 1248);
+static_assert(offsetof(CloudUniforms, previous_camera_offset_km) == 1296);
+static_assert(offsetof(CloudUniforms, trace_size) == 1312);
+static_assert(offsetof(CloudUniforms, block) == 1328);
+static_assert(offsetof(CloudUniforms, frame_jitter) == 1344);
+static_assert(offsetof(CloudUniforms, shadow_map_extent_km) == 1360);
+static_assert(offsetof(CloudUniforms, layer_order) == 1376);
+static_assert(offsetof(CloudUniforms, ground_layer_order) == 1392);
+static_assert(sizeof(CloudUniforms) == 1408);
 
 // clouds/geometry_list.glsl: CloudGeometryList, a storage block: a glDrawArraysIndirect command
 // (its vertex count, 6 per cell listed, written by the shader), the capacity in cells, then the

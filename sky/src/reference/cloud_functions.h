@@ -35,6 +35,8 @@ using CloudNoiseTexture = Texture3D;
 using WeatherTexture = RepeatTexture2D;
 // The ground shadow map: clamped at its edges (GL_CLAMP_TO_EDGE), linear.
 using CloudShadowMapTexture = Texture2D;
+// The far sun-depth volume (clouds/march.glsl): clamped, linear.
+using CloudSunDepthTexture = Texture3D;
 
 inline vec4 SampleRepeat2D(const RepeatTexture2D& t, vec2 uv) { return t.Sample(uv); }
 

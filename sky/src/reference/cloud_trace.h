@@ -21,6 +21,7 @@ struct CloudScene {
     std::vector<CloudLayerParameters> layers;
     std::vector<RepeatTexture2D> weather_maps;
     Texture3D shape, detail;
+    Texture3D sun_depth{1, 1, 1};  // the far sun-depth volume (CloudSunDepthVolume)
     CloudScatteringParameters scattering{};
     CloudMarchParameters march{};
     LightSet lights{};        // the atmosphere's, for the aerial perspective
@@ -42,11 +43,12 @@ CloudMarchState MarchCloudLayers(const CloudScene& scene, vec3 origin, Number al
         const auto layer = static_cast<std::size_t>(i);
         const vec2 interval =
             CloudLayerInterval(scene.layers[layer], r, mu, altitude, scene.march.max_distance);
-        MarchCloudLayer(
-            scene.atmosphere, scene.transmittance, scene.irradiance, scene.layers[layer],
-            scene.layers[std::min(layer + 1, scene.layers.size() - 1)], scene.weather_maps[layer],
-            scene.shape, scene.detail, scene.scattering, scene.march, scene.cloud_lights,
-            scene.cloud_lights.count, origin, direction, interval, jitter, state);
+        MarchCloudLayer(scene.atmosphere, scene.transmittance, scene.irradiance,
+                        scene.layers[layer],
+                        scene.layers[std::min(layer + 1, scene.layers.size() - 1)],
+                        scene.weather_maps[layer], scene.shape, scene.detail, scene.sun_depth,
+                        scene.scattering, scene.march, scene.cloud_lights, scene.cloud_lights.count,
+                        origin, direction, interval, jitter, state);
     }
     return state;
 }
@@ -63,6 +65,33 @@ vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 vie
     return CloudApplyAerialPerspective(
         scene.atmosphere, scene.transmittance, scene.multiple_scattering, scene.irradiance,
         scene.lights, camera, altitude, view, state, scene.aerial_perspective_steps);
+}
+
+// clouds/sun_depth.comp: the far sun-depth volume for scene.march's frame (SetCloudSunDepthFrame),
+// its levels from the top down; one texel that no sample reads where there is none.
+Texture3D CloudSunDepthVolume(const CloudScene& scene, const CloudSettings& settings) {
+    if (!(scene.march.sun_depth_extent > 0.0)) return Texture3D(1, 1, 1);
+    const ivec3 size(settings.sun_depth_size, settings.sun_depth_size, settings.sun_depth_levels);
+    Texture3D volume(size.x, size.y, size.z);
+    if (scene.cloud_lights.count == 0) return volume;  // no light reaches the clouds: 0
+    const vec3 light = scene.cloud_lights.light[0].direction;
+    for (int z = size.z - 1; z >= 0; --z) {
+        for (int y = 0; y < size.y; ++y) {
+            for (int x = 0; x < size.x; ++x) {
+                const CloudSunDepthWay way = CloudSunDepthTexelWay(scene.march, scene.layers[0],
+                                                                   ivec3(x, y, z), size, light);
+                Number optical_depth = way.above ? volume.Sample(way.end_uvw).r : 0.0;
+                for (std::size_t i = 0; i < scene.layers.size(); ++i) {
+                    if (scene.layers[i].precipitation_shaft > 0.5) continue;
+                    optical_depth += CloudRayDepth(
+                        scene.layers[i], scene.weather_maps[i], scene.shape, scene.detail,
+                        scene.march, way.origin, light, vec2(0.0, way.length_km), way.steps);
+                }
+                volume.at(x, y, z) = vec4(optical_depth);
+            }
+        }
+    }
+    return volume;
 }
 
 // A texel of clouds/shadow_map.comp: the transmittance toward the main cloud light from the
@@ -146,6 +175,8 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
     scene.scattering = MakeCloudScatteringParameters<CloudScatteringParameters>(
         settings, atmosphere.ground_albedo);
     scene.march = MakeCloudMarchParameters<CloudMarchParameters>(settings);
+    SetCloudSunDepthFrame(scene.march, settings, scene.layers,
+                          scene.weather_from_frame * (camera.position / 1000.0));
     scene.lights = MakeLightSet<LightSet>(lights, camera.position);
     scene.cloud_lights =
         MakeCloudLightSet<LightSet>(lights, camera.position, view.weather_from_world);
@@ -153,6 +184,7 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
     scene.order = CloudLayerOrder(weather, glm::length(camera.position) - atmosphere.bottom_radius);
     scene.ground_order = CloudLayerOrder(weather, 0.0);
     scene.aerial_perspective_steps = settings.aerial_perspective_steps;
+    scene.sun_depth = CloudSunDepthVolume(scene, settings);
     ShadeLightsUnderClouds(scene, settings, camera.position / 1000.0, scene.lights);
     return scene;
 }

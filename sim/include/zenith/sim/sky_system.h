@@ -173,7 +173,7 @@ struct SkyLighting {
 //   changed: the capabilities listed first, polygon mode, clip control, blending and colour
 //   masks of draw buffers 0..7, viewport 0, scissor box and test 0, program, VAO, draw and
 //   read framebuffers, the active texture unit, the 2-D and 3-D textures and the sampler
-//   objects of units 0..25, uniform buffer bindings 0..5 and storage buffer binding 1 (ranges
+//   objects of units 0..26, uniform buffer bindings 0..5 and storage buffer binding 1 (ranges
 //   included) and the generic bindings of both, image units 0..3, the pack/unpack/query buffers
 //   and the pixel store parameters. Everything else zenith does not touch (it changes the
 //   state of its own GL objects only; Render writes only the viewport's colour).

@@ -19,7 +19,7 @@ struct PassTimes {
     double sky_view = 0.0;
     double aerial_perspective = 0.0;
     double render = 0.0;            // the composite: sky, disks and, with weather, the clouds
-    double cloud_shadow_map = 0.0;  // 0 without weather
+    double cloud_shadow_map = 0.0;  // and the far sun-depth volume; 0 without weather
     double cloud_shade = 0.0;       // the clouds' effect on the light beneath them
     double cloud_trace = 0.0;
     double cloud_reconstruct = 0.0;
@@ -53,6 +53,10 @@ class RendererInspection {
     // (i, j) at east/north offsets ((i + 0.5) / size - 0.5) extent, in the renderer's frame.
     // Throws without weather.
     LutImage ReadCloudShadowMap() const;
+    // The far sun-depth volume (CloudSettings::sun_depth_*): r, the optical depth toward the Sun
+    // (the Moon at night) through every cloud layer; sun_depth_size^2 texels by sun_depth_levels,
+    // one texel without a volume. Throws without weather.
+    LutImage ReadCloudSunDepth() const;
     // This frame's CloudShade (the clear-sky values without weather), waiting for the GPU
     // (AtmosphereRenderer::LatestCloudShade is the one that does not wait).
     CloudShade ReadCloudShade() const;
