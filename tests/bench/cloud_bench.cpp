@@ -108,6 +108,27 @@ BENCHMARK(BM_Frame720p)
     ->UseRealTime()
     ->MinTime(2.0);
 
+// The block-4 frames without the far sun-depth volume (CloudSettings::sun_depth_size 0, its
+// pass and its reads skipped) and with it (the default), in the same run. The shadow map's
+// time, every shadow_map_interval frames, includes the volume's levels. args: view (kViews),
+// 0 without, 1 with.
+void BM_SunDepth720p(benchmark::State& state) {
+    Fixture& f = Shared();
+    const View& view = kViews[state.range(0)];
+    CloudSettings settings = Settings(4);
+    if (state.range(1) == 0) settings.sun_depth_size = 0;
+    f.renderer.SetWeather(f.weather, settings);
+    const PassTimes t = TimeFrames(state, f, f.CameraFor(view));
+    state.counters["cloud_shadow_ms"] = t.cloud_shadow_map;
+    state.counters["cloud_trace_ms"] = t.cloud_trace;
+    state.SetLabel(std::string(view.name) + (state.range(1) == 1 ? " volume" : " no volume"));
+}
+BENCHMARK(BM_SunDepth720p)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
+
 // The same frames at block 4 with the clouds' per-cell and per-pixel passes in each GL
 // stage (CloudSettings::pass_stage; the default picks one by the driver). args: view (kViews),
 // 0 fragment, 1 compute.
