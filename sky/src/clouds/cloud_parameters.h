@@ -112,6 +112,15 @@ Parameters MakeCloudMarchParameters(const CloudSettings& s) {
     return p;
 }
 
+// The far sun-depth volume's texels: sun_depth_size^2 by sun_depth_levels, or one that no sample
+// reads where there is none (sun_depth_size 0), so the sampler stays complete.
+inline glm::ivec3 CloudSunDepthSize(const CloudSettings& settings) {
+    return settings.sun_depth_size > 0
+               ? glm::ivec3(settings.sun_depth_size, settings.sun_depth_size,
+                            settings.sun_depth_levels)
+               : glm::ivec3(1);
+}
+
 // The far sun-depth volume's frame in `march` (clouds/march.glsl, CloudFarSunDepth): its square
 // centred below `camera` (cloud frame, km) in the dome's ground coordinates, its side, and its
 // levels from the lowest of the `layers`' bases to the highest of their clouds' tops, leaving

@@ -241,13 +241,7 @@ CloudPasses::CloudPasses(const clouds::Weather& weather, const CloudSettings& se
     glCreateBuffers(1, &shade_);
     glNamedBufferStorage(shade_, sizeof(gl::LightUniforms), nullptr, 0);
     shadow_map_ = gl::CreateTexture2D(glm::ivec2(settings_.shadow_map_size));
-    // Without a volume, one texel that no sample reads (sun_depth_extent 0), so the sampler
-    // stays complete.
-    sun_depth_ = gl::CreateTexture3D(
-        settings_.sun_depth_size > 0
-            ? glm::ivec3(glm::ivec2(settings_.sun_depth_size), settings_.sun_depth_levels)
-            : glm::ivec3(1),
-        GL_R32F);
+    sun_depth_ = gl::CreateTexture3D(CloudSunDepthSize(settings_), GL_R32F);
     shade_directions_ = gl::CreateTexture2D(glm::ivec2(kCloudSkyShadeSize));
     shade_framebuffer_ = CreateFramebuffer({shade_directions_});
     glCreateVertexArrays(1, &vertex_array_);
@@ -572,10 +566,7 @@ LutImage CloudPasses::ReadClouds() const {
 }
 
 LutImage CloudPasses::ReadSunDepth() const {
-    GLint width = 0, depth = 0;
-    glGetTextureLevelParameteriv(sun_depth_, 0, GL_TEXTURE_WIDTH, &width);
-    glGetTextureLevelParameteriv(sun_depth_, 0, GL_TEXTURE_DEPTH, &depth);
-    return gl::ReadTexture(sun_depth_, glm::ivec3(width, width, depth));
+    return gl::ReadTexture(sun_depth_, CloudSunDepthSize(settings_));
 }
 
 LutImage CloudPasses::ReadShadowMap() const {

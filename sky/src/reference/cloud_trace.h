@@ -70,10 +70,10 @@ vec4 TraceClouds(const CloudScene& scene, vec3 camera, Number altitude, vec3 vie
 // clouds/sun_depth.comp: the far sun-depth volume for scene.march's frame (SetCloudSunDepthFrame),
 // its levels from the top down; one texel that no sample reads where there is none.
 Texture3D CloudSunDepthVolume(const CloudScene& scene, const CloudSettings& settings) {
-    if (!(scene.march.sun_depth_extent > 0.0)) return Texture3D(1, 1, 1);
-    const ivec3 size(settings.sun_depth_size, settings.sun_depth_size, settings.sun_depth_levels);
+    const ivec3 size = CloudSunDepthSize(settings);
     Texture3D volume(size.x, size.y, size.z);
-    if (scene.cloud_lights.count == 0) return volume;  // no light reaches the clouds: 0
+    if (!(scene.march.sun_depth_extent > 0.0)) return volume;  // no volume, or no clouds: 0
+    if (scene.cloud_lights.count == 0) return volume;          // no light reaches the clouds: 0
     const vec3 light = scene.cloud_lights.light[0].direction;
     for (int z = size.z - 1; z >= 0; --z) {
         for (int y = 0; y < size.y; ++y) {
