@@ -178,6 +178,15 @@ TEST(CloudSunDepth, AddsNothingWithoutAVolumeAboveItsTopOrOutsideItsSquare) {
 TEST(CloudSunDepth, DomePointIsTheInverseOfTheGroundCoordinates) {
     CloudLayerParameters layer{};
     layer.bottom_radius = kR;
+    layer.cloud_top_altitude = 1.0;
+    // SetCloudSunDepthFrame works out the square's centre on the host (float uniforms too) with
+    // its own copy of the dome projection: it must be CloudGroundCoordinates', which the lookups
+    // use, or the volume would be read shifted.
+    CloudMarchParameters march{};
+    const vec3 camera = CloudDomePoint(kR, vec2(-83.0, 41.5), 0.3);
+    SetCloudSunDepthFrame(march, CloudSettings{}, std::vector<CloudLayerParameters>{layer}, camera);
+    EXPECT_NEAR(march.sun_depth_center_x, CloudGroundCoordinates(layer, camera).x, 1e-9);
+    EXPECT_NEAR(march.sun_depth_center_y, CloudGroundCoordinates(layer, camera).y, 1e-9);
     for (const vec2 ground : {vec2(0.0, 0.0), vec2(12.5, -40.0), vec2(-300.0, 800.0)}) {
         const vec3 p = CloudDomePoint(kR, ground, 7.0);
         const vec2 back = CloudGroundCoordinates(layer, p);
