@@ -60,6 +60,7 @@ LightSet MakeLightSet(const Lights& lights, const glm::dvec3& up) {
     l.cloud_direct = 1.0;
     l.cloud_sky = 1.0;
     l.cloud_ground_sky = 1.0;
+    l.cloud_shaded = 0.0;
     if (lights.eclipse.active) {
         // The Moon's shadow axis: through its centre along the Sun's direction; its point
         // nearest the camera (`up` is the camera's position) and the Moon's distance from there.

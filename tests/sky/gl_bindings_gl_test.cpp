@@ -120,7 +120,7 @@ void AddLights(Layout& layout, const std::string& prefix, std::size_t base) {
     ZENITH_SAME(S, cloud_luminance);
     ZENITH_SAME(S, cloud_ground_sky);
     ZENITH_SAME(S, cloud_ground_luminance);
-    ZENITH_SAME(S, padding0);
+    ZENITH_SAME(S, cloud_shaded);
     ZENITH_SAME(S, eclipse_sun_illuminance);
     ZENITH_SAME(S, eclipse);
     ZENITH_SAME(S, eclipse_axis_point);

@@ -629,7 +629,8 @@ struct Light {
 // The ground, a horizontal surface, gets the same means weighted by the cosine from the zenith
 // (cloud_ground_sky, cloud_ground_luminance: its irradiance from the clouds is pi times the
 // latter): an overcast deck is brighter overhead than toward the horizon, and the uniform mean
-// gave the ground 10 % too little of its light.
+// gave the ground 10 % too little of its light. cloud_shaded is 1 once these members hold
+// sky_shade.comp's means, 0 before (the clouds' own pass that makes them reads 0).
 struct LightSet {
     Light light[kMaxLights];
     int count;
@@ -639,7 +640,7 @@ struct LightSet {
     vec3 cloud_luminance;
     Number cloud_ground_sky;
     vec3 cloud_ground_luminance;
-    Number padding0;
+    Number cloud_shaded;
     // A solar eclipse (eclipse 1; 0 without): light 0 lights each point of the air (and the
     // ground) by what the Moon leaves of the Sun's disk there, from eclipse_sun_illuminance, the
     // unobscured Sun (light 0's illuminance is what is left at the camera). The Moon's shadow is
@@ -1072,7 +1073,7 @@ vec3 ComputeGroundIrradianceTexel(IN(AtmosphereParameters) atmosphere,
     unit_sun.cloud_ground_sky = 1.0;
     unit_sun.cloud_luminance = vec3(0.0);
     unit_sun.cloud_ground_luminance = vec3(0.0);
-    unit_sun.padding0 = 0.0;
+    unit_sun.cloud_shaded = 0.0;
     unit_sun.eclipse = 0;  // a whole Sun (the other eclipse members are read only with it)
     vec3 origin = vec3(0.0, 0.0, atmosphere.bottom_radius);
     // Upper hemisphere in equal-solid-angle strata: cos(theta) uniform in (0, 1].

@@ -437,6 +437,35 @@ vec3 CloudOutwardNormal(IN(CloudLayerParameters) layer, IN(WeatherTexture) weath
     return magnitude > 1e-6 ? -gradient / magnitude : up;
 }
 
+// The diffuse light beneath the clouds above the ground point under `up`, scattered toward the
+// camera along `view` (cd/m^2, per unit sigma_s): the light field there in P1, I0 + I1 mu, from
+// its irradiances down and up by Eddington's closure, I0 = (E_down + E_up) / 2 pi and I1 =
+// 3 (E_down - E_up) / 4 pi (as the slab's, CloudSkyScattering), scattered with the phase's
+// asymmetry g: I0 + g mu_view I1. E_down is the diffuse light the ground gets, sky_shade.comp's
+// cosine-weighted means: the sky's through the clouds (cloud_ground_sky) and the clouds' (pi
+// cloud_ground_luminance). E_up is the ground's albedo of that and of the lights' beams through
+// the clouds' mean transmittance (cloud_direct).
+vec3 CloudLightBeneathClouds(IN(AtmosphereParameters) atmosphere,
+                             IN(TransmittanceTexture) transmittance_texture,
+                             IN(IrradianceTexture) irradiance_texture, IN(LightSet) lights,
+                             int light_count, IN(CloudScatteringParameters) scattering, vec3 up,
+                             vec3 view) {
+    vec3 down = kPi * lights.cloud_ground_luminance;
+    vec3 beams = vec3(0.0);
+    for (int l = 0; l < light_count; ++l) {
+        Number mu_l = dot(up, lights.light[l].direction);
+        down += lights.cloud_ground_sky * lights.light[l].illuminance *
+                GetGroundSkyIrradiance(irradiance_texture, mu_l);
+        beams += lights.cloud_direct * lights.light[l].illuminance * max(mu_l, 0.0) *
+                 GetTransmittanceToSun(atmosphere, transmittance_texture,
+                                       atmosphere.bottom_radius, mu_l);
+    }
+    vec3 going_up = CloudSaturate(scattering.ground_albedo) * (down + beams);
+    vec3 i0 = (down + going_up) / (2.0 * kPi);
+    vec3 i1 = 3.0 / (4.0 * kPi) * (down - going_up);
+    return max(i0 + CloudAsymmetry(scattering) * dot(view, up) * i1, vec3(0.0));
+}
+
 // Luminance scattered per km (sigma_s L_i, cd/m^2/km) at a cloud sample p of density `s` seen
 // along `view`: for each light, its illuminance at the top of the atmosphere, the atmosphere's
 // transmittance from p toward it (which colours sunsets), and CloudSunScattering's first order
@@ -455,10 +484,18 @@ vec3 CloudOutwardNormal(IN(CloudLayerParameters) layer, IN(WeatherTexture) weath
 // water does not absorb visible light, and a raining cloud is dark by its depth, which the
 // transport carries. Under the drizzling overcast_stratus that factor made the ground's light
 // 10-12 % and the deck's base 8-14 % darker than the path tracer's (BENCHMARKS.md).
-// A precipitation shaft is lit through the cloud it falls from (`cloud_above`, the next layer up,
-// CloudShadowOpticalDepth), its slab level: the cloud's column on top of the shaft's below p.
-// Lit by the Sun through the shaft alone, the drizzle under overcast_stratus seen level from
-// 300 m with the Sun 10-17 deg up was 2.6-54x the path tracer's (BENCHMARKS.md).
+// A precipitation shaft hangs in the air beneath the clouds, and once the clouds' shade is
+// known (lights.cloud_shaded) it is lit as that air is: the light scattered once, through the
+// cloud it falls from (`cloud_above`, the next layer up, CloudShadowOpticalDepth), and the
+// diffuse light beneath the clouds (CloudLightBeneathClouds). Lit through its cloud's slab
+// instead, with the depth of the light's way through that cloud, the rain beneath cumulonimbus
+// seen 3 deg up was 0.17x the path tracer's (now 0.74x): its light comes in through the open
+// sides beneath the storm and bounces between the cloud's base, the rain and the ground
+// (BENCHMARKS.md, "Rain lit by the light beneath the clouds"). The shade's own trace, which
+// makes those means, still lights a shaft through its cloud's slab, level: the cloud's column
+// on top of the shaft's below p. Lit by the Sun through the shaft alone, the drizzle under
+// overcast_stratus seen level from 300 m with the Sun 10-17 deg up was 2.6-54x the path
+// tracer's.
 vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        IN(TransmittanceTexture) transmittance_texture,
                        IN(IrradianceTexture) irradiance_texture,
@@ -471,6 +508,26 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                        int refinement) {
     Number r = length(p);
     vec3 up = p / r;
+    Number sigma_s = scattering.albedo * s.density * march.extinction;
+    if (layer.precipitation_shaft > 0.5 && lights.cloud_shaded > 0.5) {
+        vec3 light = CloudLightBeneathClouds(atmosphere, transmittance_texture,
+                                             irradiance_texture, lights, light_count,
+                                             scattering, up, view);
+        for (int l = 0; l < light_count; ++l) {
+            vec3 direction = lights.light[l].direction;
+            Number reach;
+            Number optical_depth =
+                CloudShadowOpticalDepth(layer, cloud_above, weather_map, shape_noise,
+                                        detail_noise, march, s, p, direction, refinement, reach);
+            light += lights.light[l].illuminance *
+                     GetTransmittanceToSun(atmosphere, transmittance_texture, r,
+                                           dot(up, direction)) *
+                     CloudDualLobePhase(scattering.forward_g, scattering.backward_g,
+                                        scattering.lobe_weight, dot(view, direction)) *
+                     exp(-optical_depth);
+        }
+        return sigma_s * light;
+    }
     Number depth_below = CloudDepthBelow(layer, s, r - layer.bottom_radius, march.extinction);
     Number mu_view = dot(view, up);
     vec3 normal = up;
@@ -517,7 +574,6 @@ vec3 CloudSampleSource(IN(AtmosphereParameters) atmosphere,
                    GetGroundSkyIrradiance(irradiance_texture, mu_l) / kPi *
                    CloudSkyScattering(scattering, depth_above, depth_above + depth_below, mu_view);
     }
-    Number sigma_s = scattering.albedo * s.density * march.extinction;
     return sigma_s * (direct + ambient * march.ambient_scale);
 }
 

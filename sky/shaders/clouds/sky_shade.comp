@@ -41,4 +41,5 @@ void main() {
     shaded_lights.cloud_luminance = shade.rgb;
     shaded_lights.cloud_ground_sky = ground_shade.a;
     shaded_lights.cloud_ground_luminance = ground_shade.rgb;
+    shaded_lights.cloud_shaded = 1.0;
 }

@@ -410,11 +410,17 @@ void CloudPasses::Prepare(const Atmosphere& atmosphere, const Camera& camera, co
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     }
     // Every frame: the light block was just uploaded without the clouds; the last shade goes
-    // into its cloud members (and only those: the eclipse's follow them), which the later
-    // passes read as uniforms.
+    // into its cloud members, which the later passes read as uniforms. So does the cloud
+    // block's, for the cloud passes after the shade's own trace (which read cloud_shaded 0).
+    CopyShade(light_buffer, 0);
+    CopyShade(uniforms_, offsetof(gl::CloudUniforms, lights));
+}
+
+void CloudPasses::CopyShade(GLuint buffer, GLintptr lights_offset) const {
+    // The cloud members only: the eclipse's follow them.
     constexpr GLintptr kCloudMembers = offsetof(gl::LightUniforms, cloud_base);
     constexpr GLintptr kCloudMembersEnd = offsetof(gl::LightUniforms, eclipse_sun_illuminance);
-    glCopyNamedBufferSubData(shade_, light_buffer, kCloudMembers, kCloudMembers,
+    glCopyNamedBufferSubData(shade_, buffer, kCloudMembers, lights_offset + kCloudMembers,
                              kCloudMembersEnd - kCloudMembers);
 }
 
@@ -460,6 +466,7 @@ void CloudPasses::Render(const Atmosphere& atmosphere, const Camera& camera, con
     const bool history_valid = previous_.has_value() && !view.reset_history;
     // The sun-depth volume stays around the camera Prepare made it for.
     UploadUniforms(atmosphere, camera, lights, view, history_valid, /*update=*/false);
+    CopyShade(uniforms_, offsetof(gl::CloudUniforms, lights));
     BindTextures();
 
     RunCellPass(

@@ -83,6 +83,9 @@ class CloudPasses {
                         const CloudView& view, bool history_valid, bool update);
     // clouds/sun_depth.comp over every level, top down (settings_.sun_depth_size > 0).
     void UpdateSunDepth() const;
+    // The last shade's cloud members (sky_shade.comp's) into the LightSet at `lights_offset`
+    // bytes into `buffer`.
+    void CopyShade(GLuint buffer, GLintptr lights_offset) const;
     void BindTextures() const;
     // A per-cell (or per-pixel, per-direction) pass over `size` in the stage chosen, into
     // `targets`: the fragment stage draws `framebuffer`, whose colour attachments they are in

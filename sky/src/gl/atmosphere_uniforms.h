@@ -49,7 +49,7 @@ struct LightUniforms {  // functions.glsl: struct LightSet (array elements 16-by
     glm::vec3 cloud_luminance;
     float cloud_ground_sky;
     glm::vec3 cloud_ground_luminance;
-    float padding0;
+    float cloud_shaded;
     glm::vec3 eclipse_sun_illuminance;
     int eclipse;
     glm::vec3 eclipse_axis_point;

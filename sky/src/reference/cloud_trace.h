@@ -148,6 +148,18 @@ void ShadeLightsUnderClouds(const CloudScene& scene, const CloudSettings& settin
     lights.cloud_luminance = vec3(mean);
     lights.cloud_ground_sky = ground_mean.w;
     lights.cloud_ground_luminance = vec3(ground_mean);
+    lights.cloud_shaded = 1.0;
+}
+
+// CloudPasses::CopyShade: the shade's members of `from` into `to`.
+void CopyCloudShade(const LightSet& from, LightSet& to) {
+    to.cloud_base = from.cloud_base;
+    to.cloud_direct = from.cloud_direct;
+    to.cloud_sky = from.cloud_sky;
+    to.cloud_luminance = from.cloud_luminance;
+    to.cloud_ground_sky = from.cloud_ground_sky;
+    to.cloud_ground_luminance = from.cloud_ground_luminance;
+    to.cloud_shaded = from.cloud_shaded;
 }
 
 // The scene the renderer draws for this camera: LUTs as read back from the GPU (so the CPU
@@ -185,7 +197,9 @@ CloudScene MakeCloudScene(const Atmosphere& atmosphere, const LutImage& transmit
     scene.ground_order = CloudLayerOrder(weather, 0.0);
     scene.aerial_perspective_steps = settings.aerial_perspective_steps;
     scene.sun_depth = CloudSunDepthVolume(scene, settings);
+    // The shade's own trace reads the cloud lights unshaded; the clouds' trace, shaded.
     ShadeLightsUnderClouds(scene, settings, camera.position / 1000.0, scene.lights);
+    CopyCloudShade(scene.lights, scene.cloud_lights);
     return scene;
 }
 
