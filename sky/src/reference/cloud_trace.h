@@ -138,8 +138,11 @@ void ShadeLightsUnderClouds(const CloudScene& scene, const CloudSettings& settin
                 CloudShadowMapTexel(scene, settings, camera, (vec2(x, y) + vec2(0.5)) / Number(n));
         }
     }
-    Number base = scene.layers[0].base_altitude;
-    for (const CloudLayerParameters& layer : scene.layers) base = min(base, layer.base_altitude);
+    // The lowest cloud's base: rain and snow shafts reach the ground but are not clouds.
+    Number base = 1e9;
+    for (const CloudLayerParameters& layer : scene.layers) {
+        if (layer.precipitation_shaft < 0.5) base = min(base, layer.base_altitude);
+    }
     const vec4 mean = sum / Number(kShadeSqrt * kShadeSqrt);
     const vec4 ground_mean = ground_sum * (2.0 / Number(kShadeSqrt * kShadeSqrt));
     lights.cloud_base = base;
