@@ -186,7 +186,9 @@ geo::Time OnTheGroundAt(SkySystem& sky, const char* utc) {
 // shortfall that is there at noon too shows (BENCHMARKS.md, "The exact slab's beam at a grazing
 // Sun"). Lit by the Sun through the shaft alone, the drizzle had made it +42 % with the Sun
 // 17 deg up; with the raining deck darkened toward its base (H16 §4.4.1's factor, removed),
-// -12.2 and -10.3 % ("No darkening of raining clouds").
+// -12.2 and -10.3 % ("No darkening of raining clouds"). With the drizzle lit by the light beneath
+// the deck, which the shade's 6 % shortfall at 17 deg darkens too, the harmonics are -4.6 and
+// -9.5 % ("Rain lit by the light beneath the clouds").
 TEST_F(SkySystemTest, GroundLightUnderTheOvercastAgainstThePathTracer) {
     for (const char* utc : {"2024-06-21T11:00:00Z", "2024-06-21T17:30:00Z"}) {
         SkySystem* sky = sky_;

@@ -49,7 +49,9 @@ struct CloudSettings {
     // grazing Sun makes the rest send out more (clouds/functions.glsl, CloudSlabTables); false
     // leaves it out (the diffuse field keeps the exact slab's transmission either way).
     bool lit_face_source = true;
-    double ambient_scale = 1.0;  // F16 §5.5.1: scale of the sky's ambient light
+    // F16 §5.5.1: scale of the sky's ambient light on the clouds (not on rain and snow, which
+    // are lit by the light beneath the clouds, as the air there is)
+    double ambient_scale = 1.0;
     // Shape: world size of one tile of each noise (H16 §4.3: the shape volume is 4x wider than
     // tall, so it covers shape_period x shape_period / 4 x shape_period)
     double shape_period = 14000.0;  // m
