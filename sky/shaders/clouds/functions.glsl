@@ -165,13 +165,15 @@ Number CloudTowerSignal(Number altitude, Number cloud_base, Number cloud_height,
                          CloudHeightSignal(altitude, cloud_base, cloud_height));
 }
 
+// Where an anvil begins, as a share of the layer, over a column of convection c (CloudAnvilSignal).
+Number CloudAnvilBottom(Number convection) { return 0.95 - 0.2 * convection; }
+
 // The anvil: a cumulonimbus' top spreading under the tropopause (WMO International Cloud
 // Atlas, Cb incus), its vertical profile from 0.95 - 0.2 c (c the column's convection: thick
 // over the cell, thin at its rim) to 0.985 of the layer, with soft edges; 0 where c is 0.
 Number CloudAnvilSignal(Number convection, Number height_fraction) {
     if (!(convection > 0.0)) return 0.0;
-    Number bottom = 0.95 - 0.2 * convection;
-    return CloudSaturate((height_fraction - bottom) / 0.04) *
+    return CloudSaturate((height_fraction - CloudAnvilBottom(convection)) / 0.04) *
            CloudSaturate((0.985 - height_fraction) / 0.015);
 }
 // The anvil's coverage over the shape noise times the convection (CloudApplyCoverage): its
@@ -342,6 +344,15 @@ Number CloudProfileIntegral(Number b, Number x) {
     return 4.0 * (b * (x2 / 2.0 - x2 * x / 3.0) + (1.0 - b) * (x2 * x / 3.0 - x2 * x2 / 4.0));
 }
 
+// The altitude (km) where an anvil's overhang ends below: its bottom (CloudAnvilBottom) or the
+// top of the tower under it, whichever is higher. For a sample above its column's tower
+// (cloud_fraction past 1), where only the anvil reaches.
+Number CloudOverhangBottom(IN(CloudLayerParameters) layer, IN(CloudSample) s) {
+    return max(mix(layer.base_altitude, layer.top_altitude,
+                   CloudAnvilBottom(CloudConvection(s.type))),
+               layer.base_altitude + s.cloud_height);
+}
+
 // Optical depth from a cloud sample straight down to its cloud's base, without a march: the
 // profile's integral (CloudProfileIntegral) up to the sample, scaled by the sample's density
 // over that profile, as if the column below had the sample's shape and coverage. Exact for a
@@ -355,6 +366,13 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
     // layer's base.
     if (layer.ground_fog > 0.5 || layer.precipitation_shaft > 0.5) {
         return extinction * s.density * (altitude - layer.base_altitude);
+    }
+    // Above its column's tower (x past 1) only an anvil reaches: its overhang, with clear air
+    // beneath. Its own depth below the sample at the sample's density; the column's profile down
+    // to the base would put the overhang's underside deep in a cloud reaching the layer's base
+    // (beneath `cumulonimbus`, 2.1x the path tracer's; BENCHMARKS.md, "The anvil's overhang").
+    if (x >= 1.0) {
+        return extinction * s.density * max(altitude - CloudOverhangBottom(layer, s), 0.0);
     }
     Number b = CloudHeightGradient(s.type, 0.0);
     Number profile = 4.0 * x * (1.0 - x) * mix(b, 1.0, x);
@@ -370,7 +388,8 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
 // the extrapolation length 0.7104 / (1 - g) (Case & Zweifel). The vertical is one of them by
 // 1 - (normal . up)^2 of its square; its width is the column of the sample's cloud at full
 // density, its height times the layer's extinction times the profile integrated base to top
-// (CloudProfileIntegral): the cloud's size, not the eroded sample's. The
+// (CloudProfileIntegral): the cloud's size, not the eroded sample's; for an anvil's overhang
+// (CloudOverhangBottom), the overhang's own height at full density. The
 // horizontal ones, which the weather map would have to show, are left out (infinite), as is
 // the whole of a deck, whose slab is level, and of fog and precipitation.
 Number CloudSlabLeakage(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number g,
@@ -378,8 +397,13 @@ Number CloudSlabLeakage(IN(CloudLayerParameters) layer, IN(CloudSample) s, Numbe
     if (!(s.detail >= 0.0) || layer.ground_fog > 0.5 || layer.precipitation_shaft > 0.5) {
         return 0.0;
     }
-    Number column = extinction * layer.extinction_scale * s.cloud_height *
-                    CloudProfileIntegral(CloudHeightGradient(s.type, 0.0), 1.0);
+    Number height =
+        s.cloud_fraction >= 1.0
+            ? max(mix(layer.base_altitude, layer.top_altitude, kCloudAnvilTop) -
+                      CloudOverhangBottom(layer, s),
+                  0.0)
+            : s.cloud_height * CloudProfileIntegral(CloudHeightGradient(s.type, 0.0), 1.0);
+    Number column = extinction * layer.extinction_scale * height;
     Number width = column + 2.0 * 0.7104 / (1.0 - g);
     return kPi / width * sqrt(max(1.0 - normal_up * normal_up, 0.0));
 }
