@@ -268,6 +268,50 @@ TEST_F(SkySystemTest, GroundLightUnderThunderstormsAgainstThePathTracer) {
     }
 }
 
+// Views from the ground beneath `cumulonimbus` at 17:30 (Sun 17 deg up), each (azimuth from
+// the Sun's, pitch) in degrees: the mean of the frame's centre pixel (8x8, 0.02 rad wide) and
+// of the cloud path tracer's luminance along the same ray (`samples` paths), with the mean's
+// standard error.
+struct ViewsAgainstThePathTracer {
+    double drawn = 0.0, reference = 0.0, reference_error = 0.0, sun_elevation_deg = 0.0;
+};
+
+ViewsAgainstThePathTracer ThunderstormViews(SkySystem& sky, const std::vector<glm::dvec2>& views,
+                                            int samples) {
+    const geo::Time time = OnTheGroundAt(sky, "2024-06-21T17:30:00Z");
+    sky.SetProjection(0.02, 1.0);
+    const PresetWeather thunderstorms = PresetWeather::Set(sky, "cumulonimbus");
+    sky.Prepare({8, 8});
+    const glm::dvec3 sun = sky.lighting().sun_direction_enu;
+    const auto reference_scene =
+        ReferenceScene::Of(sky, time, thunderstorms.weather, thunderstorms.settings);
+    sky::reference::CloudPathTraceOptions options;
+    options.samples = samples;
+    ViewsAgainstThePathTracer result;
+    result.sun_elevation_deg = glm::degrees(std::asin(sun.z));
+    double variance = 0.0;
+    for (const glm::dvec2& view_deg : views) {
+        const double azimuth = std::atan2(sun.x, sun.y) + glm::radians(view_deg.x);
+        const double pitch = glm::radians(view_deg.y);
+        const glm::dvec3 view(std::sin(azimuth) * std::cos(pitch),
+                              std::cos(azimuth) * std::cos(pitch), std::sin(pitch));
+        sky.SetAttitude(azimuth, pitch, 0.0);
+        sky.Update();
+        result.drawn += Luminance(sky.RenderOffscreen({8, 8}).at(4, 4));
+        const sky::reference::CloudPathTraceResult traced = sky::reference::CloudPathTrace(
+            reference_scene->scene, glm::dvec3(0.0, 0.0, sky.atmosphere().bottom_radius + 2.0),
+            view, options);
+        result.reference += traced.luminance;
+        variance += traced.luminance_error * traced.luminance_error;
+    }
+    const double n = static_cast<double>(views.size());
+    result.drawn /= n;
+    result.reference /= n;
+    result.reference_error = std::sqrt(variance) / n;
+    sky.SetWeather({});
+    return result;
+}
+
 // Rain beneath `cumulonimbus` with the Sun 17 deg up, seen from the ground inside it and in the
 // towers' shadow, against the cloud path tracer: eight views 3 deg up over the half turn away
 // from the Sun, where the rain reaches optical depth 1 within 3.0-3.5 km. The path tracer's
@@ -279,42 +323,17 @@ TEST_F(SkySystemTest, GroundLightUnderThunderstormsAgainstThePathTracer) {
 // clouds"); 0.69x once the anvil's overhang no longer brightened the light beneath the clouds
 // ("The anvil's overhang").
 TEST_F(SkySystemTest, RainBeneathThunderstormsAgainstThePathTracer) {
-    SkySystem* sky = sky_;
-    const geo::Time time = OnTheGroundAt(*sky, "2024-06-21T17:30:00Z");
-    sky->SetProjection(0.02, 1.0);
-    const PresetWeather thunderstorms = PresetWeather::Set(*sky, "cumulonimbus");
-    sky->Prepare({8, 8});
-    const glm::dvec3 sun = sky->lighting().sun_direction_enu;
-    const sky::Atmosphere& atmosphere = sky->atmosphere();
-    const auto reference_scene =
-        ReferenceScene::Of(*sky, time, thunderstorms.weather, thunderstorms.settings);
-    sky::reference::CloudPathTraceOptions options;
-    options.samples = 1500;
+    std::vector<glm::dvec2> views;
     constexpr int kViews = 8;
-    const double pitch = glm::radians(3.0);
-    double drawn = 0.0, reference = 0.0, variance = 0.0;
-    for (int k = 0; k < kViews; ++k) {
-        const double azimuth =
-            std::atan2(sun.x, sun.y) + glm::radians(100.0 + 80.0 * k / (kViews - 1));
-        const glm::dvec3 view(std::sin(azimuth) * std::cos(pitch),
-                              std::cos(azimuth) * std::cos(pitch), std::sin(pitch));
-        sky->SetAttitude(azimuth, pitch, 0.0);
-        sky->Update();
-        drawn += Luminance(sky->RenderOffscreen({8, 8}).at(4, 4));
-        const sky::reference::CloudPathTraceResult traced = sky::reference::CloudPathTrace(
-            reference_scene->scene, glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + 2.0), view,
-            options);
-        reference += traced.luminance;
-        variance += traced.luminance_error * traced.luminance_error;
-    }
+    for (int k = 0; k < kViews; ++k) views.push_back({100.0 + 80.0 * k / (kViews - 1), 3.0});
+    const ViewsAgainstThePathTracer rain = ThunderstormViews(*sky_, views, 1500);
     std::printf(
         "rain beneath cumulonimbus, Sun %.1f deg up, %d views 3 deg up away from the Sun: "
         "path tracer %.0f +- %.0f cd/m^2, frame %.0f (%.2fx)\n",
-        glm::degrees(std::asin(sun.z)), kViews, reference / kViews, std::sqrt(variance) / kViews,
-        drawn / kViews, drawn / reference);
-    EXPECT_GT(drawn / reference, 0.65);
-    EXPECT_LT(drawn / reference, 1.25);
-    sky->SetWeather({});
+        rain.sun_elevation_deg, kViews, rain.reference, rain.reference_error, rain.drawn,
+        rain.drawn / rain.reference);
+    EXPECT_GT(rain.drawn / rain.reference, 0.65);
+    EXPECT_LT(rain.drawn / rain.reference, 1.25);
 }
 
 // The underside of `cumulonimbus`' anvil where it overhangs clear air, seen from the ground
@@ -326,44 +345,18 @@ TEST_F(SkySystemTest, RainBeneathThunderstormsAgainstThePathTracer) {
 // the overhang's own depth below (CloudOverhangBottom): 1.43x (BENCHMARKS.md, "The anvil's
 // overhang").
 TEST_F(SkySystemTest, AnvilOverhangAgainstThePathTracer) {
-    SkySystem* sky = sky_;
-    const geo::Time time = OnTheGroundAt(*sky, "2024-06-21T17:30:00Z");
-    sky->SetProjection(0.02, 1.0);
-    const PresetWeather thunderstorms = PresetWeather::Set(*sky, "cumulonimbus");
-    sky->Prepare({8, 8});
-    const glm::dvec3 sun = sky->lighting().sun_direction_enu;
-    const sky::Atmosphere& atmosphere = sky->atmosphere();
-    const auto reference_scene =
-        ReferenceScene::Of(*sky, time, thunderstorms.weather, thunderstorms.settings);
-    sky::reference::CloudPathTraceOptions options;
-    options.samples = 1000;
-    double drawn = 0.0, reference = 0.0, variance = 0.0;
-    int views = 0;
-    for (const double pitch_deg : {44.0, 48.0, 52.0}) {
-        for (const double side_deg : {25.0, 33.3, 41.7, 50.0}) {
-            const double azimuth = std::atan2(sun.x, sun.y) + glm::radians(side_deg);
-            const double pitch = glm::radians(pitch_deg);
-            const glm::dvec3 view(std::sin(azimuth) * std::cos(pitch),
-                                  std::cos(azimuth) * std::cos(pitch), std::sin(pitch));
-            sky->SetAttitude(azimuth, pitch, 0.0);
-            sky->Update();
-            drawn += Luminance(sky->RenderOffscreen({8, 8}).at(4, 4));
-            const sky::reference::CloudPathTraceResult traced = sky::reference::CloudPathTrace(
-                reference_scene->scene, glm::dvec3(0.0, 0.0, atmosphere.bottom_radius + 2.0), view,
-                options);
-            reference += traced.luminance;
-            variance += traced.luminance_error * traced.luminance_error;
-            ++views;
-        }
+    std::vector<glm::dvec2> views;
+    for (const double pitch : {44.0, 48.0, 52.0}) {
+        for (const double side : {25.0, 33.3, 41.7, 50.0}) views.push_back({side, pitch});
     }
+    const ViewsAgainstThePathTracer anvil = ThunderstormViews(*sky_, views, 1000);
     std::printf(
-        "anvil overhang of cumulonimbus, Sun %.1f deg up, %d views 44-52 deg up: path tracer "
+        "anvil overhang of cumulonimbus, Sun %.1f deg up, %zu views 44-52 deg up: path tracer "
         "%.0f +- %.0f cd/m^2, frame %.0f (%.2fx)\n",
-        glm::degrees(std::asin(sun.z)), views, reference / views, std::sqrt(variance) / views,
-        drawn / views, drawn / reference);
-    EXPECT_GT(drawn / reference, 0.8);
-    EXPECT_LT(drawn / reference, 1.6);
-    sky->SetWeather({});
+        anvil.sun_elevation_deg, views.size(), anvil.reference, anvil.reference_error, anvil.drawn,
+        anvil.drawn / anvil.reference);
+    EXPECT_GT(anvil.drawn / anvil.reference, 0.8);
+    EXPECT_LT(anvil.drawn / anvil.reference, 1.6);
 }
 
 // Drizzle under the overcast (overcast_stratus' precipitation 0.2: 0.38 /km) seen along the
