@@ -344,13 +344,17 @@ Number CloudProfileIntegral(Number b, Number x) {
     return 4.0 * (b * (x2 / 2.0 - x2 * x / 3.0) + (1.0 - b) * (x2 * x / 3.0 - x2 * x2 / 4.0));
 }
 
-// The altitude (km) where an anvil's overhang ends below: its bottom (CloudAnvilBottom) or the
-// top of the tower under it, whichever is higher. For a sample above its column's tower
-// (cloud_fraction past 1), where only the anvil reaches.
+// The altitude (km) where an anvil's overhang ends below (CloudAnvilBottom), for a sample in the
+// anvil over clear air: no tower in its column at the anvil's bottom (CloudColumnDensity's tower
+// term 0 there: too low, or cut away by the coverage). -1 for every other sample; where a tower
+// reaches the anvil, the column is one cloud down to the layer's base.
 Number CloudOverhangBottom(IN(CloudLayerParameters) layer, IN(CloudSample) s) {
-    return max(mix(layer.base_altitude, layer.top_altitude,
-                   CloudAnvilBottom(CloudConvection(s.type))),
-               layer.base_altitude + s.cloud_height);
+    Number convection = CloudConvection(s.type);
+    Number bottom_fraction = CloudAnvilBottom(convection);
+    if (!(convection > 0.0) || !(s.height_fraction > bottom_fraction)) return -1.0;
+    Number bottom = mix(layer.base_altitude, layer.top_altitude, bottom_fraction);
+    Number tower = CloudTowerSignal(bottom, layer.base_altitude, s.cloud_height, convection);
+    return CloudApplyCoverage(s.shape * tower, s.coverage) > 0.0 ? -1.0 : bottom;
 }
 
 // Optical depth from a cloud sample straight down to its cloud's base, without a march: the
@@ -367,13 +371,12 @@ Number CloudDepthBelow(IN(CloudLayerParameters) layer, IN(CloudSample) s, Number
     if (layer.ground_fog > 0.5 || layer.precipitation_shaft > 0.5) {
         return extinction * s.density * (altitude - layer.base_altitude);
     }
-    // Above its column's tower (x past 1) only an anvil reaches: its overhang, with clear air
-    // beneath. Its own depth below the sample at the sample's density; the column's profile down
-    // to the base would put the overhang's underside deep in a cloud reaching the layer's base
-    // (beneath `cumulonimbus`, 2.1x the path tracer's; BENCHMARKS.md, "The anvil's overhang").
-    if (x >= 1.0) {
-        return extinction * s.density * max(altitude - CloudOverhangBottom(layer, s), 0.0);
-    }
+    // An anvil's overhang over clear air: its own depth below the sample, at the sample's
+    // density. The column's profile down to the base put the overhang's underside deep in a
+    // cloud reaching the layer's base (beneath `cumulonimbus`, 2.2x the path tracer's;
+    // BENCHMARKS.md, "The anvil's overhang").
+    Number overhang = CloudOverhangBottom(layer, s);
+    if (overhang >= 0.0) return extinction * s.density * max(altitude - overhang, 0.0);
     Number b = CloudHeightGradient(s.type, 0.0);
     Number profile = 4.0 * x * (1.0 - x) * mix(b, 1.0, x);
     Number cloud_height = (altitude - layer.base_altitude) / x;
@@ -397,11 +400,10 @@ Number CloudSlabLeakage(IN(CloudLayerParameters) layer, IN(CloudSample) s, Numbe
     if (!(s.detail >= 0.0) || layer.ground_fog > 0.5 || layer.precipitation_shaft > 0.5) {
         return 0.0;
     }
+    Number overhang = CloudOverhangBottom(layer, s);
     Number height =
-        s.cloud_fraction >= 1.0
-            ? max(mix(layer.base_altitude, layer.top_altitude, kCloudAnvilTop) -
-                      CloudOverhangBottom(layer, s),
-                  0.0)
+        overhang >= 0.0
+            ? max(mix(layer.base_altitude, layer.top_altitude, kCloudAnvilTop) - overhang, 0.0)
             : s.cloud_height * CloudProfileIntegral(CloudHeightGradient(s.type, 0.0), 1.0);
     Number column = extinction * layer.extinction_scale * height;
     Number width = column + 2.0 * 0.7104 / (1.0 - g);
