@@ -342,7 +342,7 @@ TEST_F(SkySystemTest, RainBeneathThunderstormsAgainstThePathTracer) {
 // depth 3-70 toward the Sun). The slab lighting took the depth below such a sample from the
 // column's profile down to the layer's base, as if the overhang's underside were deep inside a
 // cloud reaching the ground: 2.19x the path tracer's light (1,000 paths a view, +-4 %). With
-// the overhang's own depth below (CloudOverhangBottom): 1.43x (BENCHMARKS.md, "The anvil's
+// the overhang's own depth below (CloudOverhangBottom): 1.39x (BENCHMARKS.md, "The anvil's
 // overhang").
 TEST_F(SkySystemTest, AnvilOverhangAgainstThePathTracer) {
     std::vector<glm::dvec2> views;
